@@ -1,0 +1,1 @@
+//! Boundary-representation model for cadre (being written).

@@ -1,0 +1,96 @@
+//! Axis-aligned bounding boxes in `f64`.
+
+use crate::{Transform, Vec3};
+
+/// An axis-aligned box; [`BoundingBox::EMPTY`] contains nothing and is the identity of
+/// [`BoundingBox::union`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoundingBox {
+    /// Smallest corner.
+    pub min: Vec3,
+    /// Largest corner.
+    pub max: Vec3,
+}
+
+impl BoundingBox {
+    /// The empty box.
+    pub const EMPTY: BoundingBox = BoundingBox {
+        min: Vec3::splat(f64::INFINITY),
+        max: Vec3::splat(f64::NEG_INFINITY),
+    };
+
+    /// The box of a set of points (empty for no points). Non-finite points are skipped.
+    pub fn from_points<I: IntoIterator<Item = Vec3>>(points: I) -> Self {
+        let mut b = Self::EMPTY;
+        for p in points {
+            b.add_point(p);
+        }
+        b
+    }
+
+    /// Whether the box contains nothing.
+    pub fn is_empty(&self) -> bool {
+        !(self.min.x <= self.max.x && self.min.y <= self.max.y && self.min.z <= self.max.z)
+    }
+
+    /// Grows the box to contain `p` (ignored when not finite).
+    pub fn add_point(&mut self, p: Vec3) {
+        if p.is_finite() {
+            self.min = self.min.min(p);
+            self.max = self.max.max(p);
+        }
+    }
+
+    /// The smallest box containing both.
+    pub fn union(&self, other: &BoundingBox) -> BoundingBox {
+        if other.is_empty() {
+            return *self;
+        }
+        if self.is_empty() {
+            return *other;
+        }
+        BoundingBox {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    /// Length of the diagonal (0 for an empty box).
+    pub fn diagonal(&self) -> f64 {
+        if self.is_empty() {
+            0.0
+        } else {
+            (self.max - self.min).length()
+        }
+    }
+
+    /// The eight corners (meaningless for an empty box).
+    pub fn corners(&self) -> [Vec3; 8] {
+        let (a, b) = (self.min, self.max);
+        [
+            Vec3::new(a.x, a.y, a.z),
+            Vec3::new(b.x, a.y, a.z),
+            Vec3::new(a.x, b.y, a.z),
+            Vec3::new(b.x, b.y, a.z),
+            Vec3::new(a.x, a.y, b.z),
+            Vec3::new(b.x, a.y, b.z),
+            Vec3::new(a.x, b.y, b.z),
+            Vec3::new(b.x, b.y, b.z),
+        ]
+    }
+
+    /// The box of this box's corners after `t` (a conservative box for rotations).
+    pub fn transformed(&self, t: &Transform) -> BoundingBox {
+        if self.is_empty() {
+            return *self;
+        }
+        BoundingBox::from_points(self.corners().map(|c| t.transform_point3(c)))
+    }
+
+    /// `[xmin, ymin, zmin, xmax, ymax, zmax]`, the layout used by reports and the corpus.
+    pub fn to_array(&self) -> [f64; 6] {
+        [
+            self.min.x, self.min.y, self.min.z, self.max.x, self.max.y, self.max.z,
+        ]
+    }
+}

@@ -1,0 +1,2 @@
+//! The cadre command line.
+fn main() {}
