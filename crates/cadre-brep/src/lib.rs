@@ -1,1 +1,30 @@
-//! Boundary-representation model for cadre (being written).
+//! The boundary-representation model of cadre.
+//!
+//! A [`Model`] keeps the exact geometry (surfaces and curves from `cadre-geom`) and the
+//! topology (vertices, edges, loops, faces, shells, solids) in flat arenas indexed by typed
+//! ids, plus tessellated meshes that files carry as such (AP242). Parts form an assembly tree:
+//! a [`Part`] owns bodies and places child parts through [`Occurrence`]s, so a part used a
+//! thousand times is stored once.
+//!
+//! Trim loops in each face's (u, v) domain are computed by the tessellation work; faces keep
+//! their bounds as oriented edges that carry the file's pcurves where present, which is what
+//! that work consumes.
+
+pub mod assembly;
+pub mod bounds;
+pub mod ids;
+pub mod mesh;
+pub mod model;
+pub mod stats;
+pub mod style;
+pub mod topology;
+pub mod units;
+
+pub use assembly::{Body, InstanceVisit, Occurrence, Part};
+pub use ids::*;
+pub use mesh::TriangleMesh;
+pub use model::{Model, StyleTarget, Warning};
+pub use stats::Counts;
+pub use style::{Rgb, Style};
+pub use topology::{Edge, Face, Loop, LoopKind, OrientedEdge, Shell, Solid, Vertex, Wire};
+pub use units::Units;

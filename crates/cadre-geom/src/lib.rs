@@ -9,16 +9,24 @@
 //! global constant.
 
 pub mod bbox;
+mod bounds;
 pub mod bspline;
 pub mod curve;
+pub mod eval;
 pub mod frame;
+mod invert;
+pub mod nurbs;
+pub mod point;
 pub mod surface;
 pub mod tolerance;
 
 pub use bbox::BoundingBox;
 pub use bspline::{BSplineCurve, BSplineSurface, KnotError};
 pub use curve::{Curve, Curve2, Curve3};
+pub use eval::curve::CurveDerivs;
+pub use eval::surface::SurfaceDerivs;
 pub use frame::{Frame, Transform};
+pub use point::GeomPoint;
 pub use surface::Surface;
 pub use tolerance::Accuracy;
 

@@ -4,4 +4,7 @@
 //! instances decoded on demand), and [`map`] turns the B-Rep, assembly and presentation
 //! content of AP203, AP214 and AP242 into a [`cadre_brep::Model`].
 
+pub mod map;
 pub mod syntax;
+
+pub use map::map_file;

@@ -1,2 +1,38 @@
-//! The cadre command line.
-fn main() {}
+//! The `cadre` command line: inspect, convert and render CAD models.
+
+mod commands;
+mod load;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+/// cadre: exact, fast rendering of CAD models.
+#[derive(Parser)]
+#[command(name = "cadre", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Summarise a STEP file: schema, units, product tree, counts, bounding box, warnings.
+    Info(commands::info::InfoArgs),
+    /// Time cadre's stages over a folder of files (used by the scripts in `scripts/`).
+    Bench(commands::bench::BenchArgs),
+}
+
+fn main() -> Result<()> {
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_env("CADRE_LOG")
+                .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("warn")),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Info(args) => commands::info::run(&args),
+        Command::Bench(args) => commands::bench::run(&args),
+    }
+}

@@ -1,0 +1,107 @@
+//! The assembly tree: parts that own bodies and place other parts.
+
+use crate::topology::Wire;
+use crate::{FaceId, MeshId, Model, PartId, ShellId, SolidId, Style};
+use cadre_geom::{Transform, Vec3};
+
+/// A piece of geometry a part owns, in the part's own coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Body {
+    /// A solid (`MANIFOLD_SOLID_BREP`, `BREP_WITH_VOIDS`, `FACETED_BREP`).
+    Solid(SolidId),
+    /// A shell outside any solid (surface models).
+    Shell(ShellId),
+    /// A face outside any shell.
+    Face(FaceId),
+    /// A tessellated item.
+    Mesh(MeshId),
+    /// A curve alone (wireframe).
+    Wire(Wire),
+    /// A point alone.
+    Point(Vec3),
+}
+
+/// A placed use of a part inside another part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Occurrence {
+    /// The part placed.
+    pub part: PartId,
+    /// Child coordinates → parent coordinates (mm).
+    pub transform: Transform,
+    /// Occurrence name (the `NEXT_ASSEMBLY_USAGE_OCCURRENCE` name or id), may be empty.
+    pub name: String,
+    /// STEP instance id of the occurrence (`NEXT_ASSEMBLY_USAGE_OCCURRENCE` or `MAPPED_ITEM`).
+    pub step_id: u64,
+}
+
+/// A part: a product definition, or a representation used through a mapped item.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Part {
+    /// Display name (product name, else representation name).
+    pub name: String,
+    /// Product id (part number), empty for a representation.
+    pub product_id: String,
+    /// Whether it comes from a product definition (rather than a bare representation).
+    pub is_product: bool,
+    /// Geometry owned directly.
+    pub bodies: Vec<Body>,
+    /// Placed sub-parts.
+    pub children: Vec<Occurrence>,
+    /// Appearance given to the part as a whole.
+    pub style: Option<Style>,
+    /// STEP instance id (`PRODUCT_DEFINITION` or representation).
+    pub step_id: u64,
+}
+
+/// One visit of a part during a walk of the assembly tree from the roots.
+#[derive(Clone, Copy, Debug)]
+pub struct InstanceVisit {
+    /// The part visited.
+    pub part: PartId,
+    /// Part coordinates → world coordinates.
+    pub transform: Transform,
+    /// Depth below the root (0 for a root).
+    pub depth: usize,
+}
+
+/// Assembly trees deeper than this are cut (with a warning from the mapper); real assemblies
+/// are a few dozen levels deep at most.
+pub const MAX_ASSEMBLY_DEPTH: usize = 256;
+
+impl Model {
+    /// Visits every part instance reachable from the roots, depth first, with its world
+    /// transform. A part used `n` times is visited `n` times.
+    pub fn visit_instances(&self, mut f: impl FnMut(InstanceVisit)) {
+        let mut stack: Vec<InstanceVisit> = self
+            .roots
+            .iter()
+            .rev()
+            .map(|&part| InstanceVisit {
+                part,
+                transform: Transform::IDENTITY,
+                depth: 0,
+            })
+            .collect();
+        while let Some(visit) = stack.pop() {
+            f(visit);
+            if visit.depth >= MAX_ASSEMBLY_DEPTH {
+                continue;
+            }
+            let Some(part) = self.parts.get(visit.part.index()) else {
+                continue;
+            };
+            for occ in part.children.iter().rev() {
+                stack.push(InstanceVisit {
+                    part: occ.part,
+                    transform: visit.transform * occ.transform,
+                    depth: visit.depth + 1,
+                });
+            }
+        }
+    }
+
+    /// The part with this id.
+    pub fn part(&self, id: PartId) -> &Part {
+        &self.parts[id.index()]
+    }
+}

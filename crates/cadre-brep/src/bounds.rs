@@ -1,0 +1,301 @@
+//! Bounding boxes of faces, parts and whole models, from the exact geometry.
+//!
+//! A face's box is the box of its edges plus, for a curved face, the box of its support
+//! surface over the face's (u, v) bounds (found by projecting edge samples onto the surface).
+//! This is what OCCT's `BRepBndLib::Add` measures too, so the two agree closely; it can only
+//! overestimate a face whose (u, v) rectangle is larger than the face itself.
+
+use rayon::prelude::*;
+
+use crate::topology::{Edge, Face, LoopKind};
+use crate::{Body, EdgeId, Model};
+use cadre_geom::{Accuracy, BoundingBox, Curve3, Surface, Transform, Vec3};
+
+/// Samples taken along each edge to find a face's (u, v) bounds and to bound rotated instances.
+const EDGE_SAMPLES: usize = 24;
+/// Grid samples per direction on a curved face, kept for bounding rotated instances.
+const FACE_GRID: usize = 9;
+
+/// The surface type name a face reports: a rectangular trimmed surface reports its basis, as
+/// CAD kernels do.
+pub fn reported_type(surface: &Surface) -> &'static str {
+    match surface {
+        Surface::Trimmed { basis, .. } => reported_type(basis),
+        other => other.type_name(),
+    }
+}
+
+/// The parameter interval of an edge on its curve, increasing, or `None` for a degenerate edge
+/// or one whose vertices cannot be placed on the curve.
+pub fn edge_range(model: &Model, edge: &Edge, acc: Accuracy) -> Option<(f64, f64)> {
+    let curve = &model.curves[edge.curve?.index()];
+    let p_start = model.vertices[edge.start.index()].point;
+    let p_end = model.vertices[edge.end.index()].point;
+    let (p0, p1) = if edge.same_sense {
+        (p_start, p_end)
+    } else {
+        (p_end, p_start)
+    };
+    let domain = curve.domain();
+    let t0 = curve.project(p0, domain.map(|d| d.0), acc)?;
+    let mut t1 = curve.project(p1, domain.map(|d| d.1), acc)?;
+    if let Some(period) = curve.period() {
+        // A closed edge on a periodic curve (start vertex = end vertex) covers the period.
+        let closed = edge.start == edge.end || (p_start - p_end).length() <= acc.distance * 10.0;
+        while t1 <= t0 + 1e-12 {
+            t1 += period;
+        }
+        if closed || t1 - t0 > period {
+            t1 = t0 + period;
+        }
+        return Some((t0, t1));
+    }
+    if t1 < t0 {
+        // A bounded curve run against its parameter: keep the interval increasing anyway.
+        return Some((t1, t0));
+    }
+    Some((t0, t1))
+}
+
+fn curve_samples(curve: &Curve3, range: (f64, f64), n: usize) -> impl Iterator<Item = Vec3> + '_ {
+    (0..=n).map(move |i| curve.eval(range.0 + (range.1 - range.0) * i as f64 / n as f64))
+}
+
+/// Box and sample points of one edge.
+fn edge_bounds(model: &Model, id: EdgeId, acc: Accuracy, samples: &mut Vec<Vec3>) -> BoundingBox {
+    let edge = &model.edges[id.index()];
+    let mut b = BoundingBox::from_points([
+        model.vertices[edge.start.index()].point,
+        model.vertices[edge.end.index()].point,
+    ]);
+    if let (Some(curve), Some(range)) = (edge.curve, edge_range(model, edge, acc)) {
+        let curve = &model.curves[curve.index()];
+        b = b.union(&curve.bbox_between(range.0, range.1));
+        samples.extend(curve_samples(curve, range, EDGE_SAMPLES));
+    }
+    samples.push(model.vertices[edge.start.index()].point);
+    b
+}
+
+/// The (u, v) rectangle a face occupies, from its edges projected on the surface.
+fn face_uv_box(model: &Model, face: &Face, surface: &Surface, acc: Accuracy) -> Option<[f64; 4]> {
+    let mut uv = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+    let mut hint: Option<(f64, f64)> = None;
+    let mut add = |p: Vec3, hint: &mut Option<(f64, f64)>| {
+        if let Some((mut u, mut v)) = surface.project(p, *hint, acc) {
+            // Keep parameters continuous across a seam, so a loop that goes around the
+            // surface shows up as a range of a whole period.
+            if let (Some((hu, hv)), Some(pu)) = (*hint, surface.u_period()) {
+                u += ((hu - u) / pu).round() * pu;
+                let _ = hv;
+            }
+            if let (Some((_, hv)), Some(pv)) = (*hint, surface.v_period()) {
+                v += ((hv - v) / pv).round() * pv;
+            }
+            uv[0] = uv[0].min(u);
+            uv[1] = uv[1].max(u);
+            uv[2] = uv[2].min(v);
+            uv[3] = uv[3].max(v);
+            *hint = Some((u, v));
+        }
+    };
+    let mut seen = std::collections::HashSet::new();
+    let mut seam = false;
+    for lp in &face.loops {
+        match &lp.kind {
+            LoopKind::Edges(edges) => {
+                for oe in edges {
+                    if !seen.insert(oe.edge) {
+                        seam = true;
+                    }
+                    let edge = &model.edges[oe.edge.index()];
+                    let mut pts = Vec::new();
+                    if let (Some(c), Some(r)) = (edge.curve, edge_range(model, edge, acc)) {
+                        pts.extend(curve_samples(&model.curves[c.index()], r, EDGE_SAMPLES));
+                    } else {
+                        pts.push(model.vertices[edge.start.index()].point);
+                    }
+                    for p in pts {
+                        add(p, &mut hint);
+                    }
+                }
+            }
+            LoopKind::Vertex(v) => add(model.vertices[v.index()].point, &mut hint),
+            LoopKind::Poly(points) => {
+                for &p in points {
+                    add(p, &mut hint);
+                }
+            }
+        }
+    }
+    if !(uv[0] <= uv[1] && uv[2] <= uv[3]) {
+        return None;
+    }
+    // A seam edge used twice means the face wraps all the way around.
+    if seam {
+        if let Some(pu) = surface.u_period()
+            && uv[1] - uv[0] > 0.5 * pu
+        {
+            uv[1] = uv[0] + pu;
+        }
+        if let Some(pv) = surface.v_period()
+            && uv[3] - uv[2] > 0.5 * pv
+        {
+            uv[3] = uv[2] + pv;
+        }
+    }
+    Some(uv)
+}
+
+/// Bounds of one face: its box and sample points on it.
+pub fn face_bounds(model: &Model, face: &Face, acc: Accuracy) -> (BoundingBox, Vec<Vec3>) {
+    let mut samples = Vec::new();
+    let mut b = BoundingBox::EMPTY;
+    for lp in &face.loops {
+        match &lp.kind {
+            LoopKind::Edges(edges) => {
+                for oe in edges {
+                    b = b.union(&edge_bounds(model, oe.edge, acc, &mut samples));
+                }
+            }
+            LoopKind::Vertex(v) => {
+                b.add_point(model.vertices[v.index()].point);
+                samples.push(model.vertices[v.index()].point);
+            }
+            LoopKind::Poly(points) => {
+                for &p in points {
+                    b.add_point(p);
+                    samples.push(p);
+                }
+            }
+        }
+    }
+    let surface = &model.surfaces[face.surface.index()];
+    if matches!(surface, Surface::Plane { .. }) && !face.loops.is_empty() {
+        // A plane region's extremes lie on its boundary.
+        return (b, samples);
+    }
+    let uv = if face.loops.is_empty() {
+        let ((u0, u1), (v0, v1)) = surface.domain();
+        Some([u0, u1, v0, v1])
+    } else {
+        face_uv_box(model, face, surface, acc)
+    };
+    if let Some([u0, u1, v0, v1]) = uv
+        && [u0, u1, v0, v1].iter().all(|x| x.is_finite())
+    {
+        b = b.union(&surface.bbox_over(u0, u1, v0, v1));
+        for i in 0..FACE_GRID {
+            for j in 0..FACE_GRID {
+                let s = i as f64 / (FACE_GRID - 1) as f64;
+                let t = j as f64 / (FACE_GRID - 1) as f64;
+                samples.push(surface.eval(u0 + (u1 - u0) * s, v0 + (v1 - v0) * t));
+            }
+        }
+    }
+    samples.retain(|p| p.is_finite());
+    (b, samples)
+}
+
+/// Box and samples of each part's own bodies, in part coordinates.
+#[derive(Clone, Debug)]
+pub struct PartBounds {
+    /// The box.
+    pub bbox: BoundingBox,
+    /// Points on the geometry, for bounding rotated instances tightly.
+    pub samples: Vec<Vec3>,
+}
+
+/// Whether `t` maps axis-aligned boxes to axis-aligned boxes exactly (its linear part is a
+/// signed permutation times a scale).
+fn is_axis_aligned(t: &Transform) -> bool {
+    let m = t.matrix3;
+    [m.x_axis, m.y_axis, m.z_axis].iter().all(|c| {
+        let a = c.abs();
+        let big = a.max_element();
+        (a.x + a.y + a.z - big) <= 1e-12 * big.max(1.0)
+    })
+}
+
+impl Model {
+    /// Bounds of the bodies each part owns directly (children excluded), computed in
+    /// parallel over faces.
+    pub fn part_bounds(&self, acc: Accuracy) -> Vec<PartBounds> {
+        let face_bounds: Vec<(BoundingBox, Vec<Vec3>)> = self
+            .faces
+            .par_iter()
+            .map(|f| face_bounds(self, f, acc))
+            .collect();
+        let shell_into = |shell: crate::ShellId, pb: &mut PartBounds| {
+            for &(face, _) in &self.shells[shell.index()].faces {
+                let (b, s) = &face_bounds[face.index()];
+                pb.bbox = pb.bbox.union(b);
+                pb.samples.extend_from_slice(s);
+            }
+        };
+        self.parts
+            .iter()
+            .map(|part| {
+                let mut pb = PartBounds {
+                    bbox: BoundingBox::EMPTY,
+                    samples: Vec::new(),
+                };
+                for body in &part.bodies {
+                    match body {
+                        Body::Solid(id) => {
+                            for shell in self.solids[id.index()].shells() {
+                                shell_into(shell, &mut pb);
+                            }
+                        }
+                        Body::Shell(id) => shell_into(*id, &mut pb),
+                        Body::Face(id) => {
+                            let (b, s) = &face_bounds[id.index()];
+                            pb.bbox = pb.bbox.union(b);
+                            pb.samples.extend_from_slice(s);
+                        }
+                        Body::Mesh(id) => {
+                            let mesh = &self.meshes[id.index()];
+                            pb.bbox = pb.bbox.union(&mesh.bbox());
+                            pb.samples.extend_from_slice(&mesh.positions);
+                        }
+                        Body::Wire(w) => {
+                            let curve = &self.curves[w.curve.index()];
+                            if let Some((t0, t1)) = w.range.or_else(|| curve.domain())
+                                && t0.is_finite()
+                                && t1.is_finite()
+                            {
+                                pb.bbox = pb.bbox.union(&curve.bbox_between(t0, t1));
+                                pb.samples.extend(curve_samples(curve, (t0, t1), EDGE_SAMPLES));
+                            }
+                        }
+                        Body::Point(p) => {
+                            pb.bbox.add_point(*p);
+                            pb.samples.push(*p);
+                        }
+                    }
+                }
+                pb
+            })
+            .collect()
+    }
+
+    /// The world-space box of every part instance (empty for a model without geometry).
+    pub fn bbox(&self, acc: Accuracy) -> BoundingBox {
+        let parts = self.part_bounds(acc);
+        let mut b = BoundingBox::EMPTY;
+        self.visit_instances(|visit| {
+            let pb = &parts[visit.part.index()];
+            if pb.bbox.is_empty() {
+                return;
+            }
+            if is_axis_aligned(&visit.transform) {
+                b = b.union(&pb.bbox.transformed(&visit.transform));
+            } else {
+                b = b.union(&BoundingBox::from_points(
+                    pb.samples.iter().map(|&p| visit.transform.transform_point3(p)),
+                ));
+            }
+        });
+        b
+    }
+}

@@ -1,0 +1,122 @@
+//! Derivatives of (rational) B-spline curves.
+
+use super::basis::{binomial, ders_basis_funs, find_span};
+use crate::bspline::BSplineCurve;
+use crate::point::GeomPoint;
+
+impl<P: GeomPoint> BSplineCurve<P> {
+    /// The point and derivatives up to `order` at `t` (`result[k]` is the `k`-th
+    /// derivative). Rational curves are differentiated exactly: homogeneous derivatives
+    /// first, then the quotient rule (*The NURBS Book* A4.2). Outside the domain the end
+    /// pieces are extended polynomially.
+    ///
+    /// A hand-built curve that is not [well formed](BSplineCurve::is_well_formed) evaluates
+    /// to zero rather than panicking.
+    pub fn derivatives(&self, t: f64, order: usize) -> Vec<P> {
+        if !self.is_well_formed() {
+            return vec![P::ZERO; order + 1];
+        }
+        let n = self.control_points.len();
+        let p = self.degree;
+        let span = find_span(&self.knots, n, p, t);
+        let nders = ders_basis_funs(span, t, p, order, &self.knots);
+        let first = span - p;
+        let mut a = vec![P::ZERO; order + 1];
+        let mut w = vec![0.0; order + 1];
+        for (k, row) in nders.iter().enumerate() {
+            for (j, &b) in row.iter().enumerate() {
+                let i = first + j;
+                let wi = self.weights.as_ref().map_or(1.0, |ws| ws[i]);
+                a[k] += self.control_points[i] * (b * wi);
+                w[k] += b * wi;
+            }
+        }
+        if self.weights.is_none() {
+            return a;
+        }
+        let mut ck = vec![P::ZERO; order + 1];
+        for k in 0..=order {
+            let mut v = a[k];
+            for i in 1..=k {
+                v -= ck[k - i] * (binomial(k, i) * w[i]);
+            }
+            ck[k] = v * (1.0 / w[0]);
+        }
+        ck
+    }
+
+    /// Whether the fields have the layout evaluation relies on: degree ≥ 1, more control
+    /// points than the degree, `n + degree + 1` knots spanning a non-empty domain, and one
+    /// weight per point if rational. [`BSplineCurve::try_new`] guarantees it; the fields are
+    /// public, so evaluation checks rather than trusts it.
+    pub fn is_well_formed(&self) -> bool {
+        let (n, p) = (self.control_points.len(), self.degree);
+        p >= 1
+            && n > p
+            && self.knots.len() == n + p + 1
+            && self.knots[p] < self.knots[n]
+            && self.weights.as_ref().is_none_or(|w| w.len() == n)
+    }
+
+    /// The point at `t` (polynomial extension outside the domain).
+    pub fn point_at(&self, t: f64) -> P {
+        self.derivatives(t, 0)[0]
+    }
+
+    /// Distinct interior knots strictly inside `(t0, t1)`: where the curve may lose
+    /// smoothness, so samplers split there.
+    pub fn breaks_within(&self, t0: f64, t1: f64) -> Vec<f64> {
+        let mut out: Vec<f64> = Vec::new();
+        for &k in &self.knots {
+            if k > t0 && k < t1 && out.last() != Some(&k) {
+                out.push(k);
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::bspline::BSplineCurve;
+    use crate::{Vec2, Vec3};
+
+    #[test]
+    fn rational_quarter_circle_is_on_circle() {
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let c = BSplineCurve::bezier(
+            vec![
+                Vec2::new(1.0, 0.0),
+                Vec2::new(1.0, 1.0),
+                Vec2::new(0.0, 1.0),
+            ],
+            Some(vec![1.0, s, 1.0]),
+        )
+        .unwrap();
+        for i in 0..=20 {
+            let t = i as f64 / 20.0;
+            let d = c.derivatives(t, 2);
+            assert!((d[0].length() - 1.0).abs() < 1e-14);
+            // Tangent is perpendicular to the radius on a circle.
+            assert!(d[0].dot(d[1]).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn cubic_bezier_derivative() {
+        let c = BSplineCurve::bezier(
+            vec![
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::new(2.0, 1.0, 0.0),
+                Vec3::new(3.0, 0.0, 1.0),
+            ],
+            None,
+        )
+        .unwrap();
+        let d = c.derivatives(0.0, 3);
+        assert_eq!(d[0], Vec3::ZERO);
+        assert!((d[1] - Vec3::new(3.0, 0.0, 0.0)).length() < 1e-14);
+        assert!((d[2] - 6.0 * (Vec3::new(2.0, 1.0, 0.0) - 2.0 * Vec3::X)).length() < 1e-12);
+    }
+}

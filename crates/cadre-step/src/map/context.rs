@@ -1,0 +1,140 @@
+//! The mapper's state: the file, the model under construction, caches from STEP ids to model
+//! ids, the units in force, and a guard against cyclic or absurdly deep references.
+
+use std::collections::HashMap;
+
+use super::error::{MapError, MapResult};
+use crate::syntax::{Instance, StepFile};
+use cadre_brep::{
+    CurveId, EdgeId, FaceId, MeshId, Model, PartId, PcurveId, ShellId, SolidId, SurfaceId,
+    Units, VertexId,
+};
+
+/// How deep references may nest while mapping one item (offset of offset of trimmed …).
+/// Legitimate files stay under a dozen; a cycle hits this bound instead of the stack.
+pub const MAX_NESTING: u32 = 64;
+
+/// Cache key: a STEP id mapped under one set of units (a geometric item shared by contexts
+/// with different units is mapped once per context).
+pub type Key = (u64, u32);
+
+/// Mapper state.
+pub struct Mapper<'f> {
+    /// The file being mapped.
+    pub file: &'f StepFile,
+    /// The model being built.
+    pub model: Model,
+    /// Units in force for the representation being mapped.
+    pub units: Units,
+    /// Index of `units` among the distinct unit sets met so far (part of cache keys).
+    pub units_key: u32,
+    /// Distinct unit sets met so far, by context id.
+    pub contexts: HashMap<u64, (Units, u32)>,
+    /// Nesting depth of the current mapping.
+    pub depth: u32,
+    /// Mapped surfaces.
+    pub surfaces: HashMap<Key, SurfaceId>,
+    /// Mapped 3D curves.
+    pub curves: HashMap<Key, CurveId>,
+    /// Mapped pcurves, by (PCURVE id, units).
+    pub pcurves: HashMap<Key, (SurfaceId, PcurveId)>,
+    /// Mapped vertices.
+    pub vertices: HashMap<Key, VertexId>,
+    /// Mapped edges.
+    pub edges: HashMap<Key, EdgeId>,
+    /// Mapped faces.
+    pub faces: HashMap<Key, FaceId>,
+    /// Mapped shells.
+    pub shells: HashMap<Key, ShellId>,
+    /// Mapped solids.
+    pub solids: HashMap<Key, SolidId>,
+    /// Mapped tessellated items.
+    pub meshes: HashMap<Key, MeshId>,
+    /// Instances that failed to map (so each is reported once).
+    pub failed: HashMap<u64, ()>,
+    /// Parts made for representations.
+    pub rep_parts: HashMap<u64, PartId>,
+    /// Parts made for product definitions.
+    pub product_parts: HashMap<u64, PartId>,
+}
+
+impl<'f> Mapper<'f> {
+    /// A mapper over `file` with an empty model.
+    pub fn new(file: &'f StepFile) -> Self {
+        Self {
+            file,
+            model: Model::default(),
+            units: Units::default(),
+            units_key: 0,
+            contexts: HashMap::new(),
+            depth: 0,
+            surfaces: HashMap::new(),
+            curves: HashMap::new(),
+            pcurves: HashMap::new(),
+            vertices: HashMap::new(),
+            edges: HashMap::new(),
+            faces: HashMap::new(),
+            shells: HashMap::new(),
+            solids: HashMap::new(),
+            meshes: HashMap::new(),
+            failed: HashMap::new(),
+            rep_parts: HashMap::new(),
+            product_parts: HashMap::new(),
+        }
+    }
+
+    /// The decoded instance `id`, or an error naming it (dangling reference, bad syntax).
+    pub fn inst(&self, id: u64) -> MapResult<Instance<'f>> {
+        self.file.instance(id).map_err(|d| {
+            if self.file.line(id).is_none() {
+                MapError::new(id, "reference to an instance that does not exist")
+            } else {
+                MapError::from(d)
+            }
+        })
+    }
+
+    /// The cache key of `id` under the units in force.
+    pub fn key(&self, id: u64) -> Key {
+        (id, self.units_key)
+    }
+
+    /// Runs `f` one nesting level deeper, failing on `id` past [`MAX_NESTING`].
+    pub fn nested<T>(&mut self, id: u64, f: impl FnOnce(&mut Self) -> MapResult<T>) -> MapResult<T> {
+        if self.depth >= MAX_NESTING {
+            return Err(MapError::new(
+                id,
+                format!("references nest deeper than {MAX_NESTING} levels (cyclic?)"),
+            ));
+        }
+        self.depth += 1;
+        let r = f(self);
+        self.depth -= 1;
+        r
+    }
+
+    /// Records a mapping failure as a warning (once per instance).
+    pub fn report(&mut self, e: &MapError) {
+        if self.failed.insert(e.id, ()).is_none() {
+            let line = self.file.line(e.id);
+            self.model
+                .warn(Some(e.id), line, e.message.clone());
+        }
+    }
+
+    /// Records a warning about `id` that is not an error.
+    pub fn warn(&mut self, id: u64, message: impl Into<String>) {
+        let line = self.file.line(id);
+        self.model.warn(Some(id), line, message);
+    }
+
+    /// Whether instance `id` has a record with this keyword.
+    pub fn is(&self, id: u64, keyword: &str) -> bool {
+        self.file.has_keyword(id, keyword)
+    }
+
+    /// The finished model.
+    pub fn finish(self) -> Model {
+        self.model
+    }
+}

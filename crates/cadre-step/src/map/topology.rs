@@ -1,0 +1,360 @@
+//! Topology: solids, shells, faces, loops, edges, vertices, and the pcurves of edges.
+//!
+//! Orientation flags are kept as the file gives them. A face whose surface cannot be mapped is
+//! dropped with a warning; an edge that cannot be mapped is dropped from its loop with a
+//! warning, and the face is kept.
+
+use super::access::Attrs;
+use super::context::Mapper;
+use super::error::{MapError, MapResult};
+use super::geometry::{parameter_scale, scale_pcurve};
+use cadre_brep::topology::{Edge, Face, Loop, LoopKind, OrientedEdge, Shell, Solid, Vertex};
+use cadre_brep::{EdgeId, FaceId, PcurveId, ShellId, SolidId, SurfaceId, VertexId};
+use cadre_geom::{Frame, Surface, Vec3};
+
+impl Mapper<'_> {
+    /// A `MANIFOLD_SOLID_BREP`, `BREP_WITH_VOIDS` or `FACETED_BREP`.
+    pub fn solid(&mut self, id: u64) -> MapResult<SolidId> {
+        if let Some(&s) = self.solids.get(&self.key(id)) {
+            return Ok(s);
+        }
+        let inst = self.inst(id)?;
+        let a = Attrs::first(&inst)?;
+        let outer_id = a.r#ref(1)?;
+        let outer = self.nested(id, |m| m.shell(outer_id))?.0;
+        let mut voids = Vec::new();
+        if inst.has("BREP_WITH_VOIDS") {
+            let list = match inst.record("BREP_WITH_VOIDS") {
+                Some(rec) if inst.complex => rec.params.first(),
+                _ => a.params.get(2),
+            };
+            for v in list.and_then(|p| p.as_list()).unwrap_or(&[]) {
+                let Some(vid) = v.as_ref_id() else { continue };
+                match self.nested(id, |m| m.shell(vid)) {
+                    Ok((s, _)) => voids.push(s),
+                    Err(e) => self.report(&e),
+                }
+            }
+        }
+        let sid = SolidId(self.model.solids.len() as u32);
+        self.model.solids.push(Solid {
+            outer,
+            voids,
+            step_id: id,
+        });
+        self.solids.insert(self.key(id), sid);
+        Ok(sid)
+    }
+
+    /// A shell: `CLOSED_SHELL`, `OPEN_SHELL`, `CONNECTED_FACE_SET`, or an oriented shell
+    /// (then a new shell with every face's orientation flipped when reversed). Returns the
+    /// shell and whether the file flagged it reversed.
+    pub fn shell(&mut self, id: u64) -> MapResult<(ShellId, bool)> {
+        if let Some(&s) = self.shells.get(&self.key(id)) {
+            return Ok((s, false));
+        }
+        let inst = self.inst(id)?;
+        let a = Attrs::first(&inst)?;
+        let (faces, closed, reversed) = match a.keyword {
+            "ORIENTED_CLOSED_SHELL" | "ORIENTED_OPEN_SHELL" => {
+                let element = a.r#ref(2)?;
+                let forward = a.bool_or(3, true);
+                let (base, _) = self.nested(id, |m| m.shell(element))?;
+                let base = self.model.shells[base.index()].clone();
+                let faces = base
+                    .faces
+                    .iter()
+                    .map(|&(f, o)| (f, o == forward))
+                    .collect();
+                (faces, base.closed, !forward)
+            }
+            "CLOSED_SHELL" | "OPEN_SHELL" | "CONNECTED_FACE_SET" => {
+                let mut faces = Vec::new();
+                for f in a.refs(1)? {
+                    match self.nested(id, |m| m.oriented_face(f)) {
+                        Ok(of) => faces.push(of),
+                        Err(e) => self.report(&e),
+                    }
+                }
+                (faces, a.keyword == "CLOSED_SHELL", false)
+            }
+            other => return Err(a.err(format!("{other} is not a shell"))),
+        };
+        let sid = ShellId(self.model.shells.len() as u32);
+        self.model.shells.push(Shell {
+            faces,
+            closed,
+            step_id: id,
+        });
+        self.shells.insert(self.key(id), sid);
+        Ok((sid, reversed))
+    }
+
+    /// A face with the orientation its shell uses it in.
+    fn oriented_face(&mut self, id: u64) -> MapResult<(FaceId, bool)> {
+        if self.is(id, "ORIENTED_FACE") {
+            let inst = self.inst(id)?;
+            let a = Attrs::of(&inst, "ORIENTED_FACE")?;
+            let element = a.r#ref(2)?;
+            let forward = a.bool_or(3, true);
+            let (f, o) = self.nested(id, |m| m.oriented_face(element))?;
+            return Ok((f, o == forward));
+        }
+        Ok((self.face(id)?, true))
+    }
+
+    /// An `ADVANCED_FACE`, `FACE_SURFACE`, or a bare `FACE` of a faceted B-Rep (its plane is
+    /// fitted to the polygon).
+    pub fn face(&mut self, id: u64) -> MapResult<FaceId> {
+        if let Some(&f) = self.faces.get(&self.key(id)) {
+            return Ok(f);
+        }
+        let inst = self.inst(id)?;
+        let a = Attrs::first(&inst)?;
+        if !matches!(a.keyword, "ADVANCED_FACE" | "FACE_SURFACE" | "FACE") {
+            return Err(a.err(format!("{} is not a face", a.keyword)));
+        }
+        let mut loops = Vec::new();
+        for b in a.refs(1)? {
+            match self.nested(id, |m| m.face_bound(b)) {
+                Ok(l) => loops.push(l),
+                Err(e) => self.report(&e),
+            }
+        }
+        let (surface, same_sense) = match a.keyword {
+            "FACE" => (self.fitted_plane(id, &loops)?, true),
+            _ => {
+                let s = a.r#ref(2)?;
+                (self.nested(id, |m| m.surface_id(s))?, a.bool_or(3, true))
+            }
+        };
+        let fid = FaceId(self.model.faces.len() as u32);
+        self.model.faces.push(Face {
+            surface,
+            same_sense,
+            loops,
+            step_id: id,
+        });
+        self.faces.insert(self.key(id), fid);
+        Ok(fid)
+    }
+
+
+    /// A plane through a polygon (Newell's normal), for faces that have no surface.
+    fn fitted_plane(&mut self, id: u64, loops: &[Loop]) -> MapResult<SurfaceId> {
+        let pts: Vec<Vec3> = loops
+            .iter()
+            .flat_map(|l| match &l.kind {
+                LoopKind::Poly(p) => p.clone(),
+                LoopKind::Edges(es) => es
+                    .iter()
+                    .map(|oe| {
+                        let e = &self.model.edges[oe.edge.index()];
+                        self.model.vertices[e.start.index()].point
+                    })
+                    .collect(),
+                LoopKind::Vertex(v) => vec![self.model.vertices[v.index()].point],
+            })
+            .collect();
+        let mut normal = Vec3::ZERO;
+        for (i, p) in pts.iter().enumerate() {
+            let q = pts[(i + 1) % pts.len()];
+            normal += Vec3::new(
+                (p.y - q.y) * (p.z + q.z),
+                (p.z - q.z) * (p.x + q.x),
+                (p.x - q.x) * (p.y + q.y),
+            );
+        }
+        let centre = pts.iter().copied().sum::<Vec3>() / pts.len().max(1) as f64;
+        let frame = Frame::from_axis(centre, normal, None)
+            .ok_or_else(|| MapError::new(id, "face polygon is degenerate (no plane)"))?;
+        let sid = SurfaceId(self.model.surfaces.len() as u32);
+        self.model.surfaces.push(Surface::Plane { frame });
+        Ok(sid)
+    }
+
+    /// A `FACE_BOUND` / `FACE_OUTER_BOUND`.
+    fn face_bound(&mut self, id: u64) -> MapResult<Loop> {
+        let inst = self.inst(id)?;
+        let a = Attrs::first(&inst)?;
+        if !matches!(a.keyword, "FACE_BOUND" | "FACE_OUTER_BOUND") {
+            return Err(a.err(format!("{} is not a face bound", a.keyword)));
+        }
+        let loop_id = a.r#ref(1)?;
+        let orientation = a.bool_or(2, true);
+        let kind = self.nested(id, |m| m.loop_kind(loop_id))?;
+        Ok(Loop {
+            kind,
+            orientation,
+            outer: a.keyword == "FACE_OUTER_BOUND",
+        })
+    }
+
+    fn loop_kind(&mut self, id: u64) -> MapResult<LoopKind> {
+        let inst = self.inst(id)?;
+        let a = Attrs::first(&inst)?;
+        match a.keyword {
+            "EDGE_LOOP" => {
+                let mut edges = Vec::new();
+                for oe in a.refs(1)? {
+                    match self.nested(id, |m| m.oriented_edge(oe)) {
+                        Ok(e) => edges.push(e),
+                        Err(e) => self.report(&e),
+                    }
+                }
+                Ok(LoopKind::Edges(edges))
+            }
+            "VERTEX_LOOP" => Ok(LoopKind::Vertex(self.vertex(a.r#ref(1)?)?)),
+            "POLY_LOOP" => {
+                let pts = a
+                    .refs(1)?
+                    .into_iter()
+                    .map(|p| self.point3(p))
+                    .collect::<MapResult<Vec<_>>>()?;
+                if pts.len() < 3 {
+                    return Err(a.err("poly loop needs at least three points"));
+                }
+                Ok(LoopKind::Poly(pts))
+            }
+            other => Err(a.err(format!("{other} is not a loop"))),
+        }
+    }
+
+    fn oriented_edge(&mut self, id: u64) -> MapResult<OrientedEdge> {
+        let inst = self.inst(id)?;
+        let a = Attrs::first(&inst)?;
+        match a.keyword {
+            "ORIENTED_EDGE" => {
+                let element = a.r#ref(3)?;
+                let forward = a.bool_or(4, true);
+                let inner = self.nested(id, |m| m.oriented_edge(element))?;
+                Ok(OrientedEdge {
+                    edge: inner.edge,
+                    forward: inner.forward == forward,
+                })
+            }
+            "EDGE_CURVE" => Ok(OrientedEdge {
+                edge: self.edge(id)?,
+                forward: true,
+            }),
+            other => Err(a.err(format!("{other} is not an edge"))),
+        }
+    }
+
+    /// An `EDGE_CURVE` with its 3D curve and the pcurves the file gives.
+    pub fn edge(&mut self, id: u64) -> MapResult<EdgeId> {
+        if let Some(&e) = self.edges.get(&self.key(id)) {
+            return Ok(e);
+        }
+        let inst = self.inst(id)?;
+        let a = Attrs::of(&inst, "EDGE_CURVE")?;
+        let start = self.vertex(a.r#ref(1)?)?;
+        let end = self.vertex(a.r#ref(2)?)?;
+        let geometry = a.r#ref(3)?;
+        let same_sense = a.bool_or(4, true);
+        let mut pcurves = Vec::new();
+        let curve = if self.is(geometry, "PCURVE") {
+            // Only a curve on a surface: keep it as a pcurve, no 3D curve.
+            match self.nested(id, |m| m.pcurve(geometry)) {
+                Ok(p) => pcurves.push(p),
+                Err(e) => self.report(&e),
+            }
+            None
+        } else {
+            self.collect_pcurves(geometry, &mut pcurves);
+            match self.nested(id, |m| m.curve_id(geometry)) {
+                Ok(c) => Some(c),
+                Err(e) => {
+                    self.report(&e);
+                    None
+                }
+            }
+        };
+        let eid = EdgeId(self.model.edges.len() as u32);
+        self.model.edges.push(Edge {
+            curve,
+            start,
+            end,
+            same_sense,
+            pcurves,
+            step_id: id,
+        });
+        self.edges.insert(self.key(id), eid);
+        Ok(eid)
+    }
+
+    /// The pcurves listed by a `SURFACE_CURVE` / `SEAM_CURVE` (associated geometry).
+    fn collect_pcurves(&mut self, geometry: u64, out: &mut Vec<(SurfaceId, PcurveId)>) {
+        let Ok(inst) = self.inst(geometry) else { return };
+        let Some(rec) = inst.records.iter().find(|r| {
+            matches!(
+                r.keyword,
+                "SURFACE_CURVE" | "SEAM_CURVE" | "INTERSECTION_CURVE" | "BOUNDED_SURFACE_CURVE"
+            )
+        }) else {
+            return;
+        };
+        let assoc: Vec<u64> = rec
+            .params
+            .get(2)
+            .and_then(|p| p.as_list())
+            .unwrap_or(&[])
+            .iter()
+            .filter_map(|p| p.as_ref_id())
+            .collect();
+        for p in assoc {
+            if !self.is(p, "PCURVE") {
+                continue;
+            }
+            match self.nested(geometry, |m| m.pcurve(p)) {
+                Ok(pc) => out.push(pc),
+                Err(e) => self.report(&e),
+            }
+        }
+    }
+
+    /// A `PCURVE`: its surface and its 2D curve in that surface's (mm, radian) parameters.
+    fn pcurve(&mut self, id: u64) -> MapResult<(SurfaceId, PcurveId)> {
+        if let Some(&p) = self.pcurves.get(&self.key(id)) {
+            return Ok(p);
+        }
+        let inst = self.inst(id)?;
+        let a = Attrs::of(&inst, "PCURVE")?;
+        let surface = self.surface_id(a.r#ref(1)?)?;
+        let rep = self.inst(a.r#ref(2)?)?;
+        let r = Attrs::first(&rep)?;
+        let curve_id = r
+            .refs(1)?
+            .into_iter()
+            .next()
+            .ok_or_else(|| r.err("definitional representation has no curve"))?;
+        let raw = self.curve2(curve_id)?;
+        let (su, sv) = parameter_scale(&self.model.surfaces[surface.index()], &self.units);
+        let curve = scale_pcurve(raw, su, sv).ok_or_else(|| {
+            a.err("pcurve is a conic in a space with mixed length/angle units; not scaled")
+        })?;
+        let pid = PcurveId(self.model.pcurves.len() as u32);
+        self.model.pcurves.push(curve);
+        self.pcurves.insert(self.key(id), (surface, pid));
+        Ok((surface, pid))
+    }
+
+    /// A `VERTEX_POINT`.
+    pub fn vertex(&mut self, id: u64) -> MapResult<VertexId> {
+        if let Some(&v) = self.vertices.get(&self.key(id)) {
+            return Ok(v);
+        }
+        let inst = self.inst(id)?;
+        let a = Attrs::of(&inst, "VERTEX_POINT")?;
+        let p = a.r#ref(1)?;
+        let point = if self.is(p, "CARTESIAN_POINT") {
+            self.point3(p)?
+        } else {
+            return Err(a.err("vertex geometry is not a cartesian point"));
+        };
+        let vid = VertexId(self.model.vertices.len() as u32);
+        self.model.vertices.push(Vertex { point });
+        self.vertices.insert(self.key(id), vid);
+        Ok(vid)
+    }
+}

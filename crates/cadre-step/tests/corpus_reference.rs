@@ -1,0 +1,129 @@
+//! Corpus test: every file of `../shared/corpus/step` loads without panicking, and face,
+//! shell and solid counts and bounding boxes agree with Open CASCADE's reference figures
+//! (`../shared/corpus/reference.jsonl`) for at least 98 % of the files OCCT reads.
+//!
+//! Skips with a message when `../shared/corpus` is absent (a clone without the shared data).
+
+use std::path::{Path, PathBuf};
+
+use cadre_geom::Accuracy;
+use cadre_step::syntax::StepFile;
+
+fn corpus_dir() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
+    dir.join("reference.jsonl").exists().then_some(dir)
+}
+
+struct Outcome {
+    file: String,
+    counts_ok: bool,
+    bbox_ok: Option<bool>,
+    detail: String,
+}
+
+fn check(dir: &Path, reference: &serde_json::Value) -> Outcome {
+    let name = reference["file"].as_str().unwrap_or_default().to_string();
+    let path = dir.join("step").join(&name);
+    let file = match StepFile::read(&path) {
+        Ok(f) => f,
+        Err(e) => {
+            return Outcome {
+                file: name,
+                counts_ok: false,
+                bbox_ok: None,
+                detail: format!("read error: {e}"),
+            };
+        }
+    };
+    let model = cadre_step::map_file(&file);
+    let c = model.counts();
+    let want = |k: &str| reference[k].as_u64().unwrap_or(0);
+    let counts_ok =
+        c.faces == want("faces") && c.shells == want("shells") && c.solids == want("solids");
+    let mut detail = format!(
+        "faces {}/{} shells {}/{} solids {}/{}",
+        c.faces,
+        want("faces"),
+        c.shells,
+        want("shells"),
+        c.solids,
+        want("solids")
+    );
+    let bbox_ok = reference["bbox"].as_array().and_then(|r| {
+        let r: Vec<f64> = r.iter().filter_map(|v| v.as_f64()).collect();
+        // OCCT reports infinite geometry with ±1e100 boxes: nothing to compare.
+        if r.len() != 6 || r.iter().any(|v| v.abs() >= 1e99) {
+            return None;
+        }
+        let ours = model.bbox(Accuracy::default());
+        if ours.is_empty() {
+            detail += " bbox empty";
+            return Some(false);
+        }
+        let diag = ((r[3] - r[0]).powi(2) + (r[4] - r[1]).powi(2) + (r[5] - r[2]).powi(2)).sqrt();
+        let err = ours
+            .to_array()
+            .iter()
+            .zip(&r)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        detail += &format!(" bbox err {:.3}% of diag", 100.0 * err / diag.max(1e-12));
+        Some(err <= 0.01 * diag)
+    });
+    Outcome {
+        file: name,
+        counts_ok,
+        bbox_ok,
+        detail,
+    }
+}
+
+#[test]
+fn corpus_matches_occt_reference() {
+    let Some(dir) = corpus_dir() else {
+        eprintln!("skipping: ../shared/corpus not found (clone without the shared data)");
+        return;
+    };
+    let text = std::fs::read_to_string(dir.join("reference.jsonl")).expect("reference.jsonl");
+    let refs: Vec<serde_json::Value> = text
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| serde_json::from_str(l).expect("reference line is JSON"))
+        .collect();
+    let mut outcomes = Vec::new();
+    let mut panics = Vec::new();
+    for r in &refs {
+        let name = r["file"].as_str().unwrap_or_default().to_string();
+        match std::panic::catch_unwind(|| check(&dir, r)) {
+            Ok(o) => outcomes.push(o),
+            Err(_) => panics.push(name),
+        }
+    }
+    let total = outcomes.len();
+    let counts_ok = outcomes.iter().filter(|o| o.counts_ok).count();
+    let bbox_cmp: Vec<&Outcome> = outcomes.iter().filter(|o| o.bbox_ok.is_some()).collect();
+    let bbox_ok = bbox_cmp.iter().filter(|o| o.bbox_ok == Some(true)).count();
+    for o in &outcomes {
+        if !o.counts_ok || o.bbox_ok == Some(false) {
+            eprintln!("MISMATCH {}: {}", o.file, o.detail);
+        }
+    }
+    eprintln!(
+        "corpus: {total} files, counts equal OCCT for {counts_ok} ({:.1} %), bbox within 1 % \
+         for {bbox_ok}/{} ({:.1} %), panics {}",
+        100.0 * counts_ok as f64 / total.max(1) as f64,
+        bbox_cmp.len(),
+        100.0 * bbox_ok as f64 / bbox_cmp.len().max(1) as f64,
+        panics.len()
+    );
+    assert!(panics.is_empty(), "panicked on {panics:?}");
+    assert!(
+        counts_ok as f64 >= 0.98 * total as f64,
+        "counts match for only {counts_ok}/{total}"
+    );
+    assert!(
+        bbox_ok as f64 >= 0.98 * bbox_cmp.len() as f64,
+        "bbox within 1 % for only {bbox_ok}/{}",
+        bbox_cmp.len()
+    );
+}

@@ -1,0 +1,163 @@
+//! Mapping of B-Rep, units, assemblies, styles and tessellated geometry from small STEP texts.
+
+mod common;
+
+use cadre_brep::{Body, LoopKind, model::StyleTarget};
+use cadre_geom::{Accuracy, Surface, Vec3};
+use common::{CUBE, INCH_DEGREE_CONTEXT, MM_CONTEXT, model};
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()))
+}
+
+#[test]
+fn cube_solid_maps_with_counts_orientations_and_bbox() {
+    let m = model(&format!(
+        "{MM_CONTEXT}{CUBE}#200=ADVANCED_BREP_SHAPE_REPRESENTATION('cube',(#80),#900);"
+    ));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let c = m.counts();
+    assert_eq!((c.solids, c.shells, c.faces), (1, 1, 6));
+    assert_eq!(c.surface_types.get("Plane"), Some(&6));
+    assert_eq!(m.edges.len(), 12);
+    assert_eq!(m.vertices.len(), 8);
+    // Orientation flags are kept as written.
+    let bottom = m.faces.iter().find(|f| f.step_id == 107).unwrap();
+    assert!(!bottom.same_sense);
+    let LoopKind::Edges(es) = &bottom.loops[0].kind else { panic!("edge loop") };
+    assert_eq!(es.iter().map(|e| e.forward).collect::<Vec<_>>(), [true, true, false, false]);
+    let b = m.bbox(Accuracy::default());
+    assert!(close(b.min.x, 0.0) && close(b.max.z, 1.0), "{b:?}");
+    assert_eq!(m.units.length_name, "mm");
+    assert_eq!(m.units.uncertainty_mm, Some(1e-7));
+}
+
+#[test]
+fn inch_units_scale_geometry_to_millimetres() {
+    let m = model(&format!(
+        "{INCH_DEGREE_CONTEXT}{CUBE}#200=ADVANCED_BREP_SHAPE_REPRESENTATION('cube',(#80),#900);"
+    ));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let b = m.bbox(Accuracy::default());
+    assert!(close(b.max.x, 25.4) && close(b.max.y, 25.4), "{b:?}");
+    assert_eq!(m.units.length_name, "inch");
+    assert!(close(m.units.length_to_mm, 25.4));
+    assert!(close(m.units.uncertainty_mm.unwrap(), 25.4e-5));
+}
+
+#[test]
+fn cone_semi_angle_in_degrees_becomes_radians() {
+    let m = model(&format!(
+        "{INCH_DEGREE_CONTEXT}
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=CONICAL_SURFACE('',#4,2.,30.);
+#6=CIRCLE('',#4,2.);#7=CARTESIAN_POINT('',(2.,0.,0.));#8=VERTEX_POINT('',#7);
+#9=EDGE_CURVE('',#8,#8,#6,.T.);#10=ORIENTED_EDGE('',*,*,#9,.T.);#11=EDGE_LOOP('',(#10));
+#12=FACE_OUTER_BOUND('',#11,.T.);#13=ADVANCED_FACE('',(#12),#5,.T.);
+#14=OPEN_SHELL('',(#13));#15=SHELL_BASED_SURFACE_MODEL('',(#14));
+#16=MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#15),#900);"
+    ));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let Surface::Cone {
+        radius, semi_angle, ..
+    } = &m.surfaces[0]
+    else {
+        panic!("cone expected, got {:?}", m.surfaces[0]);
+    };
+    assert!(close(*semi_angle, 30f64.to_radians()), "{semi_angle}");
+    assert!(close(*radius, 2.0 * 25.4));
+    let c = m.counts();
+    assert_eq!((c.solids, c.shells, c.faces), (0, 1, 1));
+}
+
+#[test]
+fn bundled_assembly_places_shared_instances() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/pin-assembly.step");
+    let file = cadre_step::syntax::StepFile::read(std::path::Path::new(path)).unwrap();
+    let m = cadre_step::map_file(&file);
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let c = m.counts();
+    assert_eq!((c.solids, c.shells, c.faces, c.products, c.instances), (2, 2, 6, 2, 2));
+    // Geometry is stored once and shared by both instances.
+    assert_eq!(m.solids.len(), 1);
+    assert_eq!(m.roots.len(), 1);
+    assert_eq!(m.part(m.roots[0]).name, "pin assembly");
+    let b = m.bbox(Accuracy::default());
+    let want = [-5.0, -5.0, -5.0, 25.0, 40.0, 10.0];
+    for (got, want) in b.to_array().iter().zip(want) {
+        assert!((got - want).abs() < 1e-6, "bbox {:?}", b.to_array());
+    }
+    // The colour on the solid is kept.
+    let style = m.styles.get(&StyleTarget::Solid(cadre_brep::SolidId(0))).unwrap();
+    let rgb = style.color.unwrap();
+    assert!((rgb.r - 0.8).abs() < 1e-6 && (rgb.g - 0.2).abs() < 1e-6);
+    // The seam edge is used twice by the side face.
+    let side = m.faces.iter().find(|f| f.step_id == 74).unwrap();
+    let LoopKind::Edges(es) = &side.loops[0].kind else { panic!() };
+    assert_eq!(es[1].edge, es[3].edge);
+    assert_ne!(es[1].forward, es[3].forward);
+}
+
+#[test]
+fn rational_bspline_complex_instance_and_pcurves() {
+    // A quarter circle as a rational quadratic B-spline (complex instance), with a pcurve.
+    let m = model(&format!(
+        "{MM_CONTEXT}
+#1=CARTESIAN_POINT('',(1.,0.,0.));#2=CARTESIAN_POINT('',(1.,1.,0.));#3=CARTESIAN_POINT('',(0.,1.,0.));
+#4=(BOUNDED_CURVE() B_SPLINE_CURVE(2,(#1,#2,#3),.CIRCULAR_ARC.,.F.,.F.)
+ B_SPLINE_CURVE_WITH_KNOTS((3,3),(0.,1.),.UNSPECIFIED.) CURVE() GEOMETRIC_REPRESENTATION_ITEM()
+ RATIONAL_B_SPLINE_CURVE((1.,0.707106781186548,1.)) REPRESENTATION_ITEM(''));
+#5=GEOMETRIC_CURVE_SET('',(#4));
+#6=GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('',(#5),#900);"
+    ));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let cadre_geom::Curve3::BSpline(b) = &m.curves[0] else { panic!("{:?}", m.curves[0]) };
+    assert_eq!(b.degree, 2);
+    assert_eq!(b.knots, vec![0., 0., 0., 1., 1., 1.]);
+    assert!(b.weights.is_some());
+    let mid = m.curves[0].eval(0.5);
+    assert!((mid.length() - 1.0).abs() < 1e-9, "rational evaluation stays on the circle: {mid}");
+    let parts_with_wire = m
+        .parts
+        .iter()
+        .filter(|p| p.bodies.iter().any(|b| matches!(b, Body::Wire(_))))
+        .count();
+    assert_eq!(parts_with_wire, 1);
+}
+
+#[test]
+fn tessellated_solid_counts_faces_shells_solids() {
+    let m = model(&format!(
+        "{MM_CONTEXT}
+#1=COORDINATES_LIST('',4,((0.,0.,0.),(1.,0.,0.),(1.,1.,0.),(0.,1.,0.)));
+#2=COMPLEX_TRIANGULATED_FACE('',#1,4,((0.,0.,1.)),$,(1,2,3,4),((1,2,4,3)),());
+#3=TRIANGULATED_FACE('',#1,4,((0.,0.,-1.)),$,(),((1,3,2),(1,4,3)));
+#4=TESSELLATED_SOLID('',(#2,#3),$);
+#5=TESSELLATED_SHAPE_REPRESENTATION('',(#4),#900);"
+    ));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let c = m.counts();
+    assert_eq!((c.solids, c.shells, c.faces), (1, 1, 2));
+    let mesh = &m.meshes[0];
+    assert_eq!(mesh.triangles.len(), 4);
+    assert_eq!(mesh.face_starts, vec![0, 2]);
+    // The strip (1,2,4,3) gives (1,2,4) and (2,3,4) with alternating winding kept CCW.
+    assert_eq!(mesh.triangles[0], [0, 1, 3]);
+    assert_eq!(mesh.triangles[1], [1, 2, 3]);
+}
+
+#[test]
+fn brep_with_voids_counts_the_void_shell() {
+    let m = model(&format!(
+        "{MM_CONTEXT}{CUBE}
+#300=ORIENTED_CLOSED_SHELL('',*,#160,.F.);
+#301=BREP_WITH_VOIDS('',#160,(#300));
+#302=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#301),#900);"
+    ));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let c = m.counts();
+    assert_eq!((c.solids, c.shells, c.faces), (1, 2, 12));
+    let void = &m.shells[m.solids[0].voids[0].index()];
+    assert!(void.faces.iter().all(|&(_, forward)| !forward));
+    let _ = Vec3::ZERO;
+}

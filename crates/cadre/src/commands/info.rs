@@ -1,0 +1,220 @@
+//! `cadre info`: what a STEP file holds.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use anyhow::Result;
+use cadre_brep::{Model, PartId};
+use cadre_geom::{Accuracy, Curve3};
+use cadre_step::syntax::StepFile;
+use serde_json::json;
+
+use crate::load::load_step;
+
+/// Arguments of `cadre info`.
+#[derive(clap::Args)]
+pub struct InfoArgs {
+    /// The STEP file (.stp, .step, .p21).
+    file: PathBuf,
+    /// Print one JSON object instead of the human summary.
+    #[arg(long)]
+    json: bool,
+    /// Show at most this many warnings in the human summary (all are in --json).
+    #[arg(long, default_value_t = 20)]
+    max_warnings: usize,
+}
+
+/// The application protocol a schema name belongs to.
+fn protocol(schema: &str) -> &'static str {
+    let s = schema.to_ascii_uppercase();
+    if s.starts_with("AP242") {
+        "AP242"
+    } else if s.starts_with("AUTOMOTIVE_DESIGN") {
+        "AP214"
+    } else if s.starts_with("CONFIG_CONTROL_DESIGN") || s.starts_with("AP203") {
+        "AP203"
+    } else if s.starts_with("STRUCTURAL_ANALYSIS_DESIGN") || s.starts_with("AP209") {
+        "AP209"
+    } else {
+        "unknown protocol"
+    }
+}
+
+/// A curve's type name as reports show it.
+fn curve_type(c: &Curve3) -> &'static str {
+    match c {
+        Curve3::Line { .. } => "Line",
+        Curve3::Circle { .. } => "Circle",
+        Curve3::Ellipse { .. } => "Ellipse",
+        Curve3::Parabola { .. } => "Parabola",
+        Curve3::Hyperbola { .. } => "Hyperbola",
+        Curve3::Polyline(_) => "Polyline",
+        Curve3::BSpline(_) => "BSplineCurve",
+        Curve3::Trimmed { .. } => "TrimmedCurve",
+        Curve3::Composite(_) => "CompositeCurve",
+        Curve3::Offset { .. } => "OffsetCurve",
+    }
+}
+
+/// Instances of each entity keyword in the file (each record of a complex instance counts).
+fn entity_counts(file: &StepFile) -> BTreeMap<String, u64> {
+    let mut counts = BTreeMap::new();
+    for id in file.ids() {
+        for &k in file.keywords(id).unwrap_or(&[]) {
+            *counts.entry(file.keyword_name(k).to_string()).or_default() += 1;
+        }
+    }
+    counts
+}
+
+/// Lines of the product tree: each child part once with how many times its parent uses it.
+fn tree_lines(model: &Model, part: PartId, depth: usize, uses: usize, out: &mut Vec<String>) {
+    const MAX_LINES: usize = 200;
+    if out.len() >= MAX_LINES || depth > 32 {
+        return;
+    }
+    let p = model.part(part);
+    let name = if p.name.is_empty() { "(unnamed)" } else { &p.name };
+    let mut what = Vec::new();
+    if !p.bodies.is_empty() {
+        what.push(format!("{} bodies", p.bodies.len()));
+    }
+    let times = if uses > 1 { format!(" ×{uses}") } else { String::new() };
+    let kind = if p.is_product { "" } else { " [representation]" };
+    out.push(format!(
+        "{}{name}{times}{kind}{}",
+        "  ".repeat(depth + 1),
+        if what.is_empty() { String::new() } else { format!(" ({})", what.join(", ")) }
+    ));
+    let mut grouped: Vec<(PartId, usize)> = Vec::new();
+    for occ in &p.children {
+        match grouped.iter_mut().find(|(id, _)| *id == occ.part) {
+            Some((_, n)) => *n += 1,
+            None => grouped.push((occ.part, 1)),
+        }
+    }
+    for (child, n) in grouped {
+        tree_lines(model, child, depth + 1, n, out);
+    }
+}
+
+/// Runs `cadre info`.
+pub fn run(args: &InfoArgs) -> Result<()> {
+    let loaded = load_step(&args.file)?;
+    let model = &loaded.model;
+    let counts = model.counts();
+    let bbox = model.bbox(Accuracy::default());
+    let mut curve_types: BTreeMap<&str, u64> = BTreeMap::new();
+    for c in &model.curves {
+        *curve_types.entry(curve_type(c)).or_default() += 1;
+    }
+    let schema = model.schemas.first().cloned().unwrap_or_default();
+    let warnings: Vec<String> = model.warnings.iter().map(|w| w.to_string()).collect();
+    let geometry_found = !bbox.is_empty() || counts.faces > 0 || counts.products > 0;
+
+    if args.json {
+        let out = json!({
+            "file": args.file.display().to_string(),
+            "bytes": std::fs::metadata(&args.file).map(|m| m.len()).unwrap_or(0),
+            "schema": schema,
+            "protocol": protocol(&schema),
+            "units": {
+                "length": model.units.length_name,
+                "length_to_mm": model.units.length_to_mm,
+                "angle": model.units.angle_name,
+                "uncertainty_mm": model.units.uncertainty_mm,
+            },
+            "faces": counts.faces,
+            "shells": counts.shells,
+            "solids": counts.solids,
+            "products": counts.products,
+            "instances": counts.instances,
+            "surface_types": counts.surface_types,
+            "curve_types": curve_types,
+            "entities": loaded.file.len(),
+            "entity_types": entity_counts(&loaded.file),
+            "bbox": if bbox.is_empty() { serde_json::Value::Null } else { json!(bbox.to_array()) },
+            "warnings": warnings,
+            "parse_seconds": loaded.parse_seconds,
+            "map_seconds": loaded.map_seconds,
+        });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else {
+        let u = &model.units;
+        println!("file       {}", args.file.display());
+        println!("schema     {schema} ({})", protocol(&schema));
+        println!(
+            "units      {} (×{} mm), {}{}",
+            u.length_name,
+            u.length_to_mm,
+            u.angle_name,
+            u.uncertainty_mm
+                .map(|x| format!(", uncertainty {x:e} mm"))
+                .unwrap_or_default()
+        );
+        println!(
+            "topology   {} solids, {} shells, {} faces",
+            counts.solids, counts.shells, counts.faces
+        );
+        println!(
+            "assembly   {} products, {} part instances",
+            counts.products, counts.instances
+        );
+        if bbox.is_empty() {
+            println!("bbox       (no geometry)");
+        } else {
+            let s = bbox.max - bbox.min;
+            println!(
+                "bbox (mm)  [{:.4}, {:.4}, {:.4}] – [{:.4}, {:.4}, {:.4}]  size {:.4} × {:.4} × {:.4}",
+                bbox.min.x, bbox.min.y, bbox.min.z, bbox.max.x, bbox.max.y, bbox.max.z, s.x, s.y, s.z
+            );
+        }
+        let list = |m: &BTreeMap<_, u64>| {
+            m.iter()
+                .map(|(k, v)| format!("{k} {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        println!("surfaces   {}", list(&counts.surface_types.iter().map(|(k, v)| (k.as_str(), *v)).collect()));
+        println!("curves     {}", list(&curve_types));
+        let mut entities: Vec<(String, u64)> = entity_counts(&loaded.file).into_iter().collect();
+        entities.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+        println!(
+            "entities   {} instances; most used: {}",
+            loaded.file.len(),
+            entities
+                .iter()
+                .take(12)
+                .map(|(k, v)| format!("{k} {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        println!("product tree");
+        let mut lines = Vec::new();
+        for &root in &model.roots {
+            tree_lines(model, root, 0, 1, &mut lines);
+        }
+        for l in &lines {
+            println!("{l}");
+        }
+        println!("warnings   {}", warnings.len());
+        for w in warnings.iter().take(args.max_warnings) {
+            println!("  {w}");
+        }
+        if warnings.len() > args.max_warnings {
+            println!("  … {} more (see --json)", warnings.len() - args.max_warnings);
+        }
+        println!(
+            "time       parse {:.3} s, map {:.3} s",
+            loaded.parse_seconds, loaded.map_seconds
+        );
+    }
+    if !geometry_found {
+        anyhow::bail!(
+            "{}: no geometry could be read ({} warnings)",
+            args.file.display(),
+            warnings.len()
+        );
+    }
+    Ok(())
+}
