@@ -1,7 +1,7 @@
 //! The assembly tree: parts that own bodies and place other parts.
 
 use crate::topology::Wire;
-use crate::{FaceId, MeshId, Model, PartId, ShellId, SolidId, Style};
+use crate::{EdgeId, FaceId, MeshId, Model, PartId, ShellId, SolidId, Style};
 use cadre_geom::{Transform, Vec3};
 
 /// A piece of geometry a part owns, in the part's own coordinates.
@@ -15,7 +15,9 @@ pub enum Body {
     Face(FaceId),
     /// A tessellated item.
     Mesh(MeshId),
-    /// A curve alone (wireframe).
+    /// An edge alone (edge-based wireframe), bounded by its vertices.
+    Edge(EdgeId),
+    /// A curve alone (wireframe curve sets).
     Wire(Wire),
     /// A point alone.
     Point(Vec3),

@@ -36,9 +36,9 @@ pub fn edge_range(model: &Model, edge: &Edge, acc: Accuracy) -> Option<(f64, f64
     } else {
         (p_end, p_start)
     };
-    let domain = curve.domain();
-    let t0 = curve.project(p0, domain.map(|d| d.0), acc)?;
-    let mut t1 = curve.project(p1, domain.map(|d| d.1), acc)?;
+    // No hints: periodic results land in the first period and the loop below orders them.
+    let t0 = curve.project(p0, None, acc)?;
+    let mut t1 = curve.project(p1, None, acc)?;
     if let Some(period) = curve.period() {
         // A closed edge on a periodic curve (start vertex = end vertex) covers the period.
         let closed = edge.start == edge.end || (p_start - p_end).length() <= acc.distance * 10.0;
@@ -77,8 +77,9 @@ fn edge_bounds(model: &Model, id: EdgeId, acc: Accuracy, samples: &mut Vec<Vec3>
     b
 }
 
-/// The (u, v) rectangle a face occupies, from its edges projected on the surface.
-fn face_uv_box(model: &Model, face: &Face, surface: &Surface, acc: Accuracy) -> Option<[f64; 4]> {
+/// The (u, v) rectangle a face occupies, from its edges projected on the surface, as
+/// `[u0, u1, v0, v1]`; `None` when no edge point projects.
+pub fn face_uv_box(model: &Model, face: &Face, surface: &Surface, acc: Accuracy) -> Option<[f64; 4]> {
     let mut uv = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
     let mut hint: Option<(f64, f64)> = None;
     let mut add = |p: Vec3, hint: &mut Option<(f64, f64)>| {
@@ -100,18 +101,33 @@ fn face_uv_box(model: &Model, face: &Face, surface: &Surface, acc: Accuracy) -> 
         }
     };
     let mut seen = std::collections::HashSet::new();
-    let mut seam = false;
+    let mut seams = Vec::new();
+    let mut complement = false;
     for lp in &face.loops {
+        let first_hint = hint;
+        let mut loop_uv: Vec<(f64, f64)> = Vec::new();
+        let mut add = |p: Vec3, hint: &mut Option<(f64, f64)>| {
+            add(p, hint);
+            if let Some(h) = *hint
+                && *hint != first_hint
+            {
+                loop_uv.push(h);
+            }
+        };
         match &lp.kind {
             LoopKind::Edges(edges) => {
                 for oe in edges {
                     if !seen.insert(oe.edge) {
-                        seam = true;
+                        seams.push(oe.edge);
                     }
                     let edge = &model.edges[oe.edge.index()];
                     let mut pts = Vec::new();
                     if let (Some(c), Some(r)) = (edge.curve, edge_range(model, edge, acc)) {
                         pts.extend(curve_samples(&model.curves[c.index()], r, EDGE_SAMPLES));
+                        // Samples run along the curve; the loop runs along the edge as used.
+                        if oe.forward != edge.same_sense {
+                            pts.reverse();
+                        }
                     } else {
                         pts.push(model.vertices[edge.start.index()].point);
                     }
@@ -127,24 +143,83 @@ fn face_uv_box(model: &Model, face: &Face, surface: &Surface, acc: Accuracy) -> 
                 }
             }
         }
+        if (lp.outer || face.loops.len() == 1)
+            && runs_clockwise(&loop_uv, surface, lp.orientation == face.same_sense)
+        {
+            complement = true;
+        }
     }
     if !(uv[0] <= uv[1] && uv[2] <= uv[3]) {
         return None;
     }
-    // A seam edge used twice means the face wraps all the way around.
-    if seam {
-        if let Some(pu) = surface.u_period()
-            && uv[1] - uv[0] > 0.5 * pu
-        {
+    // On a closed surface a clockwise outer loop bounds the rest of the surface: the face
+    // covers every period of it.
+    if complement {
+        if let Some(pu) = surface.u_period() {
             uv[1] = uv[0] + pu;
         }
-        if let Some(pv) = surface.v_period()
-            && uv[3] - uv[2] > 0.5 * pv
-        {
+        if let Some(pv) = surface.v_period() {
             uv[3] = uv[2] + pv;
         }
     }
+    // A loop cannot cover more than one period.
+    if let Some(pu) = surface.u_period() {
+        uv[1] = uv[1].min(uv[0] + pu);
+    }
+    if let Some(pv) = surface.v_period() {
+        uv[3] = uv[3].min(uv[2] + pv);
+    }
+    // A seam edge used twice means the face wraps all the way around, across the direction
+    // the seam does not run in (an iso-u seam closes the face in u).
+    for seam in seams {
+        let edge = &model.edges[seam.index()];
+        let (Some(c), Some(r)) = (edge.curve, edge_range(model, edge, acc)) else {
+            continue;
+        };
+        let pts: Vec<(f64, f64)> = curve_samples(&model.curves[c.index()], r, 4)
+            .filter_map(|p| surface.project(p, None, acc))
+            .collect();
+        let span = |f: fn(&(f64, f64)) -> f64| {
+            let (lo, hi) = pts
+                .iter()
+                .map(f)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+            hi - lo
+        };
+        let (du, dv) = (span(|p| p.0), span(|p| p.1));
+        if du <= dv {
+            if let Some(pu) = surface.u_period() {
+                uv[1] = uv[1].max(uv[0] + pu);
+            }
+        } else if let Some(pv) = surface.v_period() {
+            uv[3] = uv[3].max(uv[2] + pv);
+        }
+    }
     Some(uv)
+}
+
+/// Whether a loop that closes in (u, v) runs clockwise once oriented as the face uses it
+/// (`forward`: loop orientation agrees with the face's sense). Loops that do not close in
+/// parameter space (they go around a periodic direction) are not clockwise.
+fn runs_clockwise(uv: &[(f64, f64)], surface: &Surface, forward: bool) -> bool {
+    if uv.len() < 3 || (surface.u_period().is_none() && surface.v_period().is_none()) {
+        return false;
+    }
+    let (first, last) = (uv[0], uv[uv.len() - 1]);
+    let span = uv.iter().fold((0.0f64, 0.0f64), |(a, b), p| {
+        (a.max((p.0 - first.0).abs()), b.max((p.1 - first.1).abs()))
+    });
+    let closes = (last.0 - first.0).abs() <= 1e-3 * span.0.max(1e-9) + 1e-6
+        && (last.1 - first.1).abs() <= 1e-3 * span.1.max(1e-9) + 1e-6;
+    if !closes {
+        return false;
+    }
+    let area: f64 = uv
+        .iter()
+        .zip(uv.iter().cycle().skip(1))
+        .map(|(a, b)| a.0 * b.1 - b.0 * a.1)
+        .sum();
+    if forward { area < 0.0 } else { area > 0.0 }
 }
 
 /// Bounds of one face: its box and sample points on it.
@@ -257,6 +332,11 @@ impl Model {
                             let mesh = &self.meshes[id.index()];
                             pb.bbox = pb.bbox.union(&mesh.bbox());
                             pb.samples.extend_from_slice(&mesh.positions);
+                        }
+                        Body::Edge(e) => {
+                            let mut samples = Vec::new();
+                            pb.bbox = pb.bbox.union(&edge_bounds(self, *e, acc, &mut samples));
+                            pb.samples.extend(samples);
                         }
                         Body::Wire(w) => {
                             let curve = &self.curves[w.curve.index()];

@@ -54,7 +54,7 @@ impl Model {
                         c.shells += u64::from(mesh.shell_count);
                         c.solids += u64::from(mesh.solid_count);
                     }
-                    Body::Wire(_) | Body::Point(_) => {}
+                    Body::Edge(_) | Body::Wire(_) | Body::Point(_) => {}
                 }
             }
         });

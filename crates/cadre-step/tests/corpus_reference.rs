@@ -1,6 +1,13 @@
 //! Corpus test: every file of `../shared/corpus/step` loads without panicking, and face,
-//! shell and solid counts and bounding boxes agree with Open CASCADE's reference figures
+//! shell and solid counts agree with Open CASCADE's reference figures
 //! (`../shared/corpus/reference.jsonl`) for at least 98 % of the files OCCT reads.
+//!
+//! Bounding boxes are compared with OCCT's tight box (`BRepBndLib::AddOptimal`, recorded in
+//! `tests/data/occt_bbox_optimal.jsonl` by `scripts/occt_bbox_optimal.py`): the box in
+//! `reference.jsonl` comes from `BRepBndLib::Add`, which bounds B-spline geometry by control
+//! poles and is up to tens of percent larger than the geometry. Agreement with that loose box
+//! is reported, not asserted. Tessellated-only files, for which OCCT has no tight box, are
+//! compared with the reference box.
 //!
 //! Skips with a message when `../shared/corpus` is absent (a clone without the shared data).
 
@@ -18,10 +25,39 @@ struct Outcome {
     file: String,
     counts_ok: bool,
     bbox_ok: Option<bool>,
+    loose_ok: Option<bool>,
     detail: String,
 }
 
-fn check(dir: &Path, reference: &serde_json::Value) -> Outcome {
+/// OCCT's tight boxes by file name.
+fn optimal_boxes() -> std::collections::HashMap<String, Vec<f64>> {
+    let text = include_str!("data/occt_bbox_optimal.jsonl");
+    text.lines()
+        .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+        .filter_map(|v| {
+            let b: Vec<f64> = v["bbox_optimal"]
+                .as_array()?
+                .iter()
+                .filter_map(|x| x.as_f64())
+                .collect();
+            Some((v["file"].as_str()?.to_string(), b))
+        })
+        .collect()
+}
+
+/// Largest corner difference between two boxes as a fraction of `reference`'s diagonal.
+fn box_error(ours: [f64; 6], reference: &[f64]) -> f64 {
+    let r = reference;
+    let diag = ((r[3] - r[0]).powi(2) + (r[4] - r[1]).powi(2) + (r[5] - r[2]).powi(2)).sqrt();
+    let err = ours
+        .iter()
+        .zip(r)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    err / diag.max(1e-12)
+}
+
+fn check(dir: &Path, reference: &serde_json::Value, tight: Option<&Vec<f64>>) -> Outcome {
     let name = reference["file"].as_str().unwrap_or_default().to_string();
     let path = dir.join("step").join(&name);
     let file = match StepFile::read(&path) {
@@ -31,6 +67,7 @@ fn check(dir: &Path, reference: &serde_json::Value) -> Outcome {
                 file: name,
                 counts_ok: false,
                 bbox_ok: None,
+                loose_ok: None,
                 detail: format!("read error: {e}"),
             };
         }
@@ -49,31 +86,34 @@ fn check(dir: &Path, reference: &serde_json::Value) -> Outcome {
         c.solids,
         want("solids")
     );
-    let bbox_ok = reference["bbox"].as_array().and_then(|r| {
+    let loose: Option<Vec<f64>> = reference["bbox"].as_array().and_then(|r| {
         let r: Vec<f64> = r.iter().filter_map(|v| v.as_f64()).collect();
         // OCCT reports infinite geometry with ±1e100 boxes: nothing to compare.
-        if r.len() != 6 || r.iter().any(|v| v.abs() >= 1e99) {
-            return None;
-        }
+        (r.len() == 6 && r.iter().all(|v| v.abs() < 1e99)).then_some(r)
+    });
+    let mut loose_ok = None;
+    let bbox_ok = loose.as_ref().map(|loose| {
         let ours = model.bbox(Accuracy::default());
         if ours.is_empty() {
             detail += " bbox empty";
-            return Some(false);
+            return false;
         }
-        let diag = ((r[3] - r[0]).powi(2) + (r[4] - r[1]).powi(2) + (r[5] - r[2]).powi(2)).sqrt();
-        let err = ours
-            .to_array()
-            .iter()
-            .zip(&r)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        detail += &format!(" bbox err {:.3}% of diag", 100.0 * err / diag.max(1e-12));
-        Some(err <= 0.01 * diag)
+        let loose_err = box_error(ours.to_array(), loose);
+        loose_ok = Some(loose_err <= 0.01);
+        let target = tight.filter(|t| t.len() == 6).unwrap_or(loose);
+        let err = box_error(ours.to_array(), target);
+        detail += &format!(
+            " bbox err {:.3}% of diag vs OCCT tight box ({:.3}% vs reference.jsonl)",
+            100.0 * err,
+            100.0 * loose_err
+        );
+        err <= 0.01
     });
     Outcome {
         file: name,
         counts_ok,
         bbox_ok,
+        loose_ok,
         detail,
     }
 }
@@ -90,11 +130,12 @@ fn corpus_matches_occt_reference() {
         .filter(|l| !l.trim().is_empty())
         .map(|l| serde_json::from_str(l).expect("reference line is JSON"))
         .collect();
+    let tight = optimal_boxes();
     let mut outcomes = Vec::new();
     let mut panics = Vec::new();
     for r in &refs {
         let name = r["file"].as_str().unwrap_or_default().to_string();
-        match std::panic::catch_unwind(|| check(&dir, r)) {
+        match std::panic::catch_unwind(|| check(&dir, r, tight.get(&name))) {
             Ok(o) => outcomes.push(o),
             Err(_) => panics.push(name),
         }
@@ -104,13 +145,16 @@ fn corpus_matches_occt_reference() {
     let bbox_cmp: Vec<&Outcome> = outcomes.iter().filter(|o| o.bbox_ok.is_some()).collect();
     let bbox_ok = bbox_cmp.iter().filter(|o| o.bbox_ok == Some(true)).count();
     for o in &outcomes {
-        if !o.counts_ok || o.bbox_ok == Some(false) {
-            eprintln!("MISMATCH {}: {}", o.file, o.detail);
+        if !o.counts_ok {
+            eprintln!("COUNTS {}: {}", o.file, o.detail);
+        } else if o.bbox_ok == Some(false) {
+            eprintln!("BBOX {}: {}", o.file, o.detail);
         }
     }
+    let loose_ok = outcomes.iter().filter(|o| o.loose_ok == Some(true)).count();
     eprintln!(
         "corpus: {total} files, counts equal OCCT for {counts_ok} ({:.1} %), bbox within 1 % \
-         for {bbox_ok}/{} ({:.1} %), panics {}",
+         for {bbox_ok}/{} ({:.1} %; {loose_ok} within 1 % of reference.jsonl's loose box), panics {}",
         100.0 * counts_ok as f64 / total.max(1) as f64,
         bbox_cmp.len(),
         100.0 * bbox_ok as f64 / bbox_cmp.len().max(1) as f64,

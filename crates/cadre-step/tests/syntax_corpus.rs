@@ -58,7 +58,11 @@ fn every_corpus_file_parses_and_decodes() {
         .filter(|p| p.is_file())
         .collect();
     paths.sort();
-    assert!(!paths.is_empty(), "corpus directory {} is empty", dir.display());
+    assert!(
+        !paths.is_empty(),
+        "corpus directory {} is empty",
+        dir.display()
+    );
 
     let mut files = 0;
     let mut instances = 0;
@@ -89,9 +93,7 @@ fn every_corpus_file_parses_and_decodes() {
             failures[0]
         );
         for id in file.ids() {
-            let instance = file
-                .instance(id)
-                .unwrap_or_else(|d| panic!("{name}: {d}"));
+            let instance = file.instance(id).unwrap_or_else(|d| panic!("{name}: {d}"));
             assert_eq!(instance.id, id);
             assert_eq!(Some(instance.line), file.line(id));
             let keywords = file.keywords(id).unwrap_or_default();

@@ -102,8 +102,13 @@ impl Surface {
             // others because an interior extremum is close to one.
             for (jv, &v) in vs.iter().enumerate() {
                 for k in 1..us.len() {
-                    let (ga, gb) = (grid[k - 1][jv][1][0][axis], grid[k][jv][1][0][axis]);
-                    if ga * gb < 0.0 {
+                    let (a, b) = (&grid[k - 1][jv], &grid[k][jv]);
+                    let (ga, gb) = (a[1][0][axis], b[1][0][axis]);
+                    let reach = 2.0 * ga.abs().max(gb.abs()) * (us[k] - us[k - 1]);
+                    let (fa, fb) = (a[0][0][axis], b[0][0][axis]);
+                    if ga * gb < 0.0
+                        && could_extend(&bb, axis, fa.min(fb) - reach, fa.max(fb) + reach)
+                    {
                         let g = |u: f64| {
                             let d = self.ders(u, v, 2);
                             (d[1][0][axis], d[2][0][axis])
@@ -114,8 +119,13 @@ impl Surface {
             }
             for (iu, &u) in us.iter().enumerate() {
                 for k in 1..vs.len() {
-                    let (ga, gb) = (grid[iu][k - 1][0][1][axis], grid[iu][k][0][1][axis]);
-                    if ga * gb < 0.0 {
+                    let (a, b) = (&grid[iu][k - 1], &grid[iu][k]);
+                    let (ga, gb) = (a[0][1][axis], b[0][1][axis]);
+                    let reach = 2.0 * ga.abs().max(gb.abs()) * (vs[k] - vs[k - 1]);
+                    let (fa, fb) = (a[0][0][axis], b[0][0][axis]);
+                    if ga * gb < 0.0
+                        && could_extend(&bb, axis, fa.min(fb) - reach, fa.max(fb) + reach)
+                    {
                         let g = |v: f64| {
                             let d = self.ders(u, v, 2);
                             (d[0][1][axis], d[0][2][axis])
@@ -142,7 +152,20 @@ impl Surface {
                         }
                         lo <= 0.0 && hi >= 0.0
                     };
-                    if changes(1, 0) && changes(0, 1) {
+                    // Only cells whose corners, widened by how far the partials could carry
+                    // the coordinate across the cell, reach the box's current faces.
+                    let (du, dv) = (us[i] - us[i - 1], vs[j] - vs[j - 1]);
+                    let (mut lo, mut hi, mut reach) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+                    for d in &c {
+                        lo = lo.min(d[0][0][axis]);
+                        hi = hi.max(d[0][0][axis]);
+                        reach =
+                            reach.max(2.0 * (d[1][0][axis].abs() * du + d[0][1][axis].abs() * dv));
+                    }
+                    if changes(1, 0)
+                        && changes(0, 1)
+                        && could_extend(&bb, axis, lo - reach, hi + reach)
+                    {
                         let cell = (us[i - 1], us[i], vs[j - 1], vs[j]);
                         if let Some(p) = self.polish_critical(axis, cell, (u0, u1, v0, v1)) {
                             bb.add_point(p);
@@ -271,6 +294,11 @@ impl Surface {
             }
         }
     }
+}
+
+/// Whether a coordinate range `[lo, hi]` on `axis` could grow the box.
+fn could_extend(bb: &BoundingBox, axis: usize, lo: f64, hi: f64) -> bool {
+    bb.is_empty() || lo <= bb.min[axis] || hi >= bb.max[axis]
 }
 
 /// Clips `[a, b]` to the domain `d` unless the direction is periodic.

@@ -149,9 +149,8 @@ impl<P: GeomPoint> Curve<P> {
             }
             Curve::Polyline(pts) => polyline_ders(pts, t),
             Curve::BSpline(b) => {
-                let d = b.derivatives(t, order.min(3));
                 let mut out = [z; 4];
-                out[..d.len()].copy_from_slice(&d);
+                b.derivatives_into(t, &mut out[..=order.min(3)]);
                 out
             }
             Curve::Trimmed { basis, .. } => basis.ders(t, order),

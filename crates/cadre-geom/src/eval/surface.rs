@@ -185,17 +185,7 @@ impl Surface {
                 let g = [r * s, r * c, -r * s, -r * c];
                 rotational(&mut d, frame, u, f, g);
             }
-            Surface::BSpline(b) => {
-                let o = order.min(3);
-                let r = b.derivatives(u, v, o);
-                for (i, row) in r.iter().enumerate() {
-                    for (j, x) in row.iter().enumerate() {
-                        if i + j <= o {
-                            d[i][j] = *x;
-                        }
-                    }
-                }
-            }
+            Surface::BSpline(b) => b.derivatives_into(u, v, order, &mut d),
             Surface::Revolution {
                 profile,
                 axis_origin,

@@ -37,42 +37,119 @@ pub fn ders_basis_funs(
     order: usize,
     knots: &[f64],
 ) -> Vec<Vec<f64>> {
-    let p = degree;
-    let mut ndu = vec![vec![0.0; p + 1]; p + 1];
-    let mut left = vec![0.0; p + 1];
-    let mut right = vec![0.0; p + 1];
-    ndu[0][0] = 1.0;
+    let b = BasisDers::new(span, t, degree, order, knots);
+    (0..=order).map(|k| b.row(k).to_vec()).collect()
+}
+
+/// Largest degree evaluated with stack-only scratch space (no allocation); higher degrees
+/// fall back to the heap.
+const STACK_DEGREE: usize = 8;
+const STACK_OUT: usize = 4 * (STACK_DEGREE + 1);
+
+/// Basis function derivatives as computed by [`ders_basis_funs`], stored flat, and on the
+/// stack for the usual degrees and orders (evaluation is the inner loop of bounds and
+/// inversion, where allocation dominated).
+pub struct BasisDers {
+    width: usize,
+    buf: Buf,
+}
+
+// The large variant is the point: it keeps the common case off the heap.
+#[allow(clippy::large_enum_variant)]
+enum Buf {
+    Stack([f64; STACK_OUT]),
+    Heap(Vec<f64>),
+}
+
+impl BasisDers {
+    /// Evaluates the derivatives up to `order` of the `degree + 1` basis functions that are
+    /// non-zero on `span`, at `t`.
+    pub fn new(span: usize, t: f64, degree: usize, order: usize, knots: &[f64]) -> Self {
+        let width = degree + 1;
+        if degree <= STACK_DEGREE && (order + 1) * width <= STACK_OUT {
+            let mut ndu = [0.0; (STACK_DEGREE + 1) * (STACK_DEGREE + 1)];
+            let mut a = [0.0; 2 * (STACK_DEGREE + 1)];
+            let mut lr = [0.0; 2 * (STACK_DEGREE + 1)];
+            let mut out = [0.0; STACK_OUT];
+            basis_core(
+                span, t, degree, order, knots, &mut ndu, &mut a, &mut lr, &mut out,
+            );
+            BasisDers {
+                width,
+                buf: Buf::Stack(out),
+            }
+        } else {
+            let mut ndu = vec![0.0; width * width];
+            let mut a = vec![0.0; 2 * width];
+            let mut lr = vec![0.0; 2 * width];
+            let mut out = vec![0.0; (order + 1) * width];
+            basis_core(
+                span, t, degree, order, knots, &mut ndu, &mut a, &mut lr, &mut out,
+            );
+            BasisDers {
+                width,
+                buf: Buf::Heap(out),
+            }
+        }
+    }
+
+    /// The `k`-th derivatives of the non-zero basis functions.
+    pub fn row(&self, k: usize) -> &[f64] {
+        let data: &[f64] = match &self.buf {
+            Buf::Stack(a) => a,
+            Buf::Heap(v) => v,
+        };
+        &data[k * self.width..(k + 1) * self.width]
+    }
+}
+
+/// *The NURBS Book* A2.3 on flat scratch buffers: `ndu` is `(p+1)²` (row `j` at `j·(p+1)`),
+/// `a` two rows of `p+1`, `lr` left then right, `out` `(order+1)` rows of `p+1`.
+#[allow(clippy::too_many_arguments)]
+fn basis_core(
+    span: usize,
+    t: f64,
+    p: usize,
+    order: usize,
+    knots: &[f64],
+    ndu: &mut [f64],
+    a: &mut [f64],
+    lr: &mut [f64],
+    out: &mut [f64],
+) {
+    let w = p + 1;
+    let (left, right) = lr.split_at_mut(w);
+    ndu[0] = 1.0;
     for j in 1..=p {
         left[j] = t - knots[span + 1 - j];
         right[j] = knots[span + j] - t;
         let mut saved = 0.0;
         for r in 0..j {
             // Lower triangle: knot differences (never zero on a non-empty span).
-            ndu[j][r] = right[r + 1] + left[j - r];
-            let temp = ndu[r][j - 1] / ndu[j][r];
-            ndu[r][j] = saved + right[r + 1] * temp;
+            ndu[j * w + r] = right[r + 1] + left[j - r];
+            let temp = ndu[r * w + j - 1] / ndu[j * w + r];
+            ndu[r * w + j] = saved + right[r + 1] * temp;
             saved = left[j - r] * temp;
         }
-        ndu[j][j] = saved;
+        ndu[j * w + j] = saved;
     }
-    let mut ders = vec![vec![0.0; p + 1]; order + 1];
+    out.iter_mut().for_each(|x| *x = 0.0);
     for j in 0..=p {
-        ders[0][j] = ndu[j][p];
+        out[j] = ndu[j * w + p];
     }
     let kmax = order.min(p);
-    let mut a = [vec![0.0; p + 1], vec![0.0; p + 1]];
     for r in 0..=p {
-        let (mut s1, mut s2) = (0usize, 1usize);
-        a[0].iter_mut().for_each(|x| *x = 0.0);
-        a[0][0] = 1.0;
+        let (mut s1, mut s2) = (0usize, w);
+        a.iter_mut().for_each(|x| *x = 0.0);
+        a[0] = 1.0;
         for k in 1..=kmax {
             let mut d = 0.0;
             let rk = r as isize - k as isize;
             let pk = p - k;
             if r >= k {
                 let rku = rk as usize;
-                a[s2][0] = a[s1][0] / ndu[pk + 1][rku];
-                d = a[s2][0] * ndu[rku][pk];
+                a[s2] = a[s1] / ndu[(pk + 1) * w + rku];
+                d = a[s2] * ndu[rku * w + pk];
             }
             let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
             let j2 = if r as isize - 1 <= pk as isize {
@@ -82,25 +159,24 @@ pub fn ders_basis_funs(
             };
             for j in j1..=j2 {
                 let idx = (rk + j as isize) as usize;
-                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][idx];
-                d += a[s2][j] * ndu[idx][pk];
+                a[s2 + j] = (a[s1 + j] - a[s1 + j - 1]) / ndu[(pk + 1) * w + idx];
+                d += a[s2 + j] * ndu[idx * w + pk];
             }
             if r <= pk {
-                a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
-                d += a[s2][k] * ndu[r][pk];
+                a[s2 + k] = -a[s1 + k - 1] / ndu[(pk + 1) * w + r];
+                d += a[s2 + k] * ndu[r * w + pk];
             }
-            ders[k][r] = d;
+            out[k * w + r] = d;
             std::mem::swap(&mut s1, &mut s2);
         }
     }
     let mut factor = p as f64;
-    for (k, row) in ders.iter_mut().enumerate().take(kmax + 1).skip(1) {
-        for x in row.iter_mut() {
+    for k in 1..=kmax {
+        for x in &mut out[k * w..(k + 1) * w] {
             *x *= factor;
         }
         factor *= (p - k) as f64;
     }
-    ders
 }
 
 /// Binomial coefficient `C(n, k)` as `f64` (small arguments only: derivative orders).
@@ -145,6 +221,19 @@ mod tests {
         assert_eq!(find_span(&knots, 3, 1, 5.0), 1);
         assert_eq!(find_span(&knots, 3, 1, -5.0), 1);
         assert_eq!(find_span(&knots, 3, 1, f64::NAN), 1);
+    }
+
+    #[test]
+    fn heap_path_matches_stack_path() {
+        // Degree 10 exceeds the stack buffers; compare with the degree-10 Bernstein basis.
+        let knots: Vec<f64> = [vec![0.0; 11], vec![1.0; 11]].concat();
+        let t = 0.3;
+        let d = ders_basis_funs(10, t, 10, 1, &knots);
+        for (j, &b) in d[0].iter().enumerate() {
+            let expected = binomial(10, j) * t.powi(j as i32) * (1.0 - t).powi(10 - j as i32);
+            assert!((b - expected).abs() < 1e-14);
+        }
+        assert!(d[1].iter().sum::<f64>().abs() < 1e-12);
     }
 
     #[test]

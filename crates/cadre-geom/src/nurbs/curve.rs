@@ -1,6 +1,6 @@
 //! Derivatives of (rational) B-spline curves.
 
-use super::basis::{binomial, ders_basis_funs, find_span};
+use super::basis::{BasisDers, binomial, find_span};
 use crate::bspline::BSplineCurve;
 use crate::point::GeomPoint;
 
@@ -13,36 +13,52 @@ impl<P: GeomPoint> BSplineCurve<P> {
     /// A hand-built curve that is not [well formed](BSplineCurve::is_well_formed) evaluates
     /// to zero rather than panicking.
     pub fn derivatives(&self, t: f64, order: usize) -> Vec<P> {
-        if !self.is_well_formed() {
-            return vec![P::ZERO; order + 1];
+        let mut out = vec![P::ZERO; order + 1];
+        self.derivatives_into(t, &mut out);
+        out
+    }
+
+    /// [`BSplineCurve::derivatives`] up to order `out.len() − 1`, written into `out` (no
+    /// allocation for usual degrees).
+    pub fn derivatives_into(&self, t: f64, out: &mut [P]) {
+        out.iter_mut().for_each(|x| *x = P::ZERO);
+        if out.is_empty() || !self.is_well_formed() {
+            return;
         }
+        let order = out.len() - 1;
         let n = self.control_points.len();
         let p = self.degree;
         let span = find_span(&self.knots, n, p, t);
-        let nders = ders_basis_funs(span, t, p, order, &self.knots);
+        let basis = BasisDers::new(span, t, p, order, &self.knots);
         let first = span - p;
-        let mut a = vec![P::ZERO; order + 1];
-        let mut w = vec![0.0; order + 1];
-        for (k, row) in nders.iter().enumerate() {
+        // Homogeneous derivatives: A⁽ᵏ⁾ = Σ N⁽ᵏ⁾ w P, w⁽ᵏ⁾ = Σ N⁽ᵏ⁾ w.
+        let mut w = [0.0; 8];
+        for (k, slot) in out.iter_mut().enumerate() {
+            let row = basis.row(k);
+            let mut acc = P::ZERO;
+            let mut wk = 0.0;
             for (j, &b) in row.iter().enumerate() {
                 let i = first + j;
                 let wi = self.weights.as_ref().map_or(1.0, |ws| ws[i]);
-                a[k] += self.control_points[i] * (b * wi);
-                w[k] += b * wi;
+                acc += self.control_points[i] * (b * wi);
+                wk += b * wi;
+            }
+            *slot = acc;
+            if k < w.len() {
+                w[k] = wk;
             }
         }
         if self.weights.is_none() {
-            return a;
+            return;
         }
-        let mut ck = vec![P::ZERO; order + 1];
-        for k in 0..=order {
-            let mut v = a[k];
+        // Quotient rule: C⁽ᵏ⁾ = (A⁽ᵏ⁾ − Σᵢ C(k,i) w⁽ⁱ⁾ C⁽ᵏ⁻ⁱ⁾) / w (orders ≤ 7 kept).
+        for k in 0..out.len().min(w.len()) {
+            let mut v = out[k];
             for i in 1..=k {
-                v -= ck[k - i] * (binomial(k, i) * w[i]);
+                v -= out[k - i] * (binomial(k, i) * w[i]);
             }
-            ck[k] = v * (1.0 / w[0]);
+            out[k] = v * (1.0 / w[0]);
         }
-        ck
     }
 
     /// Whether the fields have the layout evaluation relies on: degree ≥ 1, more control

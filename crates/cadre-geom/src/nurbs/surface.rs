@@ -1,6 +1,6 @@
 //! Derivatives of (rational) B-spline surfaces.
 
-use super::basis::{binomial, ders_basis_funs, find_span};
+use super::basis::{BasisDers, binomial, find_span};
 use crate::Vec3;
 use crate::bspline::BSplineSurface;
 
@@ -12,36 +12,82 @@ impl BSplineSurface {
     /// A hand-built surface that is not [well formed](BSplineSurface::is_well_formed)
     /// evaluates to zero rather than panicking.
     pub fn derivatives(&self, u: f64, v: f64, order: usize) -> Vec<Vec<Vec3>> {
+        let mut d = [[Vec3::ZERO; 4]; 4];
+        if order <= 3 {
+            self.derivatives_into(u, v, order, &mut d);
+            return (0..=order).map(|k| d[k][..=order].to_vec()).collect();
+        }
+        self.derivatives_general(u, v, order)
+    }
+
+    /// [`BSplineSurface::derivatives`] for `order ≤ 3` into a fixed array, without
+    /// allocating for usual degrees (the inner loop of bounds and inversion).
+    pub fn derivatives_into(&self, u: f64, v: f64, order: usize, out: &mut [[Vec3; 4]; 4]) {
+        *out = [[Vec3::ZERO; 4]; 4];
+        let order = order.min(3);
         if !self.is_well_formed() {
-            return vec![vec![Vec3::ZERO; order + 1]; order + 1];
+            return;
         }
         let nu = self.control_points.len();
         let nv = self.control_points[0].len();
         let (p, q) = (self.u_degree, self.v_degree);
         let su = find_span(&self.u_knots, nu, p, u);
         let sv = find_span(&self.v_knots, nv, q, v);
-        let bu = ders_basis_funs(su, u, p, order, &self.u_knots);
-        let bv = ders_basis_funs(sv, v, q, order, &self.v_knots);
+        let bu = BasisDers::new(su, u, p, order, &self.u_knots);
+        let bv = BasisDers::new(sv, v, q, order, &self.v_knots);
+        let mut w = [[0.0; 4]; 4];
+        for k in 0..=order {
+            for l in 0..=(order - k) {
+                let (acc, wacc) = self.homogeneous(bu.row(k), bv.row(l), su - p, sv - q);
+                out[k][l] = acc;
+                w[k][l] = wacc;
+            }
+        }
+        if self.weights.is_none() {
+            return;
+        }
+        rational(out, &w, order);
+    }
+
+    /// `Σ Nu Nv w P` and `Σ Nu Nv w` over the non-zero basis functions.
+    fn homogeneous(&self, nu: &[f64], nv: &[f64], i0: usize, j0: usize) -> (Vec3, f64) {
+        let mut acc = Vec3::ZERO;
+        let mut wacc = 0.0;
+        for (r, &a) in nu.iter().enumerate() {
+            if a == 0.0 {
+                continue;
+            }
+            let i = i0 + r;
+            let row = &self.control_points[i];
+            let wrow = self.weights.as_ref().map(|w| &w[i]);
+            for (s, &b) in nv.iter().enumerate() {
+                let j = j0 + s;
+                let wij = wrow.map_or(1.0, |w| w[j]);
+                let c = a * b * wij;
+                acc += row[j] * c;
+                wacc += c;
+            }
+        }
+        (acc, wacc)
+    }
+
+    /// Arbitrary-order derivatives (allocating), for `order > 3`.
+    fn derivatives_general(&self, u: f64, v: f64, order: usize) -> Vec<Vec<Vec3>> {
         let mut a = vec![vec![Vec3::ZERO; order + 1]; order + 1];
+        if !self.is_well_formed() {
+            return a;
+        }
+        let nu = self.control_points.len();
+        let nv = self.control_points[0].len();
+        let (p, q) = (self.u_degree, self.v_degree);
+        let su = find_span(&self.u_knots, nu, p, u);
+        let sv = find_span(&self.v_knots, nv, q, v);
+        let bu = BasisDers::new(su, u, p, order, &self.u_knots);
+        let bv = BasisDers::new(sv, v, q, order, &self.v_knots);
         let mut w = vec![vec![0.0; order + 1]; order + 1];
         for k in 0..=order {
             for l in 0..=(order - k) {
-                let mut acc = Vec3::ZERO;
-                let mut wacc = 0.0;
-                for (r, &nr) in bu[k].iter().enumerate() {
-                    if nr == 0.0 {
-                        continue;
-                    }
-                    let i = su - p + r;
-                    let row = &self.control_points[i];
-                    for (s, &ns) in bv[l].iter().enumerate() {
-                        let j = sv - q + s;
-                        let wij = self.weights.as_ref().map_or(1.0, |ws| ws[i][j]);
-                        let b = nr * ns * wij;
-                        acc += row[j] * b;
-                        wacc += b;
-                    }
-                }
+                let (acc, wacc) = self.homogeneous(bu.row(k), bv.row(l), su - p, sv - q);
                 a[k][l] = acc;
                 w[k][l] = wacc;
             }
@@ -100,6 +146,29 @@ impl BSplineSurface {
     /// Distinct v knots strictly inside `(v0, v1)`.
     pub fn v_breaks_within(&self, v0: f64, v1: f64) -> Vec<f64> {
         distinct_within(&self.v_knots, v0, v1)
+    }
+}
+
+/// In place: homogeneous derivatives `a` and weight derivatives `w` to the rational
+/// surface's derivatives (*The NURBS Book* A4.4).
+fn rational(a: &mut [[Vec3; 4]; 4], w: &[[f64; 4]; 4], order: usize) {
+    let src = *a;
+    for k in 0..=order {
+        for l in 0..=(order - k) {
+            let mut v = src[k][l];
+            for j in 1..=l {
+                v -= binomial(l, j) * w[0][j] * a[k][l - j];
+            }
+            for i in 1..=k {
+                v -= binomial(k, i) * w[i][0] * a[k - i][l];
+                let mut v2 = Vec3::ZERO;
+                for j in 1..=l {
+                    v2 += binomial(l, j) * w[i][j] * a[k - i][l - j];
+                }
+                v -= binomial(k, i) * v2;
+            }
+            a[k][l] = v / w[0][0];
+        }
     }
 }
 

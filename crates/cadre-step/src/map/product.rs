@@ -381,6 +381,13 @@ fn placement_in(m: &mut Mapper<'_>, rep: u64, item: u64) -> MapResult<Transform>
     t
 }
 
+/// The coordinate space dimension of a geometric representation context.
+fn context_dimension(m: &Mapper<'_>, ctx: u64) -> Option<i64> {
+    let inst = m.inst(ctx).ok()?;
+    let rec = inst.record("GEOMETRIC_REPRESENTATION_CONTEXT")?;
+    rec.params.iter().rev().find_map(|p| p.as_i64())
+}
+
 fn rep_context(m: &Mapper<'_>, rep: u64) -> Option<u64> {
     let inst = m.inst(rep).ok()?;
     let rec = inst
@@ -416,6 +423,10 @@ fn rep_part(m: &mut Mapper<'_>, g: &ProductGraph, rep: u64) -> MapResult<PartId>
         ..Part::default()
     });
     m.rep_parts.insert(rep, pid);
+    if ctx.is_some_and(|c| context_dimension(m, c) == Some(2)) {
+        // A drawing's 2D geometry (views, sketches): not part of the 3D model.
+        return Ok(pid);
+    }
     let saved = m.enter_context(ctx);
     let mut bodies = Vec::new();
     let mut children = Vec::new();
@@ -495,11 +506,7 @@ fn map_item(
             let s = m.inst(set)?;
             for edge in Attrs::first(&s)?.refs(1)? {
                 match m.edge(edge) {
-                    Ok(e) => {
-                        if let Some(curve) = m.model.edges[e.index()].curve {
-                            bodies.push(Body::Wire(Wire { curve, range: None }));
-                        }
-                    }
+                    Ok(e) => bodies.push(Body::Edge(e)),
                     Err(e) => m.report(&e),
                 }
             }

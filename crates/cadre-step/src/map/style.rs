@@ -164,9 +164,12 @@ pub fn map_styles(m: &mut Mapper<'_>) {
 fn apply_styled_item(m: &mut Mapper<'_>, id: u64) -> MapResult<()> {
     let inst = m.inst(id)?;
     let a = Attrs::of(&inst, "STYLED_ITEM").or_else(|_| Attrs::first(&inst))?;
-    let item = a.r#ref(2)?;
+    // Simple instances carry (name, styles, item); in a complex instance the name lives in the
+    // REPRESENTATION_ITEM record and STYLED_ITEM holds (styles, item).
+    let o = if inst.complex && a.params.len() == 2 { 0 } else { 1 };
+    let item = a.r#ref(o + 1)?;
     let mut style = Style::default();
-    for s in a.refs(1)? {
+    for s in a.refs(o)? {
         collect(m, s, &mut style, 0)?;
     }
     if style == Style::default() {

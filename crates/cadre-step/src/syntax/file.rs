@@ -76,21 +76,23 @@ enum IdMap {
     /// `table[id]` is the entry index (`u32::MAX`: none). Used when ids are reasonably dense,
     /// which is what nearly every exporter writes.
     Dense(Vec<u32>),
-    /// Sorted `(id, entry index)` pairs, for sparse or huge ids.
-    Sparse(Vec<(u64, u32)>),
+    /// Entry indices sorted by id, for sparse or huge ids: 4 bytes per instance, searched
+    /// through the entries' own ids.
+    Sparse(Vec<u32>),
 }
 
 impl IdMap {
-    fn get(&self, id: u64) -> Option<usize> {
+    fn get(&self, id: u64, entries: &[Entry]) -> Option<usize> {
         match self {
             IdMap::Dense(table) => {
                 let slot = *table.get(usize::try_from(id).ok()?)?;
                 (slot != u32::MAX).then_some(slot as usize)
             }
-            IdMap::Sparse(pairs) => pairs
-                .binary_search_by_key(&id, |&(k, _)| k)
-                .ok()
-                .map(|i| pairs[i].1 as usize),
+            IdMap::Sparse(order) => {
+                let key = |&i: &u32| entries.get(i as usize).map_or(u64::MAX, |e| e.id);
+                let at = order.binary_search_by_key(&id, key).ok()?;
+                Some(order[at] as usize)
+            }
         }
     }
 }
@@ -478,8 +480,13 @@ impl<'a> Structure<'a> {
             }
             match statement_end(bytes, pos) {
                 End::Semicolon(e) => {
-                    if kind == SectionKind::Data {
-                        self.spans.push(Span { start: pos, end: e });
+                    match kind {
+                        SectionKind::Data => self.spans.push(Span { start: pos, end: e }),
+                        SectionKind::Header => {
+                            let id = statement_id(&bytes[pos..e]);
+                            self.diag(pos, id, "instance in the HEADER section; skipped");
+                        }
+                        SectionKind::Skipped => {}
                     }
                     pos = e + 1;
                 }
@@ -537,7 +544,12 @@ impl<'a> Structure<'a> {
         }
         match lexer.next_token() {
             Ok(Some(Token::Semicolon)) => {}
-            Ok(t) => return Err(not_step(&lexer, format!("ISO-10303-21 followed by {}", describe(t)))),
+            Ok(t) => {
+                return Err(not_step(
+                    &lexer,
+                    format!("ISO-10303-21 followed by {}", describe(t)),
+                ));
+            }
             Err(e) => return Err(not_step(&lexer, e.kind.to_string())),
         }
         pos = lexer.position();
@@ -580,7 +592,11 @@ impl<'a> Structure<'a> {
                             if let Err(f) =
                                 Parser::new(&bytes[start..e], as_written).keyword_statement()
                             {
-                                self.diag(start + f.offset, None, format!("malformed {name}: {}", f.message));
+                                self.diag(
+                                    start + f.offset,
+                                    None,
+                                    format!("malformed {name}: {}", f.message),
+                                );
                             }
                             e + 1
                         }
@@ -599,7 +615,11 @@ impl<'a> Structure<'a> {
                         Ok(t) => describe(t),
                         Err(e) => e.kind.to_string(),
                     };
-                    self.diag(pos, statement_id(&bytes[pos..]), format!("unexpected {found} outside of a section; skipped"));
+                    self.diag(
+                        pos,
+                        statement_id(&bytes[pos..]),
+                        format!("unexpected {found} outside of a section; skipped"),
+                    );
                     pos = match statement_end(bytes, pos) {
                         End::Semicolon(e) => e + 1,
                         end => self.bad_end(pos, end, SectionKind::Skipped),
@@ -645,7 +665,13 @@ fn read_head(stmt: &[u8]) -> Result<Head<'_>, (usize, Option<u64>, String)> {
     let fail = |lexer: &Lexer<'_>, id, msg: String| Err((lexer.token_start(), id, msg));
     let id = match lexer.next_token() {
         Ok(Some(Token::Ref(id))) => id,
-        Ok(t) => return fail(&lexer, None, format!("expected '#id', found {}", describe(t))),
+        Ok(t) => {
+            return fail(
+                &lexer,
+                None,
+                format!("expected '#id', found {}", describe(t)),
+            );
+        }
         Err(e) if e.kind == LexErrorKind::InstanceNameOverflow => {
             let digits: String = stmt
                 .iter()
@@ -654,20 +680,34 @@ fn read_head(stmt: &[u8]) -> Result<Head<'_>, (usize, Option<u64>, String)> {
                 .take(40)
                 .map(|&b| char::from(b))
                 .collect();
-            return fail(&lexer, None, format!("instance id #{digits} out of range; skipped"));
+            return fail(
+                &lexer,
+                None,
+                format!("instance id #{digits} out of range; skipped"),
+            );
         }
         Err(e) => return fail(&lexer, None, format!("{}; skipped", e.kind)),
     };
     let some_id = Some(id);
     match lexer.next_token() {
         Ok(Some(Token::Equals)) => {}
-        Ok(t) => return fail(&lexer, some_id, format!("expected '=', found {}", describe(t))),
+        Ok(t) => {
+            return fail(
+                &lexer,
+                some_id,
+                format!("expected '=', found {}", describe(t)),
+            );
+        }
         Err(e) => return fail(&lexer, some_id, e.kind.to_string()),
     }
     match lexer.next_token() {
         Ok(Some(Token::Keyword(k))) => match lexer.next_token() {
             Ok(Some(Token::LParen)) => Ok(Head::Simple(id, k.as_bytes())),
-            Ok(t) => fail(&lexer, some_id, format!("expected '(' after {k}, found {}", describe(t))),
+            Ok(t) => fail(
+                &lexer,
+                some_id,
+                format!("expected '(' after {k}, found {}", describe(t)),
+            ),
             Err(e) => fail(&lexer, some_id, e.kind.to_string()),
         },
         Ok(Some(Token::LParen)) => {
@@ -688,7 +728,11 @@ fn read_head(stmt: &[u8]) -> Result<Head<'_>, (usize, Option<u64>, String)> {
                         }
                         depth += 1;
                         if depth > MAX_DEPTH {
-                            return fail(&lexer, some_id, format!("nesting deeper than {MAX_DEPTH} levels"));
+                            return fail(
+                                &lexer,
+                                some_id,
+                                format!("nesting deeper than {MAX_DEPTH} levels"),
+                            );
                         }
                     }
                     Token::RParen => depth -= 1,
@@ -700,11 +744,19 @@ fn read_head(stmt: &[u8]) -> Result<Head<'_>, (usize, Option<u64>, String)> {
                 }
             }
             if keywords.is_empty() {
-                return fail(&lexer, some_id, "complex instance without records".to_owned());
+                return fail(
+                    &lexer,
+                    some_id,
+                    "complex instance without records".to_owned(),
+                );
             }
             Ok(Head::Complex(id, keywords))
         }
-        Ok(t) => fail(&lexer, some_id, format!("expected an entity keyword or '(', found {}", describe(t))),
+        Ok(t) => fail(
+            &lexer,
+            some_id,
+            format!("expected an entity keyword or '(', found {}", describe(t)),
+        ),
         Err(e) => fail(&lexer, some_id, e.kind.to_string()),
     }
 }
@@ -738,7 +790,10 @@ fn quick_head(stmt: &[u8]) -> Option<(u64, &[u8])> {
     if stmt.get(i) == Some(&b'!') {
         i += 1;
     }
-    if !stmt.get(i).is_some_and(|c| c.is_ascii_alphabetic() || *c == b'_') {
+    if !stmt
+        .get(i)
+        .is_some_and(|c| c.is_ascii_alphabetic() || *c == b'_')
+    {
         return None;
     }
     while stmt.get(i).is_some_and(|&c| is_keyword_char(c)) {
@@ -763,18 +818,23 @@ fn index_chunk<'a>(bytes: &'a [u8], spans: &[Span], next_start: usize) -> Chunk<
         return chunk;
     };
     let mut local: HashMap<&'a [u8], u32> = HashMap::new();
-    // Exporters write runs of the same entity; remembering the last keyword skips most
-    // hash lookups.
-    let mut last: (&'a [u8], u32) = (b"", 0);
+    // A file uses a few hundred distinct keywords at most, so a small direct-mapped cache in
+    // front of the (DoS-resistant, but slower) SipHash map answers nearly every lookup with
+    // one short comparison.
+    let mut cache: [(&'a [u8], u32); 64] = [(b"", 0); 64];
     let mut intern = |k: &'a [u8], table: &mut Vec<&'a [u8]>| -> u32 {
-        if k == last.0 {
-            return last.1;
+        let byte = |i: usize| usize::from(k.get(i).copied().unwrap_or(0));
+        let slot =
+            (k.len() ^ byte(0) << 1 ^ byte(k.len() / 2) << 2 ^ byte(k.len().wrapping_sub(1)) << 3)
+                & 63;
+        if cache[slot].0 == k && !k.is_empty() {
+            return cache[slot].1;
         }
         let id = *local.entry(k).or_insert_with(|| {
             table.push(k);
             u32::try_from(table.len() - 1).unwrap_or(u32::MAX)
         });
-        last = (k, id);
+        cache[slot] = (k, id);
         id
     };
     let mut line = 0u32;
@@ -784,7 +844,11 @@ fn index_chunk<'a>(bytes: &'a [u8], spans: &[Span], next_start: usize) -> Chunk<
         prev = span.start;
         let stmt = &bytes[span.start..span.end];
         let Ok(len) = u32::try_from(stmt.len()) else {
-            chunk.diags.push((line, statement_id(stmt), "instance longer than 4 GiB; skipped".into()));
+            chunk.diags.push((
+                line,
+                statement_id(stmt),
+                "instance longer than 4 GiB; skipped".into(),
+            ));
             continue;
         };
         let head = match quick_head(stmt) {
@@ -794,10 +858,17 @@ fn index_chunk<'a>(bytes: &'a [u8], spans: &[Span], next_start: usize) -> Chunk<
         let (id, keyword, complex) = match head {
             Ok(Head::Simple(id, k)) => (id, intern(k, &mut chunk.keywords), SIMPLE),
             Ok(Head::Complex(id, ks)) => {
-                let ks: Vec<u32> = ks.into_iter().map(|k| intern(k, &mut chunk.keywords)).collect();
+                let ks: Vec<u32> = ks
+                    .into_iter()
+                    .map(|k| intern(k, &mut chunk.keywords))
+                    .collect();
                 let first = ks.first().copied().unwrap_or(0);
                 chunk.complex.push(ks);
-                (id, first, u32::try_from(chunk.complex.len() - 1).unwrap_or(u32::MAX))
+                (
+                    id,
+                    first,
+                    u32::try_from(chunk.complex.len() - 1).unwrap_or(u32::MAX),
+                )
             }
             Err((offset, id, message)) => {
                 let at = line.saturating_add(count_newlines(&stmt[..offset.min(stmt.len())]));
@@ -821,7 +892,9 @@ fn index_chunk<'a>(bytes: &'a [u8], spans: &[Span], next_start: usize) -> Chunk<
 /// Builds the id map, dropping later duplicates of an id (with a diagnostic each).
 fn build_ids(entries: &mut Vec<Entry>, diags: &mut Diags) -> IdMap {
     let max_id = entries.iter().map(|e| e.id).max().unwrap_or(0);
-    let dense_limit = (entries.len() as u64).saturating_mul(2).saturating_add(1024);
+    let dense_limit = (entries.len() as u64)
+        .saturating_mul(2)
+        .saturating_add(1024);
     let build = |entries: &[Entry]| -> (IdMap, Vec<usize>) {
         let mut dups = Vec::new();
         if max_id <= dense_limit {
@@ -836,17 +909,20 @@ fn build_ids(entries: &mut Vec<Entry>, diags: &mut Diags) -> IdMap {
             }
             (IdMap::Dense(table), dups)
         } else {
-            let mut pairs: Vec<(u64, u32)> =
-                entries.iter().enumerate().map(|(i, e)| (e.id, i as u32)).collect();
-            pairs.par_sort_unstable();
-            let mut kept: Vec<(u64, u32)> = Vec::with_capacity(pairs.len());
-            for p in pairs {
-                match kept.last() {
-                    Some(last) if last.0 == p.0 => dups.push(p.1 as usize),
-                    _ => kept.push(p),
+            let mut order: Vec<u32> = (0..entries.len() as u32).collect();
+            // By (id, index): among duplicates the first in the file sorts first and is kept.
+            order.par_sort_unstable_by_key(|&i| (entries[i as usize].id, i));
+            let mut previous: Option<u64> = None;
+            order.retain(|&i| {
+                let id = entries[i as usize].id;
+                let duplicate = previous == Some(id);
+                if duplicate {
+                    dups.push(i as usize);
                 }
-            }
-            (IdMap::Sparse(kept), dups)
+                previous = Some(id);
+                !duplicate
+            });
+            (IdMap::Sparse(order), dups)
         }
     };
     let (map, mut dups) = build(entries);
@@ -856,11 +932,14 @@ fn build_ids(entries: &mut Vec<Entry>, diags: &mut Diags) -> IdMap {
     dups.sort_unstable();
     for &i in &dups {
         let e = entries[i];
-        let first_line = map.get(e.id).map_or(0, |f| entries[f].line);
+        let first_line = map.get(e.id, entries).map_or(0, |f| entries[f].line);
         diags.push(
             e.line,
             Some(e.id),
-            format!("duplicate instance #{} (first defined on line {first_line}); ignored", e.id),
+            format!(
+                "duplicate instance #{} (first defined on line {first_line}); ignored",
+                e.id
+            ),
         );
     }
     let mut index = 0usize;
@@ -924,7 +1003,9 @@ impl StepFile {
         } else {
             (0..n).map(work).collect()
         };
-        let mut line = 1 + spans.first().map_or(0, |s| count_newlines(&bytes[..s.start]));
+        let mut line = 1 + spans
+            .first()
+            .map_or(0, |s| count_newlines(&bytes[..s.start]));
         drop(spans);
 
         // Merge: remap keywords, offset lines, concatenate.
@@ -1021,7 +1102,9 @@ impl StepFile {
     }
 
     fn entry(&self, id: u64) -> Option<&Entry> {
-        self.ids.get(id).and_then(|i| self.entries.get(i))
+        self.ids
+            .get(id, &self.entries)
+            .and_then(|i| self.entries.get(i))
     }
 
     /// Whether instance `#id` exists.

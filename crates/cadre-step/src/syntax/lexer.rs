@@ -625,10 +625,7 @@ mod tests {
             ]
         );
         // Semicolons, comment markers and line breaks inside a string are content.
-        assert_eq!(
-            lex("'a;b/*c*/\nd'"),
-            vec![Token::String(b"a;b/*c*/\nd")]
-        );
+        assert_eq!(lex("'a;b/*c*/\nd'"), vec![Token::String(b"a;b/*c*/\nd")]);
     }
 
     #[test]

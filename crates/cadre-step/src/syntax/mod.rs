@@ -14,7 +14,12 @@
 //! - `header()`, `diagnostics()`, `len()`, `ids()` (file order), `line(id)`,
 //!   `keywords(id) -> Option<&[…]>`/`has_keyword(id, kw)`, `ids_with_keyword(kw)`,
 //!   `instance(id) -> Result<Instance<'_>, Diagnostic>`.
-
+//!
+//! What indexing checks: statement boundaries and each instance's head (`#id = KEYWORD(` or
+//! the record keywords of a complex instance); an instance failing those is skipped with a
+//! diagnostic. Parameters are checked only when decoded, so a malformed body (unbalanced
+//! parentheses, a bad token, an out-of-range number, excessive nesting) is an `Err` from
+//! [`StepFile::instance`] naming the line and id; [`StepFile::check_all`] decodes everything.
 //!
 //! Modules: [`lexer`] (tokens, public for benchmarks and tools), `string` (string directive
 //! decoding), `parser` (one statement's records and parameters), `file` (the two-pass

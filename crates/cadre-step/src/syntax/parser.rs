@@ -156,7 +156,12 @@ impl<'a, K: Fn(&'a str) -> &'a str> Parser<'a, K> {
             (t, at) => return Self::unexpected(t, at, "a keyword"),
         };
         let params = match self.next()? {
-            (None, _) => return Ok(Record { keyword, params: Vec::new() }),
+            (None, _) => {
+                return Ok(Record {
+                    keyword,
+                    params: Vec::new(),
+                });
+            }
             (Some(Token::LParen), _) => self.param_list(1)?,
             (t, at) => return Self::unexpected(t, at, "'(' or end of statement"),
         };
@@ -257,7 +262,12 @@ mod tests {
 
     fn params(s: &str) -> Vec<Param<'_>> {
         match inst(s) {
-            Ok(p) => p.records.into_iter().next().map(|r| r.params).unwrap_or_default(),
+            Ok(p) => p
+                .records
+                .into_iter()
+                .next()
+                .map(|r| r.params)
+                .unwrap_or_default(),
             Err(e) => panic!("{s}: {e:?}"),
         }
     }
@@ -343,7 +353,11 @@ mod tests {
 
     #[test]
     fn depth_is_capped() {
-        let ok = format!("#1=A({}1{})", "(".repeat(MAX_DEPTH - 1), ")".repeat(MAX_DEPTH - 1));
+        let ok = format!(
+            "#1=A({}1{})",
+            "(".repeat(MAX_DEPTH - 1),
+            ")".repeat(MAX_DEPTH - 1)
+        );
         assert!(inst(&ok).is_ok());
         let deep = format!("#1=A({}1{})", "(".repeat(MAX_DEPTH), ")".repeat(MAX_DEPTH));
         let e = inst(&deep).err().unwrap();
@@ -363,7 +377,9 @@ mod tests {
 
     #[test]
     fn keyword_statement_with_and_without_params() {
-        let r = Parser::new(b"DATA", as_written).keyword_statement().unwrap();
+        let r = Parser::new(b"DATA", as_written)
+            .keyword_statement()
+            .unwrap();
         assert_eq!(r.keyword, "DATA");
         assert!(r.params.is_empty());
         let r = Parser::new(b"DATA('x',('S'))", as_written)

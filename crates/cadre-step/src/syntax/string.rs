@@ -138,10 +138,10 @@ fn wide(s: &[u8], start: usize, width: usize, out: &mut String) -> Option<usize>
     // Decode into a scratch buffer so that a bad group leaves `out` untouched.
     let mut text = String::with_capacity(payload.len() / width);
     if width == 4 {
-        let units: Option<Vec<u16>> = units.map(|u| u.and_then(|v| u16::try_from(v).ok())).collect();
-        text.extend(
-            char::decode_utf16(units?).map(|c| c.unwrap_or(char::REPLACEMENT_CHARACTER)),
-        );
+        let units: Option<Vec<u16>> = units
+            .map(|u| u.and_then(|v| u16::try_from(v).ok()))
+            .collect();
+        text.extend(char::decode_utf16(units?).map(|c| c.unwrap_or(char::REPLACEMENT_CHARACTER)));
     } else {
         for unit in units {
             text.push(char::from_u32(unit?).unwrap_or(char::REPLACEMENT_CHARACTER));
@@ -201,7 +201,10 @@ mod tests {
 
     #[test]
     fn plain_ascii_is_borrowed() {
-        assert!(matches!(decode_string(b"abc def"), Cow::Borrowed("abc def")));
+        assert!(matches!(
+            decode_string(b"abc def"),
+            Cow::Borrowed("abc def")
+        ));
         assert!(matches!(decode_string(b""), Cow::Borrowed("")));
     }
 

@@ -32,7 +32,12 @@ fn diag<'f>(f: &'f StepFile, needle: &str, line: u32, id: Option<u64>) -> &'f Di
         .iter()
         .filter(|d| d.message.contains(needle))
         .collect();
-    assert_eq!(found.len(), 1, "diagnostics for {needle:?}: {:#?}", f.diagnostics());
+    assert_eq!(
+        found.len(),
+        1,
+        "diagnostics for {needle:?}: {:#?}",
+        f.diagnostics()
+    );
     let d = found[0];
     assert_eq!((d.line, d.id), (line, id), "{d}");
     d
@@ -40,7 +45,9 @@ fn diag<'f>(f: &'f StepFile, needle: &str, line: u32, id: Option<u64>) -> &'f Di
 
 #[test]
 fn minimal_file() {
-    let f = parse(&file("#1=CARTESIAN_POINT('',(0.,1.,2.));\n#2=VERTEX_POINT('',#1);\n"));
+    let f = parse(&file(
+        "#1=CARTESIAN_POINT('',(0.,1.,2.));\n#2=VERTEX_POINT('',#1);\n",
+    ));
     assert!(f.diagnostics().is_empty(), "{:?}", f.diagnostics());
     assert_eq!(f.len(), 2);
     assert!(!f.is_empty());
@@ -54,10 +61,7 @@ fn minimal_file() {
     assert_eq!(i.keyword(), "VERTEX_POINT");
     assert!(!i.complex);
     assert_eq!(i.records[0].params[1], Param::Ref(1));
-    assert_eq!(
-        f.source(2),
-        Some(&b"#2=VERTEX_POINT('',#1)"[..])
-    );
+    assert_eq!(f.source(2), Some(&b"#2=VERTEX_POINT('',#1)"[..]));
 }
 
 #[test]
@@ -131,7 +135,9 @@ fn complex_instances_and_keyword_queries() {
 
 #[test]
 fn lower_case_keywords_are_interned_upper_case() {
-    let f = parse(&file("#1=cartesian_point('',(0.));\n#2=(a() b(length_measure(1.)));\n"));
+    let f = parse(&file(
+        "#1=cartesian_point('',(0.));\n#2=(a() b(length_measure(1.)));\n",
+    ));
     assert!(f.has_keyword(1, "CARTESIAN_POINT"));
     assert_eq!(f.instance(1).unwrap().keyword(), "CARTESIAN_POINT");
     let i = f.instance(2).unwrap();
@@ -140,7 +146,10 @@ fn lower_case_keywords_are_interned_upper_case() {
     // A typed parameter keyword that is no entity keyword keeps its spelling.
     assert!(matches!(
         i.records[1].params[0],
-        Param::Typed { keyword: "length_measure", .. }
+        Param::Typed {
+            keyword: "length_measure",
+            ..
+        }
     ));
 }
 
@@ -207,12 +216,17 @@ fn non_utf8_strings_decode_lossily() {
     bytes.splice(at..at + 1, b"\xcf\xf0\xe8\xe2\xe5\xf2".iter().copied());
     let f = StepFile::parse(bytes).unwrap();
     let i = f.instance(1).unwrap();
-    assert_eq!(i.records[0].params[0].as_str().map(|s| s.chars().count()), Some(6));
+    assert_eq!(
+        i.records[0].params[0].as_str().map(|s| s.chars().count()),
+        Some(6)
+    );
 }
 
 #[test]
 fn ids_may_be_sparse_and_huge() {
-    let f = parse(&file("#18446744073709551615=A();\n#7=B();\n#100000000000=C();\n"));
+    let f = parse(&file(
+        "#18446744073709551615=A();\n#7=B();\n#100000000000=C();\n",
+    ));
     assert!(f.diagnostics().is_empty(), "{:?}", f.diagnostics());
     assert_eq!(f.ids().collect::<Vec<_>>(), [u64::MAX, 7, 100_000_000_000]);
     assert!(f.has_keyword(u64::MAX, "A"));
@@ -227,7 +241,13 @@ fn ids_may_be_sparse_and_huge() {
 
 #[test]
 fn not_an_exchange_structure() {
-    for text in ["", "hello", "\x00\x01", "ISO-10303-21 HEADER;", "HEADER; DATA; ENDSEC;"] {
+    for text in [
+        "",
+        "hello",
+        "\x00\x01",
+        "ISO-10303-21 HEADER;",
+        "HEADER; DATA; ENDSEC;",
+    ] {
         match StepFile::parse(text.as_bytes().to_vec()) {
             Err(ParseError::NotExchangeStructure { line: 1, .. }) => {}
             other => panic!("{text:?}: {other:?}"),
@@ -371,7 +391,9 @@ fn deep_nesting() {
 
 #[test]
 fn garbage_bytes() {
-    let f = parse(&file("#1=A();\n\x01\x02garbage;\n#3=A(\x7f);\n#4=\x00;\n#5=B();\n"));
+    let f = parse(&file(
+        "#1=A();\n\x01\x02garbage;\n#3=A(\x7f);\n#4=\x00;\n#5=B();\n",
+    ));
     diag(&f, "unexpected byte 0x01", 9, None);
     diag(&f, "unexpected byte 0x00", 11, Some(4));
     assert_eq!(f.ids().collect::<Vec<_>>(), [1, 3, 5]);
@@ -435,14 +457,19 @@ fn diagnostics_are_capped() {
     let junk = "X;\n".repeat(5000);
     let f = parse(&file(&junk));
     assert!(f.diagnostics().len() <= 1001);
-    assert!(f.diagnostics().last().unwrap().message.contains("suppressed"));
+    assert!(
+        f.diagnostics()
+            .last()
+            .unwrap()
+            .message
+            .contains("suppressed")
+    );
 }
 
 #[test]
 fn ed3_sections_are_skipped() {
-    let text = format!(
-        "{HEAD}ANCHOR;\n<a> = #1;\nENDSEC;\nDATA;\n#1=A();\nENDSEC;\nEND-ISO-10303-21;\n"
-    );
+    let text =
+        format!("{HEAD}ANCHOR;\n<a> = #1;\nENDSEC;\nDATA;\n#1=A();\nENDSEC;\nEND-ISO-10303-21;\n");
     let f = parse(&text);
     diag(&f, "ANCHOR section ignored", 7, None);
     assert_eq!(f.len(), 1);
@@ -458,20 +485,38 @@ fn parallel_index_matches_naive_reading() {
     let mut id = 1u64;
     while data.len() < 5 << 20 {
         let (text, kw) = match id % 5 {
-            0 => (format!("#{id}=CARTESIAN_POINT('p;{id}',(1.,2.,3.));\n"), "CARTESIAN_POINT"),
-            1 => (format!("#{id} = DIRECTION('',\n(0.,0.,1.));\n"), "DIRECTION"),
-            2 => (format!("/* c; */#{id}=(NAMED_UNIT(*) SI_UNIT($,.METRE.));\n"), "NAMED_UNIT"),
-            3 => (format!("#{id}=vector('x\n''y''',#{},1.E0);\n", id - 1), "VECTOR"),
+            0 => (
+                format!("#{id}=CARTESIAN_POINT('p;{id}',(1.,2.,3.));\n"),
+                "CARTESIAN_POINT",
+            ),
+            1 => (
+                format!("#{id} = DIRECTION('',\n(0.,0.,1.));\n"),
+                "DIRECTION",
+            ),
+            2 => (
+                format!("/* c; */#{id}=(NAMED_UNIT(*) SI_UNIT($,.METRE.));\n"),
+                "NAMED_UNIT",
+            ),
+            3 => (
+                format!("#{id}=vector('x\n''y''',#{},1.E0);\n", id - 1),
+                "VECTOR",
+            ),
             _ => (format!("\n\n#{id}=LINE('',#1,#2);\n"), "LINE"),
         };
-        let leading = text.find('#').map_or(0, |p| text[..p].matches('\n').count());
+        let leading = text
+            .find('#')
+            .map_or(0, |p| text[..p].matches('\n').count());
         expected.push((id, line + leading as u32, kw));
         line += text.matches('\n').count() as u32;
         data.push_str(&text);
         id += 1;
     }
     let f = parse(&file(&data));
-    assert!(f.diagnostics().is_empty(), "{:?}", f.diagnostics().iter().take(3).collect::<Vec<_>>());
+    assert!(
+        f.diagnostics().is_empty(),
+        "{:?}",
+        f.diagnostics().iter().take(3).collect::<Vec<_>>()
+    );
     assert_eq!(f.len(), expected.len());
     for (id, line, kw) in expected {
         assert_eq!(f.line(id), Some(line), "#{id}");
@@ -480,4 +525,13 @@ fn parallel_index_matches_naive_reading() {
     assert!(f.check_all().is_empty());
     let complex = f.ids().filter(|id| id % 5 == 2).collect::<Vec<_>>();
     assert_eq!(f.ids_with_keyword("SI_UNIT"), complex);
+}
+
+#[test]
+fn instance_in_header_is_reported() {
+    let text = HEAD.replace("ENDSEC;\n", "#9=A();\nENDSEC;\n")
+        + "DATA;\n#1=A();\nENDSEC;\nEND-ISO-10303-21;\n";
+    let f = parse(&text);
+    diag(&f, "instance in the HEADER section", 6, Some(9));
+    assert_eq!(f.ids().collect::<Vec<_>>(), [1]);
 }
