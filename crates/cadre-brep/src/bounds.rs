@@ -79,8 +79,18 @@ fn edge_bounds(model: &Model, id: EdgeId, acc: Accuracy, samples: &mut Vec<Vec3>
 
 /// The (u, v) rectangle a face occupies, from its edges projected on the surface, as
 /// `[u0, u1, v0, v1]`; `None` when no edge point projects.
-pub fn face_uv_box(model: &Model, face: &Face, surface: &Surface, acc: Accuracy) -> Option<[f64; 4]> {
-    let mut uv = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+pub fn face_uv_box(
+    model: &Model,
+    face: &Face,
+    surface: &Surface,
+    acc: Accuracy,
+) -> Option<[f64; 4]> {
+    let mut uv = [
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ];
     let mut hint: Option<(f64, f64)> = None;
     let mut add = |p: Vec3, hint: &mut Option<(f64, f64)>| {
         if let Some((mut u, mut v)) = surface.project(p, *hint, acc) {
@@ -183,7 +193,9 @@ pub fn face_uv_box(model: &Model, face: &Face, surface: &Surface, acc: Accuracy)
             let (lo, hi) = pts
                 .iter()
                 .map(f)
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                    (a.min(x), b.max(x))
+                });
             hi - lo
         };
         let (du, dv) = (span(|p| p.0), span(|p| p.1));
@@ -345,7 +357,8 @@ impl Model {
                                 && t1.is_finite()
                             {
                                 pb.bbox = pb.bbox.union(&curve.bbox_between(t0, t1));
-                                pb.samples.extend(curve_samples(curve, (t0, t1), EDGE_SAMPLES));
+                                pb.samples
+                                    .extend(curve_samples(curve, (t0, t1), EDGE_SAMPLES));
                             }
                         }
                         Body::Point(p) => {
@@ -372,7 +385,9 @@ impl Model {
                 b = b.union(&pb.bbox.transformed(&visit.transform));
             } else {
                 b = b.union(&BoundingBox::from_points(
-                    pb.samples.iter().map(|&p| visit.transform.transform_point3(p)),
+                    pb.samples
+                        .iter()
+                        .map(|&p| visit.transform.transform_point3(p)),
                 ));
             }
         });

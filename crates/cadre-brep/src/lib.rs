@@ -12,6 +12,7 @@
 
 pub mod assembly;
 pub mod bounds;
+pub mod closure;
 pub mod ids;
 pub mod mesh;
 pub mod model;

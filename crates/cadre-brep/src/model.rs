@@ -3,9 +3,7 @@
 use std::collections::HashMap;
 
 use crate::topology::{Edge, Face, Shell, Solid, Vertex};
-use crate::{
-    EdgeId, FaceId, MeshId, Part, PartId, ShellId, SolidId, Style, TriangleMesh, Units,
-};
+use crate::{EdgeId, FaceId, MeshId, Part, PartId, ShellId, SolidId, Style, TriangleMesh, Units};
 use cadre_geom::{Curve2, Curve3, Surface};
 
 /// A problem met while building the model; the model is still usable.

@@ -14,7 +14,13 @@ pub struct Rgb {
 impl Rgb {
     /// Builds a colour, clamping each component into [0, 1] (non-finite becomes 0).
     pub fn new(r: f64, g: f64, b: f64) -> Self {
-        let c = |x: f64| if x.is_finite() { x.clamp(0.0, 1.0) as f32 } else { 0.0 };
+        let c = |x: f64| {
+            if x.is_finite() {
+                x.clamp(0.0, 1.0) as f32
+            } else {
+                0.0
+            }
+        };
         Self {
             r: c(r),
             g: c(g),

@@ -24,8 +24,13 @@ fn cube_solid_maps_with_counts_orientations_and_bbox() {
     // Orientation flags are kept as written.
     let bottom = m.faces.iter().find(|f| f.step_id == 107).unwrap();
     assert!(!bottom.same_sense);
-    let LoopKind::Edges(es) = &bottom.loops[0].kind else { panic!("edge loop") };
-    assert_eq!(es.iter().map(|e| e.forward).collect::<Vec<_>>(), [true, true, false, false]);
+    let LoopKind::Edges(es) = &bottom.loops[0].kind else {
+        panic!("edge loop")
+    };
+    assert_eq!(
+        es.iter().map(|e| e.forward).collect::<Vec<_>>(),
+        [true, true, false, false]
+    );
     let b = m.bbox(Accuracy::default());
     assert!(close(b.min.x, 0.0) && close(b.max.z, 1.0), "{b:?}");
     assert_eq!(m.units.length_name, "mm");
@@ -72,12 +77,18 @@ fn cone_semi_angle_in_degrees_becomes_radians() {
 
 #[test]
 fn bundled_assembly_places_shared_instances() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/pin-assembly.step");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/pin-assembly.step"
+    );
     let file = cadre_step::syntax::StepFile::read(std::path::Path::new(path)).unwrap();
     let m = cadre_step::map_file(&file);
     assert!(m.warnings.is_empty(), "{:?}", m.warnings);
     let c = m.counts();
-    assert_eq!((c.solids, c.shells, c.faces, c.products, c.instances), (2, 2, 6, 2, 2));
+    assert_eq!(
+        (c.solids, c.shells, c.faces, c.products, c.instances),
+        (2, 2, 6, 2, 2)
+    );
     // Geometry is stored once and shared by both instances.
     assert_eq!(m.solids.len(), 1);
     assert_eq!(m.roots.len(), 1);
@@ -88,12 +99,17 @@ fn bundled_assembly_places_shared_instances() {
         assert!((got - want).abs() < 1e-6, "bbox {:?}", b.to_array());
     }
     // The colour on the solid is kept.
-    let style = m.styles.get(&StyleTarget::Solid(cadre_brep::SolidId(0))).unwrap();
+    let style = m
+        .styles
+        .get(&StyleTarget::Solid(cadre_brep::SolidId(0)))
+        .unwrap();
     let rgb = style.color.unwrap();
     assert!((rgb.r - 0.8).abs() < 1e-6 && (rgb.g - 0.2).abs() < 1e-6);
     // The seam edge is used twice by the side face.
     let side = m.faces.iter().find(|f| f.step_id == 74).unwrap();
-    let LoopKind::Edges(es) = &side.loops[0].kind else { panic!() };
+    let LoopKind::Edges(es) = &side.loops[0].kind else {
+        panic!()
+    };
     assert_eq!(es[1].edge, es[3].edge);
     assert_ne!(es[1].forward, es[3].forward);
 }
@@ -111,12 +127,17 @@ fn rational_bspline_complex_instance_and_pcurves() {
 #6=GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('',(#5),#900);"
     ));
     assert!(m.warnings.is_empty(), "{:?}", m.warnings);
-    let cadre_geom::Curve3::BSpline(b) = &m.curves[0] else { panic!("{:?}", m.curves[0]) };
+    let cadre_geom::Curve3::BSpline(b) = &m.curves[0] else {
+        panic!("{:?}", m.curves[0])
+    };
     assert_eq!(b.degree, 2);
     assert_eq!(b.knots, vec![0., 0., 0., 1., 1., 1.]);
     assert!(b.weights.is_some());
     let mid = m.curves[0].eval(0.5);
-    assert!((mid.length() - 1.0).abs() < 1e-9, "rational evaluation stays on the circle: {mid}");
+    assert!(
+        (mid.length() - 1.0).abs() < 1e-9,
+        "rational evaluation stays on the circle: {mid}"
+    );
     let parts_with_wire = m
         .parts
         .iter()
@@ -141,9 +162,10 @@ fn tessellated_solid_counts_faces_shells_solids() {
     let mesh = &m.meshes[0];
     assert_eq!(mesh.triangles.len(), 4);
     assert_eq!(mesh.face_starts, vec![0, 2]);
-    // The strip (1,2,4,3) gives (1,2,4) and (2,3,4) with alternating winding kept CCW.
+    // The strip (1,2,4,3) gives (1,2,4), then (4,2,3): odd triangles swap their first two
+    // indices so every triangle keeps the strip's winding.
     assert_eq!(mesh.triangles[0], [0, 1, 3]);
-    assert_eq!(mesh.triangles[1], [1, 2, 3]);
+    assert_eq!(mesh.triangles[1], [3, 1, 2]);
 }
 
 #[test]

@@ -144,7 +144,10 @@ pub fn list_f64(a: &Attrs<'_, '_>, items: &[Param<'_>], i: usize) -> MapResult<V
         .iter()
         .map(|p| match p.as_f64() {
             Some(v) if v.is_finite() => Ok(v),
-            _ => Err(a.err(format!("parameter {} holds a non-finite or non-number", i + 1))),
+            _ => Err(a.err(format!(
+                "parameter {} holds a non-finite or non-number",
+                i + 1
+            ))),
         })
         .collect()
 }

@@ -6,8 +6,8 @@ use std::collections::HashMap;
 use super::error::{MapError, MapResult};
 use crate::syntax::{Instance, StepFile};
 use cadre_brep::{
-    CurveId, EdgeId, FaceId, MeshId, Model, PartId, PcurveId, ShellId, SolidId, SurfaceId,
-    Units, VertexId,
+    CurveId, EdgeId, FaceId, MeshId, Model, PartId, PcurveId, ShellId, SolidId, SurfaceId, Units,
+    VertexId,
 };
 
 /// How deep references may nest while mapping one item (offset of offset of trimmed …).
@@ -100,7 +100,11 @@ impl<'f> Mapper<'f> {
     }
 
     /// Runs `f` one nesting level deeper, failing on `id` past [`MAX_NESTING`].
-    pub fn nested<T>(&mut self, id: u64, f: impl FnOnce(&mut Self) -> MapResult<T>) -> MapResult<T> {
+    pub fn nested<T>(
+        &mut self,
+        id: u64,
+        f: impl FnOnce(&mut Self) -> MapResult<T>,
+    ) -> MapResult<T> {
         if self.depth >= MAX_NESTING {
             return Err(MapError::new(
                 id,
@@ -108,7 +112,12 @@ impl<'f> Mapper<'f> {
             ));
         }
         self.depth += 1;
-        let r = f(self);
+        let r = f(self).map_err(|mut e| {
+            if e.context.is_none() && e.id != id {
+                e.context = Some(id);
+            }
+            e
+        });
         self.depth -= 1;
         r
     }
@@ -116,9 +125,15 @@ impl<'f> Mapper<'f> {
     /// Records a mapping failure as a warning (once per instance).
     pub fn report(&mut self, e: &MapError) {
         if self.failed.insert(e.id, ()).is_none() {
-            let line = self.file.line(e.id);
-            self.model
-                .warn(Some(e.id), line, e.message.clone());
+            match (self.file.line(e.id), e.context) {
+                // A missing instance has no line: report it where it is referenced.
+                (None, Some(ctx)) => {
+                    let line = self.file.line(ctx);
+                    self.model
+                        .warn(Some(ctx), line, format!("#{}: {}", e.id, e.message));
+                }
+                (line, _) => self.model.warn(Some(e.id), line, e.message.clone()),
+            }
         }
     }
 

@@ -11,6 +11,9 @@ pub struct MapError {
     pub id: u64,
     /// What is wrong with it.
     pub message: String,
+    /// The instance being mapped when the error arose, when that is not `id` itself (so a
+    /// reference to a missing instance can be reported where the reference is written).
+    pub context: Option<u64>,
 }
 
 impl MapError {
@@ -19,6 +22,7 @@ impl MapError {
         Self {
             id,
             message: message.into(),
+            context: None,
         }
     }
 }
@@ -28,6 +32,7 @@ impl From<Diagnostic> for MapError {
         Self {
             id: d.id.unwrap_or(0),
             message: d.message,
+            context: None,
         }
     }
 }

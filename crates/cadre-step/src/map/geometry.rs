@@ -14,8 +14,8 @@ use cadre_brep::{CurveId, SurfaceId};
 use cadre_geom::bspline::{ControlPoint, expand_knots};
 use cadre_geom::curve::{CompositeSegment, CurveFrame};
 use cadre_geom::{
-    Accuracy, BSplineCurve, BSplineSurface, Curve, Curve2, Curve3, Frame, Surface, Transform,
-    Vec2, Vec3,
+    Accuracy, BSplineCurve, BSplineSurface, Curve, Curve2, Curve3, Frame, Surface, Transform, Vec2,
+    Vec3,
 };
 
 /// B-splines with more control points or knots than this in one direction are refused: no real
@@ -277,6 +277,22 @@ pub fn curve<S: Space>(m: &mut Mapper<'_>, id: u64) -> MapResult<Curve<S::P>> {
     {
         return Ok(Curve::BSpline(bspline_curve::<S>(m, &inst)?));
     }
+    // Curves on surfaces are also written as complex instances (BOUNDED_CURVE() CURVE() …
+    // SURFACE_CURVE(curve_3d, …)) whose record has no leading name.
+    if let Some(rec) = inst.records.iter().find(|r| {
+        matches!(
+            r.keyword,
+            "SURFACE_CURVE" | "SEAM_CURVE" | "INTERSECTION_CURVE" | "BOUNDED_SURFACE_CURVE"
+        )
+    }) {
+        let o = usize::from(!inst.complex);
+        let c = rec
+            .params
+            .get(o)
+            .and_then(|p| p.as_ref_id())
+            .ok_or_else(|| MapError::new(id, format!("{}: no 3D curve", rec.keyword)))?;
+        return m.nested(id, |m| curve::<S>(m, c));
+    }
     let a = Attrs::first(&inst)?;
     let l = S::length(m);
     match a.keyword {
@@ -322,7 +338,9 @@ pub fn curve<S: Space>(m: &mut Mapper<'_>, id: u64) -> MapResult<Curve<S::P>> {
             Ok(Curve::Polyline(pts))
         }
         "TRIMMED_CURVE" => trimmed_curve::<S>(m, &a),
-        "COMPOSITE_CURVE" | "COMPOSITE_CURVE_ON_SURFACE" | "BOUNDARY_CURVE"
+        "COMPOSITE_CURVE"
+        | "COMPOSITE_CURVE_ON_SURFACE"
+        | "BOUNDARY_CURVE"
         | "OUTER_BOUNDARY_CURVE" => {
             let mut segments = Vec::new();
             for seg in a.refs(1)? {
@@ -352,10 +370,6 @@ pub fn curve<S: Space>(m: &mut Mapper<'_>, id: u64) -> MapResult<Curve<S::P>> {
                 ref_direction,
             })
         }
-        "SURFACE_CURVE" | "SEAM_CURVE" | "INTERSECTION_CURVE" | "BOUNDED_SURFACE_CURVE" => {
-            let c = a.r#ref(1)?;
-            m.nested(id, |m| curve::<S>(m, c))
-        }
         "DEGENERATE_PCURVE" | "PCURVE" => Err(a.err("curve exists only on a surface")),
         other => Err(a.err(format!("unsupported curve type {other}"))),
     }
@@ -376,7 +390,11 @@ fn trimmed_curve<S: Space>(m: &mut Mapper<'_>, a: &Attrs<'_, '_>) -> MapResult<C
     let basis = m.nested(a.id, |m| curve::<S>(m, basis_id))?;
     let sense = a.bool_or(4, true);
     let prefer_points = a.enumeration(5) == Some("CARTESIAN");
-    let angle = if angular(&basis) { m.units.angle_to_rad } else { 1.0 };
+    let angle = if angular(&basis) {
+        m.units.angle_to_rad
+    } else {
+        1.0
+    };
     let trim = |i: usize| -> MapResult<f64> {
         let select = a.list(i)?;
         let param = select.iter().find_map(|p| match p {
@@ -453,7 +471,9 @@ fn bspline_curve<S: Space>(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSp
         let values = k.f64s(o + 1)?;
         expand_knots(&values, &mults).map_err(|e| k.err(e.to_string()))?
     } else if inst.has("UNIFORM_CURVE") {
-        (0..n + degree + 1).map(|i| i as f64 - degree as f64).collect()
+        (0..n + degree + 1)
+            .map(|i| i as f64 - degree as f64)
+            .collect()
     } else if inst.has("QUASI_UNIFORM_CURVE") {
         quasi_uniform_knots(n, degree)
     } else {
@@ -630,7 +650,9 @@ fn bspline_surface(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSplineSurf
     let mut net = Vec::with_capacity(rows.len());
     let mut total = 0usize;
     for row in rows {
-        let ids = row.as_list().ok_or_else(|| a.err("control net row is not a list"))?;
+        let ids = row
+            .as_list()
+            .ok_or_else(|| a.err("control net row is not a list"))?;
         total += ids.len();
         if total > MAX_BSPLINE_POINTS * 4 {
             return Err(a.err("control net is beyond reason"));
@@ -689,7 +711,9 @@ fn bspline_surface(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSplineSurf
             Some(
                 rows.iter()
                     .map(|r| {
-                        let r = r.as_list().ok_or_else(|| w.err("weights row is not a list"))?;
+                        let r = r
+                            .as_list()
+                            .ok_or_else(|| w.err("weights row is not a list"))?;
                         super::access::list_f64(&w, r, 0)
                     })
                     .collect::<MapResult<Vec<_>>>()?,

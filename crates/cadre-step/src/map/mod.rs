@@ -27,9 +27,7 @@ use cadre_brep::Model;
 pub fn map_file(file: &StepFile) -> Model {
     let mut mapper = context::Mapper::new(file);
     for d in file.diagnostics() {
-        mapper
-            .model
-            .warn(d.id, Some(d.line), d.message.clone());
+        mapper.model.warn(d.id, Some(d.line), d.message.clone());
     }
     mapper.model.schemas = file.header().schemas.clone();
     product::map_products(&mut mapper);

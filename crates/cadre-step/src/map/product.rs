@@ -26,6 +26,7 @@ const SHAPE_REPRESENTATIONS: &[&str] = &[
     "SHAPE_REPRESENTATION_WITH_PARAMETERS",
     "MANIFOLD_SUBSURFACE_SHAPE_REPRESENTATION",
     "NON_MANIFOLD_SURFACE_SHAPE_REPRESENTATION",
+    "CONSTRUCTIVE_GEOMETRY_REPRESENTATION",
 ];
 
 /// More part instances than this in one model means a corrupt or hostile file (a chain of
@@ -37,8 +38,10 @@ pub const MAX_INSTANCES: u64 = 50_000_000;
 struct ProductGraph {
     /// Product definition → its shape representations (through SDR and PDS).
     pd_reps: HashMap<u64, Vec<u64>>,
-    /// Representation → representations it includes without a transform.
-    rep_children: HashMap<u64, Vec<u64>>,
+    /// Representation → representations related to it without a transform (both directions:
+    /// a product's shape is everything so related to its representations, as CAD kernels
+    /// read it).
+    rep_links: HashMap<u64, Vec<u64>>,
     /// Representations included by another one (not roots).
     included_reps: HashSet<u64>,
     /// NAUO id → (parent PD, child PD, name).
@@ -79,8 +82,8 @@ fn read_graph(m: &mut Mapper<'_>) -> ProductGraph {
     }
     for id in m.file.ids_with_keyword("NEXT_ASSEMBLY_USAGE_OCCURRENCE") {
         let r = m.inst(id).and_then(|i| {
-            let a = Attrs::of(&i, "NEXT_ASSEMBLY_USAGE_OCCURRENCE")
-                .or_else(|_| Attrs::first(&i))?;
+            let a =
+                Attrs::of(&i, "NEXT_ASSEMBLY_USAGE_OCCURRENCE").or_else(|_| Attrs::first(&i))?;
             let name = match a.str_or_empty(1) {
                 n if n.is_empty() => a.str_or_empty(0),
                 n => n,
@@ -93,7 +96,10 @@ fn read_graph(m: &mut Mapper<'_>) -> ProductGraph {
         }
     }
     let mut placed_relations = HashSet::new();
-    for id in m.file.ids_with_keyword("CONTEXT_DEPENDENT_SHAPE_REPRESENTATION") {
+    for id in m
+        .file
+        .ids_with_keyword("CONTEXT_DEPENDENT_SHAPE_REPRESENTATION")
+    {
         let r = m.inst(id).and_then(|i| {
             let a = Attrs::first(&i)?;
             Ok((a.r#ref(0)?, a.r#ref(1)?))
@@ -111,6 +117,11 @@ fn read_graph(m: &mut Mapper<'_>) -> ProductGraph {
     let product_reps: HashSet<u64> = g.pd_reps.values().flatten().copied().collect();
     let mut relations = m.file.ids_with_keyword("REPRESENTATION_RELATIONSHIP");
     relations.extend(m.file.ids_with_keyword("SHAPE_REPRESENTATION_RELATIONSHIP"));
+    // Supplemental geometry (AP242) hangs off a part's shape through this relationship.
+    relations.extend(
+        m.file
+            .ids_with_keyword("CONSTRUCTIVE_GEOMETRY_REPRESENTATION_RELATIONSHIP"),
+    );
     relations.sort_unstable();
     relations.dedup();
     for id in relations {
@@ -118,7 +129,9 @@ fn read_graph(m: &mut Mapper<'_>) -> ProductGraph {
             continue;
         }
         let Ok(inst) = m.inst(id) else { continue };
-        let Some(rec) = inst.record("REPRESENTATION_RELATIONSHIP").or(inst.records.first())
+        let Some(rec) = inst
+            .record("REPRESENTATION_RELATIONSHIP")
+            .or(inst.records.first())
         else {
             continue;
         };
@@ -131,17 +144,59 @@ fn read_graph(m: &mut Mapper<'_>) -> ProductGraph {
         if !(is_shape_rep(m, r1) && is_shape_rep(m, r2)) {
             continue;
         }
-        // The representation that belongs to a product includes the other; otherwise the
-        // usual writing is (rep_1 = shape representation, rep_2 = its geometry).
-        let (parent, child) = if product_reps.contains(&r2) && !product_reps.contains(&r1) {
-            (r2, r1)
+        // Usually (rep_1 = shape representation, rep_2 = its geometry); the one not owned by
+        // a product is the included one when roots are sought without products.
+        let child = if product_reps.contains(&r2) && !product_reps.contains(&r1) {
+            r1
         } else {
-            (r1, r2)
+            r2
         };
-        g.rep_children.entry(parent).or_default().push(child);
+        g.rep_links.entry(r1).or_default().push(r2);
+        g.rep_links.entry(r2).or_default().push(r1);
         g.included_reps.insert(child);
     }
     g
+}
+
+/// Every representation reachable from `start` through relationships without transforms.
+fn rep_closure(g: &ProductGraph, start: &[u64]) -> Vec<u64> {
+    let mut seen: HashSet<u64> = HashSet::new();
+    let mut order = Vec::new();
+    let mut stack: Vec<u64> = start.iter().rev().copied().collect();
+    while let Some(r) = stack.pop() {
+        if !seen.insert(r) {
+            continue;
+        }
+        order.push(r);
+        for &n in g
+            .rep_links
+            .get(&r)
+            .map(Vec::as_slice)
+            .unwrap_or(&[])
+            .iter()
+            .rev()
+        {
+            if !seen.contains(&n) {
+                stack.push(n);
+            }
+        }
+    }
+    order
+}
+
+/// Places the parts of `reps` (and of everything related to them) in `part`, untransformed.
+fn attach_reps(m: &mut Mapper<'_>, g: &ProductGraph, part: PartId, reps: &[u64]) {
+    for rep in rep_closure(g, reps) {
+        match rep_part(m, g, rep) {
+            Ok(child) => m.model.parts[part.index()].children.push(Occurrence {
+                part: child,
+                transform: Transform::IDENTITY,
+                name: String::new(),
+                step_id: rep,
+            }),
+            Err(e) => m.report(&e),
+        }
+    }
 }
 
 /// The name of a product definition's product (its part name), else its id.
@@ -163,7 +218,10 @@ fn product_names(m: &Mapper<'_>, pd: u64) -> MapResult<(String, String)> {
 pub fn map_products(m: &mut Mapper<'_>) {
     let g = read_graph(m);
     let mut pds = m.file.ids_with_keyword("PRODUCT_DEFINITION");
-    pds.extend(m.file.ids_with_keyword("PRODUCT_DEFINITION_WITH_ASSOCIATED_DOCUMENTS"));
+    pds.extend(
+        m.file
+            .ids_with_keyword("PRODUCT_DEFINITION_WITH_ASSOCIATED_DOCUMENTS"),
+    );
     pds.sort_unstable();
     pds.dedup();
 
@@ -184,23 +242,17 @@ pub fn map_products(m: &mut Mapper<'_>) {
     }
     for &pd in &pds {
         let pid = m.product_parts[&pd];
-        for &rep in g.pd_reps.get(&pd).map(Vec::as_slice).unwrap_or(&[]) {
-            match rep_part(m, &g, rep) {
-                Ok(child) => m.model.parts[pid.index()].children.push(Occurrence {
-                    part: child,
-                    transform: Transform::IDENTITY,
-                    name: String::new(),
-                    step_id: rep,
-                }),
-                Err(e) => m.report(&e),
-            }
-        }
+        let reps = g.pd_reps.get(&pd).cloned().unwrap_or_default();
+        attach_reps(m, &g, pid, &reps);
     }
     let mut children_pds = HashSet::new();
     for (nauo, parent, child, name) in &g.usages {
         let (Some(&pp), Some(&cp)) = (m.product_parts.get(parent), m.product_parts.get(child))
         else {
-            m.warn(*nauo, "assembly usage refers to an unknown product definition; skipped");
+            m.warn(
+                *nauo,
+                "assembly usage refers to an unknown product definition; skipped",
+            );
             continue;
         };
         children_pds.insert(*child);
@@ -212,7 +264,14 @@ pub fn map_products(m: &mut Mapper<'_>) {
                     Transform::IDENTITY
                 }
             },
-            None => Transform::IDENTITY,
+            None => {
+                if placed_by_mapped_item(m, &g, pp, *child) {
+                    // The parent's shape already places the child's shape with a mapped
+                    // item: that is this usage; adding it again would count it twice.
+                    continue;
+                }
+                Transform::IDENTITY
+            }
         };
         m.model.parts[pp.index()].children.push(Occurrence {
             part: cp,
@@ -237,13 +296,24 @@ pub fn map_products(m: &mut Mapper<'_>) {
         reps.dedup();
         let used: HashSet<u64> = g.pd_reps.values().flatten().copied().collect();
         for rep in reps {
-            if g.included_reps.contains(&rep) || used.contains(&rep) || m.rep_parts.contains_key(&rep) {
+            if g.included_reps.contains(&rep)
+                || used.contains(&rep)
+                || m.rep_parts.contains_key(&rep)
+            {
                 continue;
             }
-            match rep_part(m, &g, rep) {
-                Ok(p) => roots.push(p),
-                Err(e) => m.report(&e),
+            // A root of its own: a part holding the representation and those related to it.
+            let pid = PartId(m.model.parts.len() as u32);
+            m.model.parts.push(Part {
+                step_id: rep,
+                ..Part::default()
+            });
+            attach_reps(m, &g, pid, &[rep]);
+            let first = m.model.parts[pid.index()].children.first().map(|o| o.part);
+            if let Some(first) = first {
+                m.model.parts[pid.index()].name = m.model.parts[first.index()].name.clone();
             }
+            roots.push(pid);
         }
     }
     if !has_geometry_below(m, &roots)
@@ -254,6 +324,24 @@ pub fn map_products(m: &mut Mapper<'_>) {
     m.model.roots = roots;
     break_cycles(m);
     limit_instances(m);
+}
+
+/// Whether product part `parent` places one of `child_pd`'s representations through a
+/// `MAPPED_ITEM` in one of its own representations.
+fn placed_by_mapped_item(m: &Mapper<'_>, g: &ProductGraph, parent: PartId, child_pd: u64) -> bool {
+    let child_parts: HashSet<PartId> = g
+        .pd_reps
+        .get(&child_pd)
+        .into_iter()
+        .flatten()
+        .filter_map(|r| m.rep_parts.get(r).copied())
+        .collect();
+    m.model.parts[parent.index()].children.iter().any(|rep| {
+        m.model.parts[rep.part.index()]
+            .children
+            .iter()
+            .any(|o| child_parts.contains(&o.part) && m.is(o.step_id, "MAPPED_ITEM"))
+    })
 }
 
 fn has_geometry_below(m: &Mapper<'_>, roots: &[PartId]) -> bool {
@@ -359,6 +447,15 @@ fn usage_transform(
         let (item1, item2) = (a.r#ref(2)?, a.r#ref(3)?);
         let a1 = placement_in(m, rep1, item1)?;
         let a2 = placement_in(m, rep2, item2)?;
+        // The item that the child's representation lists is the child's origin, whatever
+        // order the relationship names the representations in (writers differ).
+        let child_items: HashSet<u64> = child_reps.iter().flat_map(|&r| rep_items(m, r)).collect();
+        if child_items.contains(&item1) && !child_items.contains(&item2) {
+            return finite(relation, a2 * a1.inverse());
+        }
+        if child_items.contains(&item2) && !child_items.contains(&item1) {
+            return finite(relation, a1 * a2.inverse());
+        }
         a2 * a1.inverse()
     } else {
         let saved = m.enter_context(rep_context(m, rep2));
@@ -366,11 +463,33 @@ fn usage_transform(
         m.restore_units(saved);
         t?
     };
-    let t = if rep1_is_child { t } else { t.inverse() };
-    if !t.is_finite() {
-        return Err(MapError::new(relation, "placement is not invertible"));
+    finite(relation, if rep1_is_child { t } else { t.inverse() })
+}
+
+fn finite(relation: u64, t: Transform) -> MapResult<Transform> {
+    if t.is_finite() {
+        Ok(t)
+    } else {
+        Err(MapError::new(relation, "placement is not invertible"))
     }
-    Ok(t)
+}
+
+/// The items a representation lists.
+fn rep_items(m: &Mapper<'_>, rep: u64) -> Vec<u64> {
+    m.inst(rep)
+        .ok()
+        .and_then(|i| {
+            let rec = i.record("REPRESENTATION").or(i.records.first())?;
+            Some(
+                rec.params
+                    .get(1)?
+                    .as_list()?
+                    .iter()
+                    .filter_map(|p| p.as_ref_id())
+                    .collect(),
+            )
+        })
+        .unwrap_or_default()
 }
 
 /// A placement item mapped in the units of the representation it belongs to.
@@ -436,17 +555,6 @@ fn rep_part(m: &mut Mapper<'_>, g: &ProductGraph, rep: u64) -> MapResult<PartId>
         }
     }
     m.restore_units(saved);
-    for &child in g.rep_children.get(&rep).map(Vec::as_slice).unwrap_or(&[]) {
-        match m.nested(rep, |m| rep_part(m, g, child)) {
-            Ok(p) => children.push(Occurrence {
-                part: p,
-                transform: Transform::IDENTITY,
-                name: String::new(),
-                step_id: child,
-            }),
-            Err(e) => m.report(&e),
-        }
-    }
     let part = &mut m.model.parts[pid.index()];
     part.bodies = bodies;
     part.children = children;
@@ -465,8 +573,12 @@ fn map_item(
     let keyword = inst.keyword();
     let has = |k: &str| inst.has(k);
     if has("MANIFOLD_SOLID_BREP") || has("BREP_WITH_VOIDS") || has("FACETED_BREP") {
-        bodies.push(Body::Solid(m.solid(item)?));
-    } else if matches!(keyword, "SHELL_BASED_SURFACE_MODEL" | "FACE_BASED_SURFACE_MODEL") {
+        let solid = m.solid(item)?;
+        bodies.extend(solid_or_shells(m, item, solid));
+    } else if matches!(
+        keyword,
+        "SHELL_BASED_SURFACE_MODEL" | "FACE_BASED_SURFACE_MODEL"
+    ) {
         for shell in Attrs::first(&inst)?.refs(1)? {
             match m.shell(shell) {
                 Ok((s, _)) => bodies.push(Body::Shell(s)),
@@ -494,6 +606,14 @@ fn map_item(
         for element in Attrs::first(&inst)?.refs(1)? {
             if m.is(element, "CARTESIAN_POINT") {
                 bodies.push(Body::Point(m.point3(element)?));
+            } else if super::topology::SURFACE_KEYWORDS
+                .iter()
+                .any(|k| m.is(element, k))
+            {
+                match m.surface_face(element) {
+                    Ok(f) => bodies.push(Body::Face(f)),
+                    Err(e) => m.report(&e),
+                }
             } else if is_curve(m, element) {
                 match m.curve_id(element) {
                     Ok(curve) => bodies.push(Body::Wire(Wire { curve, range: None })),
@@ -518,12 +638,55 @@ fn map_item(
     Ok(())
 }
 
+/// A solid whose outer shell is open bounds no volume: it is read as its shell's connected
+/// pieces, with a warning, as CAD kernels heal it.
+fn solid_or_shells(m: &mut Mapper<'_>, item: u64, solid: cadre_brep::SolidId) -> Vec<Body> {
+    let outer = m.model.solids[solid.index()].outer;
+    let free = m.model.free_edges(outer, cadre_geom::Accuracy::default());
+    if free == 0 {
+        return vec![Body::Solid(solid)];
+    }
+    let pieces = m.model.shell_components(outer);
+    let step_id = m.model.shells[outer.index()].step_id;
+    let mut bodies = Vec::new();
+    for faces in pieces {
+        let sid = cadre_brep::ShellId(m.model.shells.len() as u32);
+        m.model.shells.push(cadre_brep::Shell {
+            faces,
+            closed: false,
+            step_id,
+        });
+        bodies.push(Body::Shell(sid));
+    }
+    m.warn(
+        item,
+        format!(
+            "solid's shell is open ({free} free edges): read as {} open shell(s)",
+            bodies.len()
+        ),
+    );
+    bodies
+}
+
 fn is_curve(m: &Mapper<'_>, id: u64) -> bool {
     [
-        "LINE", "CIRCLE", "ELLIPSE", "PARABOLA", "HYPERBOLA", "POLYLINE", "TRIMMED_CURVE",
-        "COMPOSITE_CURVE", "B_SPLINE_CURVE", "B_SPLINE_CURVE_WITH_KNOTS", "BEZIER_CURVE",
-        "OFFSET_CURVE_3D", "SURFACE_CURVE", "SEAM_CURVE", "INTERSECTION_CURVE",
-        "QUASI_UNIFORM_CURVE", "UNIFORM_CURVE",
+        "LINE",
+        "CIRCLE",
+        "ELLIPSE",
+        "PARABOLA",
+        "HYPERBOLA",
+        "POLYLINE",
+        "TRIMMED_CURVE",
+        "COMPOSITE_CURVE",
+        "B_SPLINE_CURVE",
+        "B_SPLINE_CURVE_WITH_KNOTS",
+        "BEZIER_CURVE",
+        "OFFSET_CURVE_3D",
+        "SURFACE_CURVE",
+        "SEAM_CURVE",
+        "INTERSECTION_CURVE",
+        "QUASI_UNIFORM_CURVE",
+        "UNIFORM_CURVE",
     ]
     .iter()
     .any(|k| m.is(id, k))

@@ -136,7 +136,10 @@ pub fn map_styles(m: &mut Mapper<'_>) {
     let mut plain = m.file.ids_with_keyword("STYLED_ITEM");
     let overriding = {
         let mut o = m.file.ids_with_keyword("OVER_RIDING_STYLED_ITEM");
-        o.extend(m.file.ids_with_keyword("CONTEXT_DEPENDENT_OVER_RIDING_STYLED_ITEM"));
+        o.extend(
+            m.file
+                .ids_with_keyword("CONTEXT_DEPENDENT_OVER_RIDING_STYLED_ITEM"),
+        );
         o
     };
     plain.retain(|id| !overriding.contains(id));
@@ -166,7 +169,11 @@ fn apply_styled_item(m: &mut Mapper<'_>, id: u64) -> MapResult<()> {
     let a = Attrs::of(&inst, "STYLED_ITEM").or_else(|_| Attrs::first(&inst))?;
     // Simple instances carry (name, styles, item); in a complex instance the name lives in the
     // REPRESENTATION_ITEM record and STYLED_ITEM holds (styles, item).
-    let o = if inst.complex && a.params.len() == 2 { 0 } else { 1 };
+    let o = if inst.complex && a.params.len() == 2 {
+        0
+    } else {
+        1
+    };
     let item = a.r#ref(o + 1)?;
     let mut style = Style::default();
     for s in a.refs(o)? {
@@ -180,7 +187,15 @@ fn apply_styled_item(m: &mut Mapper<'_>, id: u64) -> MapResult<()> {
         m.inst(item)
             .ok()
             .and_then(|i| Attrs::first(&i).ok()?.opt_ref(1))
-            .and_then(|src| m.inst(src).ok()?.records.first()?.params.get(1)?.as_ref_id())
+            .and_then(|src| {
+                m.inst(src)
+                    .ok()?
+                    .records
+                    .first()?
+                    .params
+                    .get(1)?
+                    .as_ref_id()
+            })
             .unwrap_or(item)
     } else {
         item

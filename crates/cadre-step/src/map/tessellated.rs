@@ -61,7 +61,9 @@ impl FaceAppender<'_> {
             && (normals.len() == 1 || normals.len() == count);
         if keep_normals {
             if normals.len() == 1 {
-                self.mesh.normals.extend(std::iter::repeat_n(normals[0], count));
+                self.mesh
+                    .normals
+                    .extend(std::iter::repeat_n(normals[0], count));
             } else {
                 self.mesh.normals.extend_from_slice(&normals);
             }
@@ -140,7 +142,9 @@ fn coordinates(m: &Mapper<'_>, id: u64) -> MapResult<Vec<Vec3>> {
     }
     list.iter()
         .map(|p| {
-            let c = p.as_list().ok_or_else(|| a.err("coordinate is not a list"))?;
+            let c = p
+                .as_list()
+                .ok_or_else(|| a.err("coordinate is not a list"))?;
             let v: Vec<f64> = c.iter().filter_map(Param::as_f64).collect();
             match v[..] {
                 [x, y, z] if x.is_finite() && y.is_finite() && z.is_finite() => {

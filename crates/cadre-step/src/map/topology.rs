@@ -61,11 +61,7 @@ impl Mapper<'_> {
                 let forward = a.bool_or(3, true);
                 let (base, _) = self.nested(id, |m| m.shell(element))?;
                 let base = self.model.shells[base.index()].clone();
-                let faces = base
-                    .faces
-                    .iter()
-                    .map(|&(f, o)| (f, o == forward))
-                    .collect();
+                let faces = base.faces.iter().map(|&(f, o)| (f, o == forward)).collect();
                 (faces, base.closed, !forward)
             }
             "CLOSED_SHELL" | "OPEN_SHELL" | "CONNECTED_FACE_SET" => {
@@ -138,7 +134,6 @@ impl Mapper<'_> {
         self.faces.insert(self.key(id), fid);
         Ok(fid)
     }
-
 
     /// A plane through a polygon (Newell's normal), for faces that have no surface.
     fn fitted_plane(&mut self, id: u64, loops: &[Loop]) -> MapResult<SurfaceId> {
@@ -285,7 +280,9 @@ impl Mapper<'_> {
 
     /// The pcurves listed by a `SURFACE_CURVE` / `SEAM_CURVE` (associated geometry).
     fn collect_pcurves(&mut self, geometry: u64, out: &mut Vec<(SurfaceId, PcurveId)>) {
-        let Ok(inst) = self.inst(geometry) else { return };
+        let Ok(inst) = self.inst(geometry) else {
+            return;
+        };
         let Some(rec) = inst.records.iter().find(|r| {
             matches!(
                 r.keyword,
@@ -294,9 +291,11 @@ impl Mapper<'_> {
         }) else {
             return;
         };
+        // Simple instances start with the name; complex ones keep it in another record.
+        let o = usize::from(!inst.complex);
         let assoc: Vec<u64> = rec
             .params
-            .get(2)
+            .get(o + 1)
             .and_then(|p| p.as_list())
             .unwrap_or(&[])
             .iter()
@@ -356,5 +355,134 @@ impl Mapper<'_> {
         self.model.vertices.push(Vertex { point });
         self.vertices.insert(self.key(id), vid);
         Ok(vid)
+    }
+}
+
+/// Keywords of surfaces that can stand alone in a geometric set (each becomes a face).
+pub const SURFACE_KEYWORDS: &[&str] = &[
+    "PLANE",
+    "CYLINDRICAL_SURFACE",
+    "CONICAL_SURFACE",
+    "SPHERICAL_SURFACE",
+    "TOROIDAL_SURFACE",
+    "DEGENERATE_TOROIDAL_SURFACE",
+    "B_SPLINE_SURFACE",
+    "B_SPLINE_SURFACE_WITH_KNOTS",
+    "BEZIER_SURFACE",
+    "UNIFORM_SURFACE",
+    "QUASI_UNIFORM_SURFACE",
+    "SURFACE_OF_REVOLUTION",
+    "SURFACE_OF_LINEAR_EXTRUSION",
+    "OFFSET_SURFACE",
+    "RECTANGULAR_TRIMMED_SURFACE",
+    "CURVE_BOUNDED_SURFACE",
+];
+
+impl Mapper<'_> {
+    /// A surface placed alone (in a geometric set) as a face: its own domain, or for a
+    /// `CURVE_BOUNDED_SURFACE` the region its boundary curves enclose, as edge loops.
+    pub fn surface_face(&mut self, id: u64) -> MapResult<FaceId> {
+        if let Some(&f) = self.faces.get(&self.key(id)) {
+            return Ok(f);
+        }
+        let surface = self.surface_id(id)?;
+        let mut loops = Vec::new();
+        if self.is(id, "CURVE_BOUNDED_SURFACE") {
+            let inst = self.inst(id)?;
+            let a = Attrs::first(&inst)?;
+            for b in a.refs(2)? {
+                match self.nested(id, |m| m.boundary_loop(b, surface)) {
+                    Ok(l) => loops.push(l),
+                    Err(e) => self.report(&e),
+                }
+            }
+        }
+        let fid = FaceId(self.model.faces.len() as u32);
+        self.model.faces.push(Face {
+            surface,
+            same_sense: true,
+            loops,
+            step_id: id,
+        });
+        self.faces.insert(self.key(id), fid);
+        Ok(fid)
+    }
+
+    /// A `BOUNDARY_CURVE` / `OUTER_BOUNDARY_CURVE` as a loop of edges, one per segment, with
+    /// vertices at the segments' ends.
+    fn boundary_loop(&mut self, id: u64, surface: SurfaceId) -> MapResult<Loop> {
+        let inst = self.inst(id)?;
+        let a = Attrs::first(&inst)?;
+        let outer = a.keyword == "OUTER_BOUNDARY_CURVE";
+        let mut edges = Vec::new();
+        for seg in a.refs(1)? {
+            let s_inst = self.inst(seg)?;
+            let s = Attrs::of(&s_inst, "COMPOSITE_CURVE_SEGMENT")?;
+            let same_sense = s.bool_or(1, true);
+            let parent = s.r#ref(2)?;
+            let mut pcurves = Vec::new();
+            let curve = if self.is(parent, "PCURVE") {
+                pcurves.push(self.nested(seg, |m| m.pcurve(parent))?);
+                None
+            } else {
+                self.collect_pcurves(parent, &mut pcurves);
+                Some(self.nested(seg, |m| m.curve_id(parent))?)
+            };
+            let (p0, p1) = self.segment_ends(curve, &pcurves, surface).ok_or_else(|| {
+                MapError::new(
+                    seg,
+                    "boundary segment has no bounded curve to take ends from",
+                )
+            })?;
+            let start = self.new_vertex(p0);
+            let end = self.new_vertex(p1);
+            let eid = EdgeId(self.model.edges.len() as u32);
+            self.model.edges.push(Edge {
+                curve,
+                start,
+                end,
+                same_sense: true,
+                pcurves,
+                step_id: seg,
+            });
+            edges.push(OrientedEdge {
+                edge: eid,
+                forward: same_sense,
+            });
+        }
+        Ok(Loop {
+            kind: LoopKind::Edges(edges),
+            orientation: true,
+            outer,
+        })
+    }
+
+    /// Start and end points of a bounded curve, or of a pcurve evaluated on its surface.
+    fn segment_ends(
+        &self,
+        curve: Option<cadre_brep::CurveId>,
+        pcurves: &[(SurfaceId, PcurveId)],
+        surface: SurfaceId,
+    ) -> Option<(Vec3, Vec3)> {
+        if let Some(c) = curve {
+            let c = &self.model.curves[c.index()];
+            let (t0, t1) = c.start_end_params()?;
+            return Some((c.eval(t0), c.eval(t1)));
+        }
+        let &(s, p) = pcurves
+            .iter()
+            .find(|(s, _)| *s == surface)
+            .or(pcurves.first())?;
+        let pc = &self.model.pcurves[p.index()];
+        let (t0, t1) = pc.start_end_params()?;
+        let s = &self.model.surfaces[s.index()];
+        let (a, b) = (pc.eval(t0), pc.eval(t1));
+        Some((s.eval(a.x, a.y), s.eval(b.x, b.y)))
+    }
+
+    fn new_vertex(&mut self, point: Vec3) -> VertexId {
+        let vid = VertexId(self.model.vertices.len() as u32);
+        self.model.vertices.push(Vertex { point });
+        vid
     }
 }

@@ -41,7 +41,10 @@ enum UnitKind {
 /// A unit's kind, its size in base units (mm for lengths, radians for angles), and a name.
 fn unit(m: &Mapper<'_>, id: u64, depth: u32) -> MapResult<(UnitKind, f64, String)> {
     if depth > 8 {
-        return Err(MapError::new(id, "unit conversions nest too deep (cyclic?)"));
+        return Err(MapError::new(
+            id,
+            "unit conversions nest too deep (cyclic?)",
+        ));
     }
     let inst = m.inst(id)?;
     let kind = if inst.has("LENGTH_UNIT") {
@@ -64,7 +67,10 @@ fn unit(m: &Mapper<'_>, id: u64, depth: u32) -> MapResult<(UnitKind, f64, String
             Some("METRE") => Ok((
                 UnitKind::Length,
                 factor * 1000.0,
-                format!("{}metre", prefix.map(|s| s.to_lowercase()).unwrap_or_default()),
+                format!(
+                    "{}metre",
+                    prefix.map(|s| s.to_lowercase()).unwrap_or_default()
+                ),
             )),
             Some("RADIAN") => Ok((UnitKind::Angle, factor, "radian".into())),
             Some(other) => Ok((kind, factor, other.to_lowercase())),
@@ -81,10 +87,17 @@ fn unit(m: &Mapper<'_>, id: u64, depth: u32) -> MapResult<(UnitKind, f64, String
         let measure = a.r#ref(1)?;
         let (value, base) = measure_with_unit(m, measure)?;
         let (base_kind, base_size, _) = unit(m, base, depth + 1)?;
-        let kind = if kind == UnitKind::Other { base_kind } else { kind };
+        let kind = if kind == UnitKind::Other {
+            base_kind
+        } else {
+            kind
+        };
         return Ok((kind, value * base_size, name.to_lowercase()));
     }
-    Err(MapError::new(id, "unit is neither SI_UNIT nor CONVERSION_BASED_UNIT"))
+    Err(MapError::new(
+        id,
+        "unit is neither SI_UNIT nor CONVERSION_BASED_UNIT",
+    ))
 }
 
 /// `(value, unit id)` of a `*_MEASURE_WITH_UNIT`.

@@ -74,17 +74,33 @@ fn tree_lines(model: &Model, part: PartId, depth: usize, uses: usize, out: &mut 
         return;
     }
     let p = model.part(part);
-    let name = if p.name.is_empty() { "(unnamed)" } else { &p.name };
+    let name = if p.name.is_empty() {
+        "(unnamed)"
+    } else {
+        &p.name
+    };
     let mut what = Vec::new();
     if !p.bodies.is_empty() {
         what.push(format!("{} bodies", p.bodies.len()));
     }
-    let times = if uses > 1 { format!(" ×{uses}") } else { String::new() };
-    let kind = if p.is_product { "" } else { " [representation]" };
+    let times = if uses > 1 {
+        format!(" ×{uses}")
+    } else {
+        String::new()
+    };
+    let kind = if p.is_product {
+        ""
+    } else {
+        " [representation]"
+    };
     out.push(format!(
         "{}{name}{times}{kind}{}",
         "  ".repeat(depth + 1),
-        if what.is_empty() { String::new() } else { format!(" ({})", what.join(", ")) }
+        if what.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", what.join(", "))
+        }
     ));
     let mut grouped: Vec<(PartId, usize)> = Vec::new();
     for occ in &p.children {
@@ -166,7 +182,15 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             let s = bbox.max - bbox.min;
             println!(
                 "bbox (mm)  [{:.4}, {:.4}, {:.4}] – [{:.4}, {:.4}, {:.4}]  size {:.4} × {:.4} × {:.4}",
-                bbox.min.x, bbox.min.y, bbox.min.z, bbox.max.x, bbox.max.y, bbox.max.z, s.x, s.y, s.z
+                bbox.min.x,
+                bbox.min.y,
+                bbox.min.z,
+                bbox.max.x,
+                bbox.max.y,
+                bbox.max.z,
+                s.x,
+                s.y,
+                s.z
             );
         }
         let list = |m: &BTreeMap<_, u64>| {
@@ -175,7 +199,16 @@ pub fn run(args: &InfoArgs) -> Result<()> {
                 .collect::<Vec<_>>()
                 .join(", ")
         };
-        println!("surfaces   {}", list(&counts.surface_types.iter().map(|(k, v)| (k.as_str(), *v)).collect()));
+        println!(
+            "surfaces   {}",
+            list(
+                &counts
+                    .surface_types
+                    .iter()
+                    .map(|(k, v)| (k.as_str(), *v))
+                    .collect()
+            )
+        );
         println!("curves     {}", list(&curve_types));
         let mut entities: Vec<(String, u64)> = entity_counts(&loaded.file).into_iter().collect();
         entities.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
@@ -202,7 +235,10 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             println!("  {w}");
         }
         if warnings.len() > args.max_warnings {
-            println!("  … {} more (see --json)", warnings.len() - args.max_warnings);
+            println!(
+                "  … {} more (see --json)",
+                warnings.len() - args.max_warnings
+            );
         }
         println!(
             "time       parse {:.3} s, map {:.3} s",

@@ -1,4 +1,4 @@
 //! One module per subcommand.
 
-pub mod info;
 pub mod bench;
+pub mod info;
