@@ -5,6 +5,8 @@
 //! This is what OCCT's `BRepBndLib::Add` measures too, so the two agree closely; it can only
 //! overestimate a face whose (u, v) rectangle is larger than the face itself.
 
+use std::f64::consts::FRAC_PI_2;
+
 use rayon::prelude::*;
 
 use crate::topology::{Edge, Face, LoopKind};
@@ -15,6 +17,9 @@ use cadre_geom::{Accuracy, BoundingBox, Curve3, Surface, Transform, Vec3};
 const EDGE_SAMPLES: usize = 24;
 /// Grid samples per direction on a curved face, kept for bounding rotated instances.
 const FACE_GRID: usize = 9;
+/// Grid cells per direction when bounding the inside of a trimmed face; the box can miss an
+/// interior bulge by at most the surface's deviation within one cell.
+const TRIM_GRID: usize = 48;
 
 /// The surface type name a face reports: a rectangular trimmed surface reports its basis, as
 /// CAD kernels do.
@@ -85,6 +90,64 @@ pub fn face_uv_box(
     surface: &Surface,
     acc: Accuracy,
 ) -> Option<[f64; 4]> {
+    face_uv_region(model, face, surface, acc).map(|r| r.rect)
+}
+
+/// Where a face lies in its surface's parameter space.
+#[derive(Clone, Debug)]
+pub struct UvRegion {
+    /// `[u0, u1, v0, v1]`: the rectangle the face occupies.
+    pub rect: [f64; 4],
+    /// The loops as (u, v) polygons, continuous across seams; `None` when some loop does not
+    /// close in (u, v) (it goes around the surface) or the face wraps, so the polygons do not
+    /// delimit the face.
+    pub polygons: Option<Vec<Vec<(f64, f64)>>>,
+}
+
+impl UvRegion {
+    /// Whether (u, v) is inside the face by the even-odd rule over its loops; always true when
+    /// the loops do not delimit the face.
+    pub fn contains(&self, u: f64, v: f64) -> bool {
+        let Some(polygons) = &self.polygons else {
+            return true;
+        };
+        let mut inside = false;
+        for poly in polygons {
+            let n = poly.len();
+            for i in 0..n {
+                let (a, b) = (poly[i], poly[(i + 1) % n]);
+                if (a.1 > v) != (b.1 > v) && u < a.0 + (v - a.1) / (b.1 - a.1) * (b.0 - a.0) {
+                    inside = !inside;
+                }
+            }
+        }
+        inside
+    }
+}
+
+/// The (u, v) region of a face: its rectangle and, when its loops close in (u, v), their
+/// polygons.
+pub fn face_uv_region(
+    model: &Model,
+    face: &Face,
+    surface: &Surface,
+    acc: Accuracy,
+) -> Option<UvRegion> {
+    // No loop, or only vertex loops (a whole sphere or torus written with one vertex): the
+    // face is the whole surface.
+    if face
+        .loops
+        .iter()
+        .all(|l| matches!(l.kind, LoopKind::Vertex(_)))
+    {
+        let ((u0, u1), (v0, v1)) = surface.domain();
+        return Some(UvRegion {
+            rect: [u0, u1, v0, v1],
+            polygons: None,
+        });
+    }
+    let mut polygons: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut all_closed = true;
     let mut uv = [
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -113,6 +176,8 @@ pub fn face_uv_box(
     let mut seen = std::collections::HashSet::new();
     let mut seams = Vec::new();
     let mut complement = false;
+    // For each loop that goes once around u: whether the face lies on its +v side.
+    let mut wrapping: Vec<bool> = Vec::new();
     for lp in &face.loops {
         let first_hint = hint;
         let mut loop_uv: Vec<(f64, f64)> = Vec::new();
@@ -153,10 +218,17 @@ pub fn face_uv_box(
                 }
             }
         }
-        if (lp.outer || face.loops.len() == 1)
-            && runs_clockwise(&loop_uv, surface, lp.orientation == face.same_sense)
-        {
+        let forward = lp.orientation == face.same_sense;
+        if (lp.outer || face.loops.len() == 1) && runs_clockwise(&loop_uv, surface, forward) {
             complement = true;
+        }
+        if let Some(up) = wraps_in_u(&loop_uv, surface) {
+            wrapping.push(up == forward);
+        }
+        if closes(&loop_uv) {
+            polygons.push(loop_uv);
+        } else if !matches!(lp.kind, LoopKind::Vertex(_)) {
+            all_closed = false;
         }
     }
     if !(uv[0] <= uv[1] && uv[2] <= uv[3]) {
@@ -172,6 +244,17 @@ pub fn face_uv_box(
             uv[3] = uv[2] + pv;
         }
     }
+    // A single loop around u (a spherical cap's circle, a cone's base) bounds the face
+    // together with a pole: the face reaches the pole on the side it lies on.
+    if let [plus_v] = wrapping[..] {
+        if let Some((v_low, v_high)) = pole_parameters(surface) {
+            if plus_v {
+                uv[3] = uv[3].max(v_high);
+            } else {
+                uv[2] = uv[2].min(v_low);
+            }
+        }
+    }
     // A loop cannot cover more than one period.
     if let Some(pu) = surface.u_period() {
         uv[1] = uv[1].min(uv[0] + pu);
@@ -179,6 +262,7 @@ pub fn face_uv_box(
     if let Some(pv) = surface.v_period() {
         uv[3] = uv[3].min(uv[2] + pv);
     }
+    let seams_empty = seams.is_empty();
     // A seam edge used twice means the face wraps all the way around, across the direction
     // the seam does not run in (an iso-u seam closes the face in u).
     for seam in seams {
@@ -207,7 +291,49 @@ pub fn face_uv_box(
             uv[3] = uv[3].max(uv[2] + pv);
         }
     }
-    Some(uv)
+    let wraps = complement || !seams_empty || !wrapping.is_empty();
+    Some(UvRegion {
+        rect: uv,
+        polygons: (all_closed && !wraps && !polygons.is_empty()).then_some(polygons),
+    })
+}
+
+/// Whether a loop's (u, v) samples come back to where they started.
+fn closes(uv: &[(f64, f64)]) -> bool {
+    if uv.len() < 3 {
+        return false;
+    }
+    let (first, last) = (uv[0], uv[uv.len() - 1]);
+    let span = uv.iter().fold((0.0f64, 0.0f64), |(a, b), p| {
+        (a.max((p.0 - first.0).abs()), b.max((p.1 - first.1).abs()))
+    });
+    (last.0 - first.0).abs() <= 1e-3 * span.0.max(1e-9) + 1e-6
+        && (last.1 - first.1).abs() <= 1e-3 * span.1.max(1e-9) + 1e-6
+}
+
+/// For a loop whose (u, v) samples (continuous across the seam) go once around a u-periodic
+/// surface: `Some(true)` when it runs towards +u, `Some(false)` towards −u.
+fn wraps_in_u(uv: &[(f64, f64)], surface: &Surface) -> Option<bool> {
+    let period = surface.u_period()?;
+    let (first, last) = (uv.first()?, uv.last()?);
+    let du = last.0 - first.0;
+    ((du.abs() - period).abs() <= 0.05 * period).then_some(du > 0.0)
+}
+
+/// The v parameters of the poles where a surface closes on its axis, low and high, when it
+/// has them (sphere: ±π/2; cone: its apex on one side).
+fn pole_parameters(surface: &Surface) -> Option<(f64, f64)> {
+    match surface {
+        Surface::Sphere { .. } => Some((-FRAC_PI_2, FRAC_PI_2)),
+        Surface::Cone {
+            radius, semi_angle, ..
+        } => {
+            let apex = -radius / semi_angle.tan();
+            Some((apex, apex))
+        }
+        Surface::Trimmed { basis, .. } => pole_parameters(basis),
+        _ => None,
+    }
 }
 
 /// Whether a loop that closes in (u, v) runs clockwise once oriented as the face uses it
@@ -217,13 +343,7 @@ fn runs_clockwise(uv: &[(f64, f64)], surface: &Surface, forward: bool) -> bool {
     if uv.len() < 3 || (surface.u_period().is_none() && surface.v_period().is_none()) {
         return false;
     }
-    let (first, last) = (uv[0], uv[uv.len() - 1]);
-    let span = uv.iter().fold((0.0f64, 0.0f64), |(a, b), p| {
-        (a.max((p.0 - first.0).abs()), b.max((p.1 - first.1).abs()))
-    });
-    let closes = (last.0 - first.0).abs() <= 1e-3 * span.0.max(1e-9) + 1e-6
-        && (last.1 - first.1).abs() <= 1e-3 * span.1.max(1e-9) + 1e-6;
-    if !closes {
+    if !closes(uv) {
         return false;
     }
     let area: f64 = uv
@@ -262,21 +382,36 @@ pub fn face_bounds(model: &Model, face: &Face, acc: Accuracy) -> (BoundingBox, V
         // A plane region's extremes lie on its boundary.
         return (b, samples);
     }
-    let uv = if face.loops.is_empty() {
-        let ((u0, u1), (v0, v1)) = surface.domain();
-        Some([u0, u1, v0, v1])
-    } else {
-        face_uv_box(model, face, surface, acc)
-    };
-    if let Some([u0, u1, v0, v1]) = uv
-        && [u0, u1, v0, v1].iter().all(|x| x.is_finite())
+    let region = face_uv_region(model, face, surface, acc);
+    if let Some(region) = &region
+        && region.rect.iter().all(|x| x.is_finite())
     {
-        b = b.union(&surface.bbox_over(u0, u1, v0, v1));
-        for i in 0..FACE_GRID {
-            for j in 0..FACE_GRID {
-                let s = i as f64 / (FACE_GRID - 1) as f64;
-                let t = j as f64 / (FACE_GRID - 1) as f64;
-                samples.push(surface.eval(u0 + (u1 - u0) * s, v0 + (v1 - v0) * t));
+        let [u0, u1, v0, v1] = region.rect;
+        if region.polygons.is_some() {
+            // The loops delimit the face: bound the surface points inside them (the boundary
+            // is already in), not the whole rectangle, whose corners may lie off the face.
+            for i in 0..=TRIM_GRID {
+                for j in 0..=TRIM_GRID {
+                    let u = u0 + (u1 - u0) * i as f64 / TRIM_GRID as f64;
+                    let v = v0 + (v1 - v0) * j as f64 / TRIM_GRID as f64;
+                    if region.contains(u, v) {
+                        let p = surface.eval(u, v);
+                        b.add_point(p);
+                        // A coarse subset is kept for rotated instances (memory).
+                        if i % 6 == 0 && j % 6 == 0 {
+                            samples.push(p);
+                        }
+                    }
+                }
+            }
+        } else {
+            b = b.union(&surface.bbox_over(u0, u1, v0, v1));
+            for i in 0..FACE_GRID {
+                for j in 0..FACE_GRID {
+                    let s = i as f64 / (FACE_GRID - 1) as f64;
+                    let t = j as f64 / (FACE_GRID - 1) as f64;
+                    samples.push(surface.eval(u0 + (u1 - u0) * s, v0 + (v1 - v0) * t));
+                }
             }
         }
     }

@@ -19,6 +19,9 @@ pub struct InfoArgs {
     /// Print one JSON object instead of the human summary.
     #[arg(long)]
     json: bool,
+    /// Also list every face: STEP id, surface type, (u, v) bounds and box in mm.
+    #[arg(long)]
+    faces: bool,
     /// Show at most this many warnings in the human summary (all are in --json).
     #[arg(long, default_value_t = 20)]
     max_warnings: usize,
@@ -111,6 +114,43 @@ fn tree_lines(model: &Model, part: PartId, depth: usize, uses: usize, out: &mut 
     }
     for (child, n) in grouped {
         tree_lines(model, child, depth + 1, n, out);
+    }
+}
+
+/// One line per face: its STEP id, surface type, (u, v) bounds and box (part coordinates).
+fn print_faces(model: &Model) {
+    let acc = Accuracy::default();
+    println!("faces (part coordinates)");
+    for face in &model.faces {
+        let surface = &model.surfaces[face.surface.index()];
+        let (b, _) = cadre_brep::bounds::face_bounds(model, face, acc);
+        let uv = cadre_brep::bounds::face_uv_box(model, face, surface, acc)
+            .map(|uv| {
+                format!(
+                    "u [{:.4}, {:.4}] v [{:.4}, {:.4}]",
+                    uv[0], uv[1], uv[2], uv[3]
+                )
+            })
+            .unwrap_or_else(|| "no (u, v) bounds".into());
+        let bb = b.to_array().map(|x| format!("{x:.4}")).join(", ");
+        println!(
+            "  #{:<8} {:<22} {} box [{bb}]",
+            face.step_id,
+            cadre_brep::bounds::reported_type(surface),
+            uv
+        );
+        if std::env::var_os("CADRE_DEBUG_EDGES").is_some() {
+            for lp in &face.loops {
+                if let cadre_brep::LoopKind::Edges(es) = &lp.kind {
+                    for oe in es {
+                        let e = &model.edges[oe.edge.index()];
+                        let r = cadre_brep::bounds::edge_range(model, e, acc);
+                        let d = e.curve.and_then(|c| model.curves[c.index()].domain());
+                        println!("      edge #{} range {r:?} domain {d:?}", e.step_id);
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -239,6 +279,9 @@ pub fn run(args: &InfoArgs) -> Result<()> {
                 "  … {} more (see --json)",
                 warnings.len() - args.max_warnings
             );
+        }
+        if args.faces {
+            print_faces(model);
         }
         println!(
             "time       parse {:.3} s, map {:.3} s",
