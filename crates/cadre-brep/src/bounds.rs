@@ -55,6 +55,17 @@ pub fn edge_range(model: &Model, edge: &Edge, acc: Accuracy) -> Option<(f64, f64
         }
         return Some((t0, t1));
     }
+    // A closed edge on a closed, non-periodic curve (a circle written as a B-spline): the
+    // edge is the whole curve.
+    if (t1 - t0).abs() <= 1e-12 * (1.0 + t0.abs())
+        && let Some((d0, d1)) = curve.domain()
+        && d0.is_finite()
+        && d1.is_finite()
+        && (curve.eval(d0) - curve.eval(d1)).length() <= acc.distance.max(1e-9) * 1e3
+        && (curve.eval(0.5 * (d0 + d1)) - p0).length() > acc.distance * 1e3
+    {
+        return Some((d0, d1));
+    }
     if t1 < t0 {
         // A bounded curve run against its parameter: keep the interval increasing anyway.
         return Some((t1, t0));

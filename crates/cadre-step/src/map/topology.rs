@@ -9,7 +9,7 @@ use super::context::Mapper;
 use super::error::{MapError, MapResult};
 use super::geometry::{parameter_scale, scale_pcurve};
 use cadre_brep::topology::{Edge, Face, Loop, LoopKind, OrientedEdge, Shell, Solid, Vertex};
-use cadre_brep::{EdgeId, FaceId, PcurveId, ShellId, SolidId, SurfaceId, VertexId};
+use cadre_brep::{CurveId, EdgeId, FaceId, PcurveId, ShellId, SolidId, SurfaceId, VertexId};
 use cadre_geom::{Frame, Surface, Vec3};
 
 impl Mapper<'_> {
@@ -265,6 +265,7 @@ impl Mapper<'_> {
                 }
             }
         };
+        let curve = curve.map(|c| self.heal_line(id, c, start, end, same_sense));
         let eid = EdgeId(self.model.edges.len() as u32);
         self.model.edges.push(Edge {
             curve,
@@ -276,6 +277,47 @@ impl Mapper<'_> {
         });
         self.edges.insert(self.key(id), eid);
         Ok(eid)
+    }
+
+    /// A straight edge whose line misses its own vertices (beyond 100 × the context's
+    /// uncertainty, at least 1 µm) is given the line through them instead, with a warning:
+    /// the vertices are what the neighbouring faces share.
+    fn heal_line(
+        &mut self,
+        edge: u64,
+        curve: cadre_brep::CurveId,
+        start: VertexId,
+        end: VertexId,
+        same_sense: bool,
+    ) -> cadre_brep::CurveId {
+        let cadre_geom::Curve3::Line { origin, direction } = self.model.curves[curve.index()]
+        else {
+            return curve;
+        };
+        let (a, b) = (
+            self.model.vertices[start.index()].point,
+            self.model.vertices[end.index()].point,
+        );
+        let Some(unit) = direction.try_normalize() else {
+            return curve;
+        };
+        let off = |p: Vec3| (p - origin - unit * (p - origin).dot(unit)).length();
+        let miss = off(a).max(off(b));
+        let tol = (self.units.uncertainty_mm.unwrap_or(1e-7) * 100.0).max(1e-3);
+        if miss <= tol || (b - a).length() <= tol {
+            return curve;
+        }
+        self.warn(
+            edge,
+            format!("edge's line misses its vertices by {miss:.4} mm; the segment between them is used"),
+        );
+        let (from, to) = if same_sense { (a, b) } else { (b, a) };
+        let healed = CurveId(self.model.curves.len() as u32);
+        self.model.curves.push(cadre_geom::Curve3::Line {
+            origin: from,
+            direction: to - from,
+        });
+        healed
     }
 
     /// The pcurves listed by a `SURFACE_CURVE` / `SEAM_CURVE` (associated geometry).
