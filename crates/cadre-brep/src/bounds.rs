@@ -20,6 +20,9 @@ const FACE_GRID: usize = 9;
 /// Grid cells per direction when bounding the inside of a trimmed face; the box can miss an
 /// interior bulge by at most the surface's deviation within one cell.
 const TRIM_GRID: usize = 48;
+/// Grid cells per direction over a closed surface when the face is found by the side of its
+/// boundary (each sample is tested against every boundary sample).
+const SIDE_GRID: usize = 40;
 
 /// The surface type name a face reports: a rectangular trimmed surface reports its basis, as
 /// CAD kernels do.
@@ -113,9 +116,26 @@ pub struct UvRegion {
     /// close in (u, v) (it goes around the surface) or the face wraps, so the polygons do not
     /// delimit the face.
     pub polygons: Option<Vec<Vec<(f64, f64)>>>,
+    /// Boundary samples with the unit direction, tangent to the surface, that points into the
+    /// face (left of the loop about the face normal).
+    pub sides: Vec<(Vec3, Vec3)>,
 }
 
 impl UvRegion {
+    /// Whether a surface point lies on the face's side of the nearest boundary sample: a
+    /// test that holds on closed surfaces, across seams and at poles, where (u, v) polygons
+    /// do not delimit the face.
+    pub fn on_face_side(&self, p: Vec3) -> bool {
+        self.sides
+            .iter()
+            .min_by(|a, b| {
+                (a.0 - p)
+                    .length_squared()
+                    .total_cmp(&(b.0 - p).length_squared())
+            })
+            .is_none_or(|(b, left)| (p - *b).dot(*left) >= 0.0)
+    }
+
     /// Whether (u, v) is inside the face by the even-odd rule over its loops; always true when
     /// the loops do not delimit the face.
     pub fn contains(&self, u: f64, v: f64) -> bool {
@@ -155,9 +175,11 @@ pub fn face_uv_region(
         return Some(UvRegion {
             rect: [u0, u1, v0, v1],
             polygons: None,
+            sides: Vec::new(),
         });
     }
     let mut polygons: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut sides: Vec<(Vec3, Vec3)> = Vec::new();
     let mut all_closed = true;
     let mut uv = [
         f64::INFINITY,
@@ -184,6 +206,14 @@ pub fn face_uv_region(
             *hint = Some((u, v));
         }
     };
+    let mut uses: std::collections::HashMap<crate::EdgeId, u32> = std::collections::HashMap::new();
+    for lp in &face.loops {
+        if let LoopKind::Edges(edges) = &lp.kind {
+            for oe in edges {
+                *uses.entry(oe.edge).or_default() += 1;
+            }
+        }
+    }
     let mut seen = std::collections::HashSet::new();
     let mut seams = Vec::new();
     let mut complement = false;
@@ -192,12 +222,20 @@ pub fn face_uv_region(
     for lp in &face.loops {
         let first_hint = hint;
         let mut loop_uv: Vec<(f64, f64)> = Vec::new();
-        let mut add = |p: Vec3, hint: &mut Option<(f64, f64)>| {
+        // Points with their (u, v) and whether they lie on a seam (which bounds nothing).
+        let mut loop_pts: Vec<(Vec3, (f64, f64), bool)> = Vec::new();
+        let mut add = |p: Vec3, hint: &mut Option<(f64, f64)>, on_seam: bool| {
+            let before = *hint;
             add(p, hint);
             if let Some(h) = *hint
                 && *hint != first_hint
             {
                 loop_uv.push(h);
+            }
+            if let Some(h) = *hint
+                && (*hint != before || before.is_none())
+            {
+                loop_pts.push((p, h, on_seam));
             }
         };
         match &lp.kind {
@@ -217,19 +255,35 @@ pub fn face_uv_region(
                     } else {
                         pts.push(model.vertices[edge.start.index()].point);
                     }
+                    let on_seam = uses.get(&oe.edge).is_some_and(|&n| n > 1);
                     for p in pts {
-                        add(p, &mut hint);
+                        add(p, &mut hint, on_seam);
                     }
                 }
             }
-            LoopKind::Vertex(v) => add(model.vertices[v.index()].point, &mut hint),
+            LoopKind::Vertex(v) => add(model.vertices[v.index()].point, &mut hint, false),
             LoopKind::Poly(points) => {
                 for &p in points {
-                    add(p, &mut hint);
+                    add(p, &mut hint, false);
                 }
             }
         }
         let forward = lp.orientation == face.same_sense;
+        // Into-the-face directions along the loop: face normal × tangent.
+        let n = loop_pts.len();
+        for i in 0..n {
+            let t = loop_pts[(i + 1) % n].0 - loop_pts[(i + n - 1) % n].0;
+            let (pu, pv) = loop_pts[i].1;
+            if loop_pts[i].2 {
+                continue;
+            }
+            if let Some(normal) = surface.normal(pu, pv) {
+                let left = normal.cross(t) * if forward { 1.0 } else { -1.0 };
+                if let Some(left) = left.try_normalize() {
+                    sides.push((loop_pts[i].0, left));
+                }
+            }
+        }
         if (lp.outer || face.loops.len() == 1) && runs_clockwise(&loop_uv, surface, forward) {
             complement = true;
         }
@@ -306,6 +360,7 @@ pub fn face_uv_region(
     Some(UvRegion {
         rect: uv,
         polygons: (all_closed && !wraps && !polygons.is_empty()).then_some(polygons),
+        sides,
     })
 }
 
@@ -329,6 +384,14 @@ fn wraps_in_u(uv: &[(f64, f64)], surface: &Surface) -> Option<bool> {
     let (first, last) = (uv.first()?, uv.last()?);
     let du = last.0 - first.0;
     ((du.abs() - period).abs() <= 0.05 * period).then_some(du > 0.0)
+}
+
+/// The surface under a rectangular trim.
+fn basis_of(surface: &Surface) -> &Surface {
+    match surface {
+        Surface::Trimmed { basis, .. } => basis_of(basis),
+        other => other,
+    }
 }
 
 /// The v parameters of the poles where a surface closes on its axis, low and high, when it
@@ -398,7 +461,39 @@ pub fn face_bounds(model: &Model, face: &Face, acc: Accuracy) -> (BoundingBox, V
         && region.rect.iter().all(|x| x.is_finite())
     {
         let [u0, u1, v0, v1] = region.rect;
-        if region.polygons.is_some() {
+        // The side-of-boundary test is reliable only near the boundary; on spheres and tori
+        // every point of the surface is near enough for it to decide (caps, lenses,
+        // complements), on open cylinders and cones it is not.
+        let closed = matches!(
+            basis_of(surface),
+            Surface::Sphere { .. } | Surface::Torus { .. }
+        );
+        if region.polygons.is_none() && closed && !region.sides.is_empty() {
+            // Loops around a closed surface: sample the whole of it and keep what lies on
+            // the face's side of its boundary.
+            let (su0, su1) = match surface.u_period() {
+                Some(p) => (u0, u0 + p),
+                None => (u0, u1),
+            };
+            let (sv0, sv1) = match (surface.v_period(), pole_parameters(surface)) {
+                (Some(p), _) => (v0, v0 + p),
+                (None, Some((lo, hi))) => (v0.min(lo), v1.max(hi)),
+                (None, None) => (v0, v1),
+            };
+            for i in 0..=SIDE_GRID {
+                for j in 0..=SIDE_GRID {
+                    let u = su0 + (su1 - su0) * i as f64 / SIDE_GRID as f64;
+                    let v = sv0 + (sv1 - sv0) * j as f64 / SIDE_GRID as f64;
+                    let p = surface.eval(u, v);
+                    if region.on_face_side(p) {
+                        b.add_point(p);
+                        if i % 4 == 0 && j % 4 == 0 {
+                            samples.push(p);
+                        }
+                    }
+                }
+            }
+        } else if region.polygons.is_some() {
             // The loops delimit the face: bound the surface points inside them (the boundary
             // is already in), not the whole rectangle, whose corners may lie off the face.
             for i in 0..=TRIM_GRID {

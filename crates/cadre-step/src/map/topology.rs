@@ -309,7 +309,9 @@ impl Mapper<'_> {
         }
         self.warn(
             edge,
-            format!("edge's line misses its vertices by {miss:.4} mm; the segment between them is used"),
+            format!(
+                "edge's line misses its vertices by {miss:.4} mm; the segment between them is used"
+            ),
         );
         let (from, to) = if same_sense { (a, b) } else { (b, a) };
         let healed = CurveId(self.model.curves.len() as u32);
