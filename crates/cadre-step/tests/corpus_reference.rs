@@ -32,13 +32,9 @@ const KNOWN_COUNT_DIFFERENCES: &[(&str, &str)] = &[
     ),
     (
         "trj4_s1-ai-214.stp",
-        "11 next-assembly usages with placements; OCCT keeps one instance per distinct child \
-         (8); not yet understood, and cadre's box differs too",
-    ),
-    (
-        "trj4_k1_geo-md-203.stp",
-        "38 curve-bounded surfaces in a geometric set; OCCT makes 39 faces (probably splits a \
-         surface with two outer boundaries)",
+        "11 next-assembly usages with placements (relationships written parent-first); OCCT \
+         does not read the assembly: it returns the 8 distinct part solids unplaced, at their \
+         own coordinates (checked with OCCT's shape tree), so its counts and box differ",
     ),
 ];
 

@@ -50,6 +50,8 @@ pub struct Mapper<'f> {
     pub solids: HashMap<Key, SolidId>,
     /// Mapped tessellated items.
     pub meshes: HashMap<Key, MeshId>,
+    /// Faces split off a curve-bounded surface with disjoint boundaries, by its first face.
+    pub extra_faces: HashMap<FaceId, Vec<FaceId>>,
     /// Instances that failed to map (so each is reported once).
     pub failed: HashMap<u64, ()>,
     /// Parts made for representations.
@@ -77,6 +79,7 @@ impl<'f> Mapper<'f> {
             shells: HashMap::new(),
             solids: HashMap::new(),
             meshes: HashMap::new(),
+            extra_faces: HashMap::new(),
             failed: HashMap::new(),
             rep_parts: HashMap::new(),
             product_parts: HashMap::new(),

@@ -611,7 +611,11 @@ fn map_item(
                 .any(|k| m.is(element, k))
             {
                 match m.surface_face(element) {
-                    Ok(f) => bodies.push(Body::Face(f)),
+                    Ok(f) => {
+                        bodies.push(Body::Face(f));
+                        let extra = m.extra_faces.get(&f).cloned().unwrap_or_default();
+                        bodies.extend(extra.into_iter().map(Body::Face));
+                    }
                     Err(e) => m.report(&e),
                 }
             } else if is_curve(m, element) {

@@ -441,15 +441,24 @@ impl Mapper<'_> {
                 }
             }
         }
-        let fid = FaceId(self.model.faces.len() as u32);
-        self.model.faces.push(Face {
-            surface,
-            same_sense: true,
-            loops,
-            step_id: id,
-        });
-        self.faces.insert(self.key(id), fid);
-        Ok(fid)
+        let mut regions = split_disjoint_boundaries(&self.model, surface, loops).into_iter();
+        let mut face_ids = Vec::new();
+        let first = regions.next().unwrap_or_default();
+        for loops in std::iter::once(first).chain(regions) {
+            let fid = FaceId(self.model.faces.len() as u32);
+            self.model.faces.push(Face {
+                surface,
+                same_sense: true,
+                loops,
+                step_id: id,
+            });
+            face_ids.push(fid);
+        }
+        if face_ids.len() > 1 {
+            self.extra_faces.insert(face_ids[0], face_ids[1..].to_vec());
+        }
+        self.faces.insert(self.key(id), face_ids[0]);
+        Ok(face_ids[0])
     }
 
     /// A `BOUNDARY_CURVE` / `OUTER_BOUNDARY_CURVE` as a loop of edges, one per segment, with
@@ -529,4 +538,62 @@ impl Mapper<'_> {
         self.model.vertices.push(Vertex { point });
         vid
     }
+}
+
+/// Groups the boundaries of a curve-bounded surface into regions: each boundary not inside
+/// another (in the surface's parameters) starts a region, and takes the boundaries directly
+/// inside it as holes. A surface with two disjoint outer boundaries is two faces.
+fn split_disjoint_boundaries(
+    model: &cadre_brep::Model,
+    surface: SurfaceId,
+    loops: Vec<Loop>,
+) -> Vec<Vec<Loop>> {
+    if loops.len() < 2 {
+        return vec![loops];
+    }
+    let acc = cadre_geom::Accuracy::default();
+    let s = &model.surfaces[surface.index()];
+    let regions: Vec<Option<cadre_brep::bounds::UvRegion>> = loops
+        .iter()
+        .map(|l| {
+            let face = Face {
+                surface,
+                same_sense: true,
+                loops: vec![l.clone()],
+                step_id: 0,
+            };
+            cadre_brep::bounds::face_uv_region(model, &face, s, acc)
+                .filter(|r| r.polygons.is_some())
+        })
+        .collect();
+    // A boundary's first (u, v) point, to test containment in the others.
+    let first_point = |i: usize| {
+        regions[i]
+            .as_ref()
+            .and_then(|r| r.polygons.as_ref()?.first()?.first().copied())
+    };
+    let inside = |i: usize, j: usize| -> bool {
+        match (first_point(i), regions[j].as_ref()) {
+            (Some((u, v)), Some(r)) => r.contains(u, v),
+            _ => false,
+        }
+    };
+    if regions.iter().any(Option::is_none) {
+        return vec![loops];
+    }
+    let n = loops.len();
+    let depth: Vec<usize> = (0..n)
+        .map(|i| (0..n).filter(|&j| j != i && inside(i, j)).count())
+        .collect();
+    let outers: Vec<usize> = (0..n).filter(|&i| depth[i] == 0).collect();
+    if outers.len() < 2 {
+        return vec![loops];
+    }
+    let mut groups: Vec<Vec<Loop>> = outers.iter().map(|&o| vec![loops[o].clone()]).collect();
+    for i in (0..n).filter(|&i| depth[i] == 1) {
+        if let Some(g) = outers.iter().position(|&o| inside(i, o)) {
+            groups[g].push(loops[i].clone());
+        }
+    }
+    groups
 }
