@@ -12,7 +12,8 @@ repeat=${2:-3}
 out=${BENCH_OUT:-target/bench-import}
 mkdir -p "$out"
 cargo build --release -q -p cadre
+cadre=${CARGO_TARGET_DIR:-target}/release/cadre
 echo "machine: $(nproc) cores, $(uname -m), $(date -u +%Y-%m-%d)" >&2
-./target/release/cadre bench import "$folder" --repeat "$repeat" > "$out/cadre.jsonl"
+"$cadre" bench import "$folder" --repeat "$repeat" > "$out/cadre.jsonl"
 python3 scripts/occt_import.py "$folder" --repeat "$repeat" > "$out/occt.jsonl"
 python3 scripts/compare_import.py "$out/cadre.jsonl" "$out/occt.jsonl"

@@ -9,7 +9,9 @@ import sys
 
 
 def load(path):
-    return {r["file"]: r for r in map(json.loads, open(path)) if r.get("file")}
+    # OCCT writes its own messages to standard output: keep the JSON lines only.
+    rows = (json.loads(line) for line in open(path) if line.startswith("{"))
+    return {r["file"]: r for r in rows if r.get("file")}
 
 
 def main():

@@ -183,3 +183,77 @@ fn brep_with_voids_counts_the_void_shell() {
     assert!(void.faces.iter().all(|&(_, forward)| !forward));
     let _ = Vec3::ZERO;
 }
+
+#[test]
+fn solid_with_open_shell_is_read_as_shells_with_a_warning() {
+    // The cube's shell without its top face has four free edges: no volume is bounded.
+    let data = CUBE.replace(
+        "#160=CLOSED_SHELL('',(#107,#117,#127,#137,#147,#157));",
+        "#160=CLOSED_SHELL('',(#107,#127,#137,#147,#157));",
+    );
+    let m = model(&format!(
+        "{MM_CONTEXT}{data}#200=ADVANCED_BREP_SHAPE_REPRESENTATION('cube',(#80),#900);"
+    ));
+    let c = m.counts();
+    assert_eq!((c.solids, c.shells, c.faces), (0, 1, 5));
+    assert!(
+        m.warnings
+            .iter()
+            .any(|w| w.step_id == Some(80) && w.message.contains("4 free edges")),
+        "{:?}",
+        m.warnings
+    );
+}
+
+#[test]
+fn surfaces_in_a_geometric_set_are_faces() {
+    // A plane bounded by a square of polylines, and a bare cylinder, in a geometric set.
+    let m = model(&format!(
+        "{MM_CONTEXT}
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=PLANE('',#4);
+#10=CARTESIAN_POINT('',(0.,0.,0.));#11=CARTESIAN_POINT('',(4.,0.,0.));
+#12=CARTESIAN_POINT('',(4.,3.,0.));#13=CARTESIAN_POINT('',(0.,3.,0.));
+#14=POLYLINE('',(#10,#11,#12,#13,#10));
+#15=COMPOSITE_CURVE_SEGMENT(.CONTINUOUS.,.T.,#14);
+#16=BOUNDARY_CURVE('',(#15),.F.);
+#17=CURVE_BOUNDED_SURFACE('',#5,(#16),.F.);
+#18=CYLINDRICAL_SURFACE('',#4,1.);
+#19=RECTANGULAR_TRIMMED_SURFACE('',#18,0.,3.14159265358979,0.,2.,.T.,.T.);
+#20=GEOMETRIC_SET('',(#17,#19));
+#21=GEOMETRICALLY_BOUNDED_SURFACE_SHAPE_REPRESENTATION('',(#20),#900);"
+    ));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let c = m.counts();
+    assert_eq!((c.faces, c.shells, c.solids), (2, 0, 0));
+    let b = m.bbox(Accuracy::default());
+    // Square 4 × 3 at z = 0 and a half cylinder of radius 1 up to z = 2 (y ≥ 0 side).
+    let want = [-1.0, 0.0, 0.0, 4.0, 3.0, 2.0];
+    for (got, want) in b.to_array().iter().zip(want) {
+        assert!((got - want).abs() < 1e-6, "bbox {:?}", b.to_array());
+    }
+}
+
+#[test]
+fn straight_edge_missing_its_vertices_is_healed() {
+    // Edge #30's line is moved 2 mm off its vertices.
+    let data = CUBE.replace(
+        "#30=EDGE_CURVE('',#11,#12,#31,.T.);#31=LINE('',#1,#23);",
+        "#30=EDGE_CURVE('',#11,#12,#31,.T.);#31=LINE('',#999,#23);#999=CARTESIAN_POINT('',(0.,-2.,0.));",
+    );
+    let m = model(&format!(
+        "{MM_CONTEXT}{data}#200=ADVANCED_BREP_SHAPE_REPRESENTATION('cube',(#80),#900);"
+    ));
+    assert!(
+        m.warnings
+            .iter()
+            .any(|w| w.step_id == Some(30) && w.message.contains("misses its vertices")),
+        "{:?}",
+        m.warnings
+    );
+    let b = m.bbox(Accuracy::default());
+    assert!(
+        b.min.y.abs() < 1e-9,
+        "the healed edge stays on the cube: {b:?}"
+    );
+}

@@ -50,6 +50,9 @@ pub struct Mapper<'f> {
     pub solids: HashMap<Key, SolidId>,
     /// Mapped tessellated items.
     pub meshes: HashMap<Key, MeshId>,
+    /// Decoded `COORDINATES_LIST`s: tessellated faces share one list, often a large one, so it
+    /// is decoded once rather than once per face.
+    pub coordinates: std::cell::RefCell<HashMap<Key, std::rc::Rc<Vec<cadre_geom::Vec3>>>>,
     /// Faces split off a curve-bounded surface with disjoint boundaries, by its first face.
     pub extra_faces: HashMap<FaceId, Vec<FaceId>>,
     /// Instances that failed to map (so each is reported once).
@@ -79,6 +82,7 @@ impl<'f> Mapper<'f> {
             shells: HashMap::new(),
             solids: HashMap::new(),
             meshes: HashMap::new(),
+            coordinates: std::cell::RefCell::new(HashMap::new()),
             extra_faces: HashMap::new(),
             failed: HashMap::new(),
             rep_parts: HashMap::new(),

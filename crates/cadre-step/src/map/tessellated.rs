@@ -35,7 +35,7 @@ impl FaceAppender<'_> {
         let base = self.mesh.positions.len() as u32;
         // Local vertex k of this face is coordinate pnindex[k] (or k when pnindex is empty).
         let local: Vec<Vec3> = if pnindex.is_empty() {
-            coords.clone()
+            coords.to_vec()
         } else {
             pnindex
                 .iter()
@@ -131,8 +131,17 @@ fn index_list(a: &Attrs<'_, '_>, items: &[Param<'_>], i: usize) -> MapResult<Vec
         .collect()
 }
 
-/// A `COORDINATES_LIST` in mm.
-fn coordinates(m: &Mapper<'_>, id: u64) -> MapResult<Vec<Vec3>> {
+/// A `COORDINATES_LIST` in mm, decoded once per mapping.
+fn coordinates(m: &Mapper<'_>, id: u64) -> MapResult<std::rc::Rc<Vec<Vec3>>> {
+    if let Some(c) = m.coordinates.borrow().get(&m.key(id)) {
+        return Ok(c.clone());
+    }
+    let list = std::rc::Rc::new(decode_coordinates(m, id)?);
+    m.coordinates.borrow_mut().insert(m.key(id), list.clone());
+    Ok(list)
+}
+
+fn decode_coordinates(m: &Mapper<'_>, id: u64) -> MapResult<Vec<Vec3>> {
     let inst = m.inst(id)?;
     let a = Attrs::of(&inst, "COORDINATES_LIST")?;
     let l = m.units.length_to_mm;
