@@ -386,6 +386,21 @@ fn wraps_in_u(uv: &[(f64, f64)], surface: &Surface) -> Option<bool> {
     ((du.abs() - period).abs() <= 0.05 * period).then_some(du > 0.0)
 }
 
+/// Whether `outer` contains `inner` (to a small tolerance): then a face's edges already bound
+/// the surface over its whole (u, v) rectangle, and nothing inside can stick out.
+fn contains_box(outer: &BoundingBox, inner: &BoundingBox, acc: Accuracy) -> bool {
+    if inner.is_empty() {
+        return true;
+    }
+    let tol = acc.distance.max(1e-9 * outer.diagonal());
+    outer.min.x <= inner.min.x + tol
+        && outer.min.y <= inner.min.y + tol
+        && outer.min.z <= inner.min.z + tol
+        && outer.max.x >= inner.max.x - tol
+        && outer.max.y >= inner.max.y - tol
+        && outer.max.z >= inner.max.z - tol
+}
+
 /// The surface under a rectangular trim.
 fn basis_of(surface: &Surface) -> &Surface {
     match surface {
@@ -493,7 +508,9 @@ pub fn face_bounds(model: &Model, face: &Face, acc: Accuracy) -> (BoundingBox, V
                     }
                 }
             }
-        } else if region.polygons.is_some() {
+        } else if region.polygons.is_some()
+            && !contains_box(&b, &surface.bbox_over(u0, u1, v0, v1), acc)
+        {
             // The loops delimit the face: bound the surface points inside them (the boundary
             // is already in), not the whole rectangle, whose corners may lie off the face.
             for i in 0..=TRIM_GRID {
