@@ -311,13 +311,13 @@ pub fn face_uv_region(
     }
     // A single loop around u (a spherical cap's circle, a cone's base) bounds the face
     // together with a pole: the face reaches the pole on the side it lies on.
-    if let [plus_v] = wrapping[..] {
-        if let Some((v_low, v_high)) = pole_parameters(surface) {
-            if plus_v {
-                uv[3] = uv[3].max(v_high);
-            } else {
-                uv[2] = uv[2].min(v_low);
-            }
+    if let [plus_v] = wrapping[..]
+        && let Some((v_low, v_high)) = pole_parameters(surface)
+    {
+        if plus_v {
+            uv[3] = uv[3].max(v_high);
+        } else {
+            uv[2] = uv[2].min(v_low);
         }
     }
     // A loop cannot cover more than one period.

@@ -2,6 +2,11 @@
 //! throughput figure: the cadre half of `scripts/bench_import.sh`, which times OCCT on the same
 //! files in the same run. Skips with a message when `../shared/corpus` is absent.
 
+#![allow(
+    missing_docs,
+    reason = "criterion_group! generates an undocumented function"
+)]
+
 use std::hint::black_box;
 use std::path::PathBuf;
 use std::time::Duration;
