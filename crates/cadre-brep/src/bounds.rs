@@ -565,11 +565,17 @@ fn is_axis_aligned(t: &Transform) -> bool {
 impl Model {
     /// Bounds of the bodies each part owns directly (children excluded), computed in
     /// parallel over faces.
-    pub fn part_bounds(&self, acc: Accuracy) -> Vec<PartBounds> {
+    ///
+    /// Sample points are kept only with `keep_samples` (they are needed to bound rotated
+    /// instances tightly, and cost memory on large models).
+    pub fn part_bounds(&self, acc: Accuracy, keep_samples: bool) -> Vec<PartBounds> {
         let face_bounds: Vec<(BoundingBox, Vec<Vec3>)> = self
             .faces
             .par_iter()
-            .map(|f| face_bounds(self, f, acc))
+            .map(|f| {
+                let (b, samples) = face_bounds(self, f, acc);
+                (b, if keep_samples { samples } else { Vec::new() })
+            })
             .collect();
         let shell_into = |shell: crate::ShellId, pb: &mut PartBounds| {
             for &(face, _) in &self.shells[shell.index()].faces {
@@ -632,7 +638,9 @@ impl Model {
 
     /// The world-space box of every part instance (empty for a model without geometry).
     pub fn bbox(&self, acc: Accuracy) -> BoundingBox {
-        let parts = self.part_bounds(acc);
+        let mut rotated = false;
+        self.visit_instances(|visit| rotated |= !is_axis_aligned(&visit.transform));
+        let parts = self.part_bounds(acc, rotated);
         let mut b = BoundingBox::EMPTY;
         self.visit_instances(|visit| {
             let pb = &parts[visit.part.index()];
