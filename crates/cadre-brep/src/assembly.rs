@@ -107,3 +107,53 @@ impl Model {
         &self.parts[id.index()]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cadre_geom::Vec3;
+
+    /// A root placing part 1 twice; part 1 placing part 2 once, translated.
+    fn tree() -> Model {
+        let shift = |x: f64| Transform::from_translation(Vec3::new(x, 0.0, 0.0));
+        let occ = |part: u32, x: f64| Occurrence {
+            part: PartId(part),
+            transform: shift(x),
+            name: String::new(),
+            step_id: 0,
+        };
+        Model {
+            parts: vec![
+                Part {
+                    children: vec![occ(1, 10.0), occ(1, 20.0)],
+                    ..Part::default()
+                },
+                Part {
+                    children: vec![occ(2, 1.0)],
+                    ..Part::default()
+                },
+                Part {
+                    bodies: vec![Body::Point(Vec3::ZERO)],
+                    ..Part::default()
+                },
+            ],
+            roots: vec![PartId(0)],
+            ..Model::default()
+        }
+    }
+
+    #[test]
+    fn instances_are_visited_once_per_path_with_composed_transforms() {
+        let m = tree();
+        let mut leaves = Vec::new();
+        m.visit_instances(|v| {
+            if v.part == PartId(2) {
+                leaves.push(v.transform.transform_point3(Vec3::ZERO).x);
+            }
+        });
+        assert_eq!(leaves, vec![11.0, 21.0]);
+        assert_eq!(m.counts().instances, 2);
+        let b = m.bbox(cadre_geom::Accuracy::default());
+        assert_eq!((b.min.x, b.max.x), (11.0, 21.0));
+    }
+}

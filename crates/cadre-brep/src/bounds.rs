@@ -660,3 +660,50 @@ impl Model {
         b
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cadre_geom::{Frame, Transform};
+
+    #[test]
+    fn axis_permutations_are_axis_aligned_rotations_are_not() {
+        let swap = Transform::from_cols(Vec3::Y, -Vec3::X, Vec3::Z * 2.0, Vec3::ONE);
+        assert!(is_axis_aligned(&swap));
+        let tilted = Transform::from_rotation_z(0.3);
+        assert!(!is_axis_aligned(&tilted));
+    }
+
+    #[test]
+    fn loop_orientation_and_wrapping_are_read_from_uv_samples() {
+        let sphere = Surface::Sphere {
+            frame: Frame::WORLD,
+            radius: 1.0,
+        };
+        // A small counter-clockwise square, then the same square clockwise.
+        let ccw = [(0.0, 0.0), (0.1, 0.0), (0.1, 0.1), (0.0, 0.1), (0.0, 0.0)];
+        let cw: Vec<(f64, f64)> = ccw.iter().rev().copied().collect();
+        assert!(!runs_clockwise(&ccw, &sphere, true));
+        assert!(runs_clockwise(&cw, &sphere, true));
+        assert!(!runs_clockwise(&cw, &sphere, false));
+        // A circle of latitude walked towards +u wraps once around u.
+        let around: Vec<(f64, f64)> = (0..=16)
+            .map(|i| (std::f64::consts::TAU * f64::from(i) / 16.0, 0.5))
+            .collect();
+        assert_eq!(wraps_in_u(&around, &sphere), Some(true));
+        assert_eq!(wraps_in_u(&ccw, &sphere), None);
+    }
+
+    #[test]
+    fn even_odd_containment_with_a_hole() {
+        let square = |a: f64, b: f64| vec![(a, a), (b, a), (b, b), (a, b)];
+        let region = UvRegion {
+            rect: [0.0, 4.0, 0.0, 4.0],
+            polygons: Some(vec![square(0.0, 4.0), square(1.0, 2.0)]),
+            sides: Vec::new(),
+        };
+        assert!(region.contains(0.5, 0.5));
+        assert!(!region.contains(1.5, 1.5), "inside the hole");
+        assert!(!region.contains(5.0, 1.0));
+    }
+}

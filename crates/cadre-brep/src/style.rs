@@ -73,3 +73,37 @@ impl Style {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finer_style_wins_and_inherits_missing_fields() {
+        let face = Style {
+            color: Some(Rgb::new(1.0, 0.0, 0.0)),
+            ..Style::default()
+        };
+        let solid = Style {
+            color: Some(Rgb::new(0.0, 0.0, 1.0)),
+            transparency: 0.5,
+            curve_color: Some(Rgb::new(0.0, 1.0, 0.0)),
+            invisible: false,
+        };
+        let s = face.over(solid);
+        assert_eq!(s.color, face.color);
+        assert_eq!(s.curve_color, solid.curve_color);
+        // A face that sets its own colour sets its own (opaque) transparency too.
+        assert_eq!(s.transparency, 0.0);
+        let bare = Style::default().over(solid);
+        assert_eq!(bare.transparency, 0.5);
+    }
+
+    #[test]
+    fn colours_are_clamped_and_predefined_names_known() {
+        let c = Rgb::new(2.0, -1.0, f64::NAN);
+        assert_eq!((c.r, c.g, c.b), (1.0, 0.0, 0.0));
+        assert_eq!(Rgb::predefined("Yellow"), Some(Rgb::new(1.0, 1.0, 0.0)));
+        assert_eq!(Rgb::predefined("chartreuse"), None);
+    }
+}

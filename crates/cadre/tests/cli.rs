@@ -1,0 +1,72 @@
+//! The `cadre` command line, run as a user runs it.
+
+use std::process::Command;
+
+fn cadre() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_cadre"))
+}
+
+const EXAMPLE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../examples/pin-assembly.step"
+);
+
+#[test]
+fn info_json_reports_the_bundled_assembly() {
+    let out = cadre().args(["info", "--json", EXAMPLE]).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["faces"], 6);
+    assert_eq!(v["shells"], 2);
+    assert_eq!(v["solids"], 2);
+    assert_eq!(v["products"], 2);
+    assert_eq!(v["instances"], 2);
+    assert_eq!(v["surface_types"]["Cylinder"], 2);
+    assert_eq!(v["surface_types"]["Plane"], 4);
+    assert_eq!(v["protocol"], "AP214");
+    assert_eq!(v["warnings"].as_array().map(Vec::len), Some(0));
+    let bbox: Vec<f64> = v["bbox"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let want = [-5.0, -5.0, -5.0, 25.0, 40.0, 10.0];
+    assert!(
+        bbox.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-6),
+        "{bbox:?}"
+    );
+}
+
+#[test]
+fn info_human_summary_shows_the_tree_and_faces() {
+    let out = cadre().args(["info", "--faces", EXAMPLE]).output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("pin assembly"), "{text}");
+    assert!(text.contains("pin ×2"), "{text}");
+    assert!(text.contains("Cylinder"), "{text}");
+}
+
+#[test]
+fn missing_and_non_step_files_fail_with_a_message() {
+    let out = cadre()
+        .args(["info", "/nonexistent/file.step"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/file.step"));
+
+    let dir = std::env::temp_dir().join(format!("cadre-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let junk = dir.join("junk.step");
+    std::fs::write(&junk, b"this is not an exchange structure").unwrap();
+    let out = cadre().arg("info").arg(&junk).output().unwrap();
+    assert!(!out.status.success());
+    assert!(!String::from_utf8_lossy(&out.stderr).trim().is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+}
