@@ -119,9 +119,53 @@ pub struct UvRegion {
     /// Boundary samples with the unit direction, tangent to the surface, that points into the
     /// face (left of the loop about the face normal).
     pub sides: Vec<(Vec3, Vec3)>,
+    /// Each loop's points in model space, with whether it runs counter-clockwise about the
+    /// surface normal (loop orientation agrees with the face's sense).
+    pub loops: Vec<(Vec<Vec3>, bool)>,
 }
 
 impl UvRegion {
+    /// Whether a point of the sphere (`centre`, any radius) lies inside the face: the loops,
+    /// projected stereographically from the point's antipode onto the plane normal to it (an
+    /// orientation-preserving map of the sphere seen from outside), wind once around it.
+    /// Seams cancel out (used twice in opposite directions).
+    pub fn sphere_contains(&self, centre: Vec3, p: Vec3, outward: bool) -> bool {
+        let Some(n) = (p - centre).try_normalize() else {
+            return false;
+        };
+        let e1 = n.any_orthonormal_vector();
+        let e2 = n.cross(e1);
+        let mut turns = 0.0;
+        for (points, forward) in &self.loops {
+            let mut total = 0.0;
+            let mut prev: Option<f64> = None;
+            let mut first: Option<f64> = None;
+            for &q in points {
+                let Some(q) = (q - centre).try_normalize() else {
+                    continue;
+                };
+                let d = 1.0 + q.dot(n);
+                if d < 1e-9 {
+                    continue; // the antipode itself: no image
+                }
+                let s = (q - n * q.dot(n)) / d;
+                let a = s.dot(e2).atan2(s.dot(e1));
+                if let Some(b) = prev {
+                    total += wrap_angle(a - b);
+                } else {
+                    first = Some(a);
+                }
+                prev = Some(a);
+            }
+            if let (Some(a), Some(b)) = (first, prev) {
+                total += wrap_angle(a - b);
+            }
+            let sense = if *forward == outward { 1.0 } else { -1.0 };
+            turns += sense * total / std::f64::consts::TAU;
+        }
+        turns > 0.5
+    }
+
     /// Whether a surface point lies on the face's side of the nearest boundary sample: a
     /// test that holds on closed surfaces, across seams and at poles, where (u, v) polygons
     /// do not delimit the face.
@@ -176,10 +220,12 @@ pub fn face_uv_region(
             rect: [u0, u1, v0, v1],
             polygons: None,
             sides: Vec::new(),
+            loops: Vec::new(),
         });
     }
     let mut polygons: Vec<Vec<(f64, f64)>> = Vec::new();
     let mut sides: Vec<(Vec3, Vec3)> = Vec::new();
+    let mut loops3d: Vec<(Vec<Vec3>, bool)> = Vec::new();
     let mut all_closed = true;
     let mut uv = [
         f64::INFINITY,
@@ -269,6 +315,7 @@ pub fn face_uv_region(
             }
         }
         let forward = lp.orientation == face.same_sense;
+        loops3d.push((loop_pts.iter().map(|p| p.0).collect(), forward));
         // Into-the-face directions along the loop: face normal × tangent.
         let n = loop_pts.len();
         for i in 0..n {
@@ -361,6 +408,7 @@ pub fn face_uv_region(
         rect: uv,
         polygons: (all_closed && !wraps && !polygons.is_empty()).then_some(polygons),
         sides,
+        loops: loops3d,
     })
 }
 
@@ -384,6 +432,13 @@ fn wraps_in_u(uv: &[(f64, f64)], surface: &Surface) -> Option<bool> {
     let (first, last) = (uv.first()?, uv.last()?);
     let du = last.0 - first.0;
     ((du.abs() - period).abs() <= 0.05 * period).then_some(du > 0.0)
+}
+
+/// An angle difference brought into (−π, π].
+fn wrap_angle(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let r = a.rem_euclid(TAU);
+    if r > PI { r - TAU } else { r }
 }
 
 /// Whether `outer` contains `inner` (to a small tolerance): then a face's edges already bound
@@ -483,7 +538,10 @@ pub fn face_bounds(model: &Model, face: &Face, acc: Accuracy) -> (BoundingBox, V
             basis_of(surface),
             Surface::Sphere { .. } | Surface::Torus { .. }
         );
-        if region.polygons.is_none() && closed && !region.sides.is_empty() {
+        let sphere = matches!(basis_of(surface), Surface::Sphere { .. });
+        if (sphere && !region.loops.is_empty())
+            || (region.polygons.is_none() && closed && !region.sides.is_empty())
+        {
             // Loops around a closed surface: sample the whole of it and keep what lies on
             // the face's side of its boundary.
             let (su0, su1) = match surface.u_period() {
@@ -500,7 +558,13 @@ pub fn face_bounds(model: &Model, face: &Face, acc: Accuracy) -> (BoundingBox, V
                     let u = su0 + (su1 - su0) * i as f64 / SIDE_GRID as f64;
                     let v = sv0 + (sv1 - sv0) * j as f64 / SIDE_GRID as f64;
                     let p = surface.eval(u, v);
-                    if region.on_face_side(p) {
+                    let inside = match basis_of(surface) {
+                        Surface::Sphere { frame, .. } => {
+                            region.sphere_contains(frame.origin, p, true)
+                        }
+                        _ => region.on_face_side(p),
+                    };
+                    if inside {
                         b.add_point(p);
                         if i % 4 == 0 && j % 4 == 0 {
                             samples.push(p);
@@ -701,6 +765,7 @@ mod tests {
             rect: [0.0, 4.0, 0.0, 4.0],
             polygons: Some(vec![square(0.0, 4.0), square(1.0, 2.0)]),
             sides: Vec::new(),
+            loops: Vec::new(),
         };
         assert!(region.contains(0.5, 0.5));
         assert!(!region.contains(1.5, 1.5), "inside the hole");

@@ -203,7 +203,7 @@ fn corpus_matches_occt_reference() {
     );
     // Boxes: a floor that only rises (the target is 98 %; see BENCHMARKS.md).
     assert!(
-        bbox_ok as f64 >= 0.97 * bbox_cmp.len() as f64,
+        bbox_ok as f64 >= 0.98 * bbox_cmp.len() as f64,
         "bbox within 1 % for only {bbox_ok}/{}",
         bbox_cmp.len()
     );
