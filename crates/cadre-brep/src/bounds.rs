@@ -759,6 +759,35 @@ mod tests {
     }
 
     #[test]
+    fn sphere_winding_decides_which_side_of_a_loop_is_the_face() {
+        // A circle of latitude 45° walked towards +u: counter-clockwise seen from above, so
+        // the face it bounds (on its left, normal outward) is the northern cap.
+        let circle: Vec<Vec3> = (0..64)
+            .map(|i| {
+                let u = std::f64::consts::TAU * f64::from(i) / 64.0;
+                let r = std::f64::consts::FRAC_1_SQRT_2;
+                Vec3::new(r * u.cos(), r * u.sin(), r)
+            })
+            .collect();
+        let cap = UvRegion {
+            rect: [0.0; 4],
+            polygons: None,
+            sides: Vec::new(),
+            loops: vec![(circle.clone(), true)],
+        };
+        assert!(cap.sphere_contains(Vec3::ZERO, Vec3::Z, true));
+        assert!(!cap.sphere_contains(Vec3::ZERO, -Vec3::Z, true));
+        assert!(!cap.sphere_contains(Vec3::ZERO, Vec3::X, true));
+        // The same circle used reversed bounds the rest of the sphere.
+        let rest = UvRegion {
+            loops: vec![(circle, false)],
+            ..cap
+        };
+        assert!(!rest.sphere_contains(Vec3::ZERO, Vec3::Z, true));
+        assert!(rest.sphere_contains(Vec3::ZERO, -Vec3::Z, true));
+    }
+
+    #[test]
     fn even_odd_containment_with_a_hole() {
         let square = |a: f64, b: f64| vec![(a, a), (b, a), (b, b), (a, b)];
         let region = UvRegion {
