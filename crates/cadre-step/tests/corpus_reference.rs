@@ -21,9 +21,10 @@ use cadre_step::syntax::StepFile;
 const KNOWN_COUNT_DIFFERENCES: &[(&str, &str)] = &[
     (
         "bug31292.stp",
-        "same assembly as as1-oc-214-mat.stp, where OCCT counts 18 solids as cadre does; here \
-         OCCT keeps one nut-bolt sub-assembly instance per bracket (the OCCT bug the file was \
-         filed for)",
+        "the nut's EDGE_CURVE #69 references a vertex that does not exist: OCCT drops the \
+         whole nut solid (8 instances, 18 solids become 10, checked with OCCT's shape tree); \
+         cadre drops that edge with a warning and keeps the nut, as the same assembly reads \
+         in as1-oc-214-mat.stp (18 solids in OCCT too)",
     ),
     (
         "trj9_ap209-mp.stp",
