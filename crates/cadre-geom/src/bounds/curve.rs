@@ -2,8 +2,10 @@
 
 use super::{angular_breaks, bracketed_root, golden_max, sample_params, sinusoid_critical};
 use crate::BoundingBox;
+use crate::bspline::BSplineCurve;
 use crate::curve::Curve;
 use crate::eval::curve::segment_map;
+use crate::nurbs::basis::find_span;
 use crate::point::GeomPoint;
 
 /// Upper bound on samples along one arc (before extremum refinement).
@@ -134,11 +136,32 @@ impl<P: GeomPoint> Curve<P> {
             bb.add_point(d[0].to_vec3());
         }
         let last = ts.len() - 1;
+        // Convex-hull property: on `[ts[k], ts[k+1]]` a B-spline with positive weights lies
+        // in the box of the control points of the spans it crosses. Where that box is already
+        // inside `bb`, nothing found there can grow it, so the searches (a golden-section one
+        // costs ~80 evaluations) are skipped; the box is unchanged bit for bit. It pays on
+        // arcs with few extrema; the bench's wavy 24-point cubic has an extremum near every
+        // face in most spans, so there it saves nothing (96.6 vs 98.5 µs, noise).
+        let hulls: Vec<Option<BoundingBox>> = match self {
+            Curve::BSpline(b) if b.is_well_formed() => {
+                ts.windows(2).map(|w| span_hull(b, w[0], w[1])).collect()
+            }
+            _ => Vec::new(),
+        };
+        // Whether the arc over the sample intervals `k0..k1` provably lies inside `bb`.
+        let inside = |bb: &BoundingBox, k0: usize, k1: usize| {
+            k0 < k1
+                && hulls.get(k0..k1).is_some_and(|hs| {
+                    hs.iter().all(|h| {
+                        h.is_some_and(|h| bb.min.cmple(h.min).all() && h.max.cmple(bb.max).all())
+                    })
+                })
+        };
         for i in 0..P::DIM {
             let value = |t: f64| self.eval(t).coord(i);
             for k in 1..ts.len() {
                 let (ga, gb) = (ders[k - 1][1].coord(i), ders[k][1].coord(i));
-                if ga * gb < 0.0 {
+                if ga * gb < 0.0 && !inside(bb, k - 1, k) {
                     let g = |t: f64| {
                         let d = self.ders(t, 2);
                         (d[1].coord(i), d[2].coord(i))
@@ -167,7 +190,7 @@ impl<P: GeomPoint> Curve<P> {
                     let beats = |y: f64| y.is_nan() || sign * x >= sign * y;
                     let rising_end = (k > 0 || sign * ders[k][1].coord(i) < 0.0)
                         && (k < last || sign * ders[k][1].coord(i) > 0.0);
-                    if beats(prev) && beats(next) && rising_end && lo < hi {
+                    if beats(prev) && beats(next) && rising_end && lo < hi && !inside(bb, lo, hi) {
                         let t = golden_max(|t| sign * value(t), ts[lo], ts[hi]);
                         bb.add_point(self.eval(t).to_vec3());
                     }
@@ -237,6 +260,35 @@ impl<P: GeomPoint> Curve<P> {
             Curve::Line { .. } | Curve::Parabola { .. } | Curve::Hyperbola { .. } => {}
         }
     }
+}
+
+/// The box of the control points that can influence the B-spline on `(ta, tb)` (the spans
+/// meeting the open interval), or `None` when a weight there is not positive (the
+/// convex-hull property then fails).
+fn span_hull<P: GeomPoint>(b: &BSplineCurve<P>, ta: f64, tb: f64) -> Option<BoundingBox> {
+    let (n, p) = (b.control_points.len(), b.degree);
+    let sa = find_span(&b.knots, n, p, ta);
+    let mut sb = find_span(&b.knots, n, p, tb).max(sa);
+    // An interval ending on a knot touches the next span only at its end sample.
+    while sb > sa && b.knots[sb] >= tb {
+        sb -= 1;
+    }
+    let range = sa - p..=sb;
+    if let Some(w) = &b.weights
+        && !w[range.clone()].iter().all(|&w| w > 0.0 && w.is_finite())
+    {
+        return None;
+    }
+    let mut h = BoundingBox::EMPTY;
+    for pt in &b.control_points[range] {
+        // `add_point` would skip a non-finite point, giving too small a hull.
+        let q = pt.to_vec3();
+        if !q.is_finite() {
+            return None;
+        }
+        h.add_point(q);
+    }
+    Some(h)
 }
 
 fn integer_breaks(t0: f64, t1: f64, out: &mut Vec<f64>) {

@@ -26,7 +26,12 @@ impl<P: GeomPoint> Curve<P> {
     /// Outside a bounded curve's domain: B-splines extend their end pieces polynomially,
     /// polylines and composites their end segments; conics just continue.
     pub fn eval(&self, t: f64) -> P {
-        self.ders(t, 0)[0]
+        match self {
+            // Point-only basis: no derivative tables (see `BSplineCurve::derivatives_on_span`).
+            Curve::BSpline(b) => b.point_at(t),
+            Curve::Trimmed { basis, .. } => basis.eval(t),
+            _ => self.ders(t, 0)[0],
+        }
     }
 
     /// Point, first and second derivatives at `t`.

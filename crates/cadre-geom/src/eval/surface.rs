@@ -33,7 +33,12 @@ const FD_STEP: f64 = 1e-4;
 impl Surface {
     /// The point at `(u, v)`.
     pub fn eval(&self, u: f64, v: f64) -> Vec3 {
-        self.ders(u, v, 0)[0][0]
+        match self {
+            // Point-only basis, without filling the 4 × 4 derivative array `ders` returns.
+            Surface::BSpline(b) => b.point_at(u, v),
+            Surface::Trimmed { basis, .. } => basis.eval(u, v),
+            _ => self.ders(u, v, 0)[0][0],
+        }
     }
 
     /// Point, first and second partial derivatives at `(u, v)`.

@@ -1,6 +1,6 @@
 //! Derivatives of (rational) B-spline curves.
 
-use super::basis::{BasisDers, binomial, find_span};
+use super::basis::{BasisDers, STACK_DEGREE, basis_funs, binomial, ders_rows, find_span};
 use crate::bspline::BSplineCurve;
 use crate::point::GeomPoint;
 
@@ -21,35 +21,74 @@ impl<P: GeomPoint> BSplineCurve<P> {
     /// [`BSplineCurve::derivatives`] up to order `out.len() − 1`, written into `out` (no
     /// allocation for usual degrees).
     pub fn derivatives_into(&self, t: f64, out: &mut [P]) {
-        out.iter_mut().for_each(|x| *x = P::ZERO);
         if out.is_empty() || !self.is_well_formed() {
+            out.fill(P::ZERO);
             return;
         }
-        let order = out.len() - 1;
-        let n = self.control_points.len();
+        let span = find_span(&self.knots, self.control_points.len(), self.degree, t);
+        self.derivatives_on_span(span, t, out);
+    }
+
+    /// [`BSplineCurve::derivatives_into`] using the polynomial piece of knot span `span`
+    /// (as returned by [`find_span`]; `degree ≤ span < n`), for callers that sample one
+    /// span repeatedly and so need not search for it each time. Only the orders asked for
+    /// are computed; order 0 uses the point-only basis ([`basis_funs`]).
+    ///
+    /// # Panics
+    ///
+    /// If the curve is not [well formed](BSplineCurve::is_well_formed) or `span` is out of
+    /// range.
+    pub fn derivatives_on_span(&self, span: usize, t: f64, out: &mut [P]) {
+        let Some(order) = out.len().checked_sub(1) else {
+            return;
+        };
         let p = self.degree;
-        let span = find_span(&self.knots, n, p, t);
-        let basis = BasisDers::new(span, t, p, order, &self.knots);
+        assert!(span >= p && span < self.control_points.len());
         let first = span - p;
+        if order == 0
+            && let Some(n) = basis_funs(span, t, p, &self.knots)
+        {
+            self.combine(first, |_| &n[..=p], out);
+        } else if order <= 3 && p < 4 {
+            let rows = ders_rows::<4>(span, t, p, order, &self.knots);
+            self.combine(first, |k| &rows[k][..=p], out);
+        } else if order <= 3 && p <= STACK_DEGREE {
+            let rows = ders_rows::<{ STACK_DEGREE + 1 }>(span, t, p, order, &self.knots);
+            self.combine(first, |k| &rows[k][..=p], out);
+        } else {
+            let basis = BasisDers::new(span, t, p, order, &self.knots);
+            self.combine(first, |k| basis.row(k), out);
+        }
+    }
+
+    /// Combines the control points with basis rows `row(k)` (of the points from `first`)
+    /// into `out[k]`, dividing out the weight for rational curves.
+    fn combine<'a>(&self, first: usize, row: impl Fn(usize) -> &'a [f64], out: &mut [P]) {
+        let pts = &self.control_points[first..];
         // Homogeneous derivatives: A⁽ᵏ⁾ = Σ N⁽ᵏ⁾ w P, w⁽ᵏ⁾ = Σ N⁽ᵏ⁾ w.
+        let Some(weights) = &self.weights else {
+            for (k, slot) in out.iter_mut().enumerate() {
+                let mut acc = P::ZERO;
+                for (&b, &pt) in row(k).iter().zip(pts) {
+                    acc += pt * b;
+                }
+                *slot = acc;
+            }
+            return;
+        };
+        let ws = &weights[first..];
         let mut w = [0.0; 8];
         for (k, slot) in out.iter_mut().enumerate() {
-            let row = basis.row(k);
             let mut acc = P::ZERO;
             let mut wk = 0.0;
-            for (j, &b) in row.iter().enumerate() {
-                let i = first + j;
-                let wi = self.weights.as_ref().map_or(1.0, |ws| ws[i]);
-                acc += self.control_points[i] * (b * wi);
+            for ((&b, &pt), &wi) in row(k).iter().zip(pts).zip(ws) {
+                acc += pt * (b * wi);
                 wk += b * wi;
             }
             *slot = acc;
             if k < w.len() {
                 w[k] = wk;
             }
-        }
-        if self.weights.is_none() {
-            return;
         }
         // Quotient rule: C⁽ᵏ⁾ = (A⁽ᵏ⁾ − Σᵢ C(k,i) w⁽ⁱ⁾ C⁽ᵏ⁻ⁱ⁾) / w (orders ≤ 7 kept).
         for k in 0..out.len().min(w.len()) {
@@ -76,7 +115,9 @@ impl<P: GeomPoint> BSplineCurve<P> {
 
     /// The point at `t` (polynomial extension outside the domain).
     pub fn point_at(&self, t: f64) -> P {
-        self.derivatives(t, 0)[0]
+        let mut out = [P::ZERO];
+        self.derivatives_into(t, &mut out);
+        out[0]
     }
 
     /// Distinct interior knots strictly inside `(t0, t1)`: where the curve may lose

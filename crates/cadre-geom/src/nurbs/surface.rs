@@ -1,6 +1,6 @@
 //! Derivatives of (rational) B-spline surfaces.
 
-use super::basis::{BasisDers, binomial, find_span};
+use super::basis::{BasisDers, STACK_DEGREE, basis_funs, binomial, ders_rows, find_span};
 use crate::Vec3;
 use crate::bspline::BSplineSurface;
 
@@ -28,43 +28,129 @@ impl BSplineSurface {
         if !self.is_well_formed() {
             return;
         }
+        if order == 0 {
+            out[0][0] = self.point_at(u, v);
+            return;
+        }
         let nu = self.control_points.len();
         let nv = self.control_points[0].len();
         let (p, q) = (self.u_degree, self.v_degree);
         let su = find_span(&self.u_knots, nu, p, u);
         let sv = find_span(&self.v_knots, nv, q, v);
-        let bu = BasisDers::new(su, u, p, order, &self.u_knots);
-        let bv = BasisDers::new(sv, v, q, order, &self.v_knots);
+        const W: usize = STACK_DEGREE + 1;
+        let spans = (su, u, sv, v);
+        // Basis tables sized by the degree (cubic and below: 4 wide), see `ders_rows`.
+        match (p, q) {
+            (0..4, 0..4) => self.ders_fixed::<4, 4>(spans, order, out),
+            (0..4, 4..W) => self.ders_fixed::<4, W>(spans, order, out),
+            (4..W, 0..4) => self.ders_fixed::<W, 4>(spans, order, out),
+            (4..W, 4..W) => self.ders_fixed::<W, W>(spans, order, out),
+            _ => {
+                let bu = BasisDers::new(su, u, p, order, &self.u_knots);
+                let bv = BasisDers::new(sv, v, q, order, &self.v_knots);
+                self.fill_ders(|k| bu.row(k), |l| bv.row(l), (su - p, sv - q), order, out);
+            }
+        }
+    }
+
+    /// [`BSplineSurface::derivatives_into`] on spans `(su, u, sv, v)` with basis tables
+    /// `WU` and `WV` wide (`u_degree < WU`, `v_degree < WV`).
+    fn ders_fixed<const WU: usize, const WV: usize>(
+        &self,
+        (su, u, sv, v): (usize, f64, usize, f64),
+        order: usize,
+        out: &mut [[Vec3; 4]; 4],
+    ) {
+        let (p, q) = (self.u_degree, self.v_degree);
+        let bu = ders_rows::<WU>(su, u, p, order, &self.u_knots);
+        let bv = ders_rows::<WV>(sv, v, q, order, &self.v_knots);
+        self.fill_ders(
+            |k| &bu[k][..=p],
+            |l| &bv[l][..=q],
+            (su - p, sv - q),
+            order,
+            out,
+        );
+    }
+
+    /// The point at `(u, v)` (polynomial extension outside the domain): order-0 basis
+    /// functions only, no derivative tables and no allocation for degrees up to
+    /// [`STACK_DEGREE`]. Zero for a surface that is not well formed.
+    pub fn point_at(&self, u: f64, v: f64) -> Vec3 {
+        if !self.is_well_formed() {
+            return Vec3::ZERO;
+        }
+        let nu = self.control_points.len();
+        let nv = self.control_points[0].len();
+        let (p, q) = (self.u_degree, self.v_degree);
+        let su = find_span(&self.u_knots, nu, p, u);
+        let sv = find_span(&self.v_knots, nv, q, v);
+        let (Some(bu), Some(bv)) = (
+            basis_funs(su, u, p, &self.u_knots),
+            basis_funs(sv, v, q, &self.v_knots),
+        ) else {
+            let mut d = [[Vec3::ZERO; 4]; 4];
+            let bu = BasisDers::new(su, u, p, 0, &self.u_knots);
+            let bv = BasisDers::new(sv, v, q, 0, &self.v_knots);
+            self.fill_ders(|k| bu.row(k), |l| bv.row(l), (su - p, sv - q), 0, &mut d);
+            return d[0][0];
+        };
+        let (acc, w) = self.homogeneous(&bu[..=p], &bv[..=q], su - p, sv - q);
+        if self.weights.is_some() {
+            // As the quotient rule of `rational` does at order 0.
+            acc / w
+        } else {
+            acc
+        }
+    }
+
+    /// Homogeneous derivatives from basis rows `ru(k)`, `rv(l)` (first non-zero functions
+    /// at `first`), then the quotient rule for rational surfaces.
+    fn fill_ders<'a, 'b>(
+        &self,
+        ru: impl Fn(usize) -> &'a [f64],
+        rv: impl Fn(usize) -> &'b [f64],
+        first: (usize, usize),
+        order: usize,
+        out: &mut [[Vec3; 4]; 4],
+    ) {
         let mut w = [[0.0; 4]; 4];
         for k in 0..=order {
             for l in 0..=(order - k) {
-                let (acc, wacc) = self.homogeneous(bu.row(k), bv.row(l), su - p, sv - q);
+                let (acc, wacc) = self.homogeneous(ru(k), rv(l), first.0, first.1);
                 out[k][l] = acc;
                 w[k][l] = wacc;
             }
         }
-        if self.weights.is_none() {
-            return;
+        if self.weights.is_some() {
+            rational(out, &w, order);
         }
-        rational(out, &w, order);
     }
 
-    /// `Σ Nu Nv w P` and `Σ Nu Nv w` over the non-zero basis functions.
+    /// `Σ Nu Nv w P` and `Σ Nu Nv w` over the non-zero basis functions (for polynomial
+    /// surfaces the weight sum is not needed and left at zero).
     fn homogeneous(&self, nu: &[f64], nv: &[f64], i0: usize, j0: usize) -> (Vec3, f64) {
         let mut acc = Vec3::ZERO;
         let mut wacc = 0.0;
-        for (r, &a) in nu.iter().enumerate() {
+        let rows = &self.control_points[i0..i0 + nu.len()];
+        let Some(weights) = &self.weights else {
+            for (&a, row) in nu.iter().zip(rows) {
+                if a == 0.0 {
+                    continue;
+                }
+                for (&b, &pt) in nv.iter().zip(&row[j0..]) {
+                    acc += pt * (a * b);
+                }
+            }
+            return (acc, wacc);
+        };
+        for ((&a, row), wrow) in nu.iter().zip(rows).zip(&weights[i0..]) {
             if a == 0.0 {
                 continue;
             }
-            let i = i0 + r;
-            let row = &self.control_points[i];
-            let wrow = self.weights.as_ref().map(|w| &w[i]);
-            for (s, &b) in nv.iter().enumerate() {
-                let j = j0 + s;
-                let wij = wrow.map_or(1.0, |w| w[j]);
+            for ((&b, &pt), &wij) in nv.iter().zip(&row[j0..]).zip(&wrow[j0..]) {
                 let c = a * b * wij;
-                acc += row[j] * c;
+                acc += pt * c;
                 wacc += c;
             }
         }
