@@ -1,7 +1,7 @@
 //! The mapper's state: the file, the model under construction, caches from STEP ids to model
 //! ids, the units in force, and a guard against cyclic or absurdly deep references.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use super::error::{MapError, MapResult};
 use crate::syntax::{Instance, StepFile};
@@ -56,7 +56,7 @@ pub struct Mapper<'f> {
     /// Faces split off a curve-bounded surface with disjoint boundaries, by its first face.
     pub extra_faces: HashMap<FaceId, Vec<FaceId>>,
     /// Instances that failed to map (so each is reported once).
-    pub failed: HashMap<u64, ()>,
+    pub failed: HashSet<u64>,
     /// Parts made for representations.
     pub rep_parts: HashMap<u64, PartId>,
     /// Parts made for product definitions.
@@ -84,7 +84,7 @@ impl<'f> Mapper<'f> {
             meshes: HashMap::new(),
             coordinates: std::cell::RefCell::new(HashMap::new()),
             extra_faces: HashMap::new(),
-            failed: HashMap::new(),
+            failed: HashSet::new(),
             rep_parts: HashMap::new(),
             product_parts: HashMap::new(),
         }
@@ -131,7 +131,7 @@ impl<'f> Mapper<'f> {
 
     /// Records a mapping failure as a warning (once per instance).
     pub fn report(&mut self, e: &MapError) {
-        if self.failed.insert(e.id, ()).is_none() {
+        if self.failed.insert(e.id) {
             match (self.file.line(e.id), e.context) {
                 // A missing instance has no line: report it where it is referenced.
                 (None, Some(ctx)) => {

@@ -22,6 +22,9 @@ pub struct InfoArgs {
     /// Also list every face: STEP id, surface type, (u, v) bounds and box in mm.
     #[arg(long)]
     faces: bool,
+    /// With --faces, also each face's edges with their parameter ranges on their curves.
+    #[arg(long, requires = "faces")]
+    edges: bool,
     /// Show at most this many warnings in the human summary (all are in --json).
     #[arg(long, default_value_t = 20)]
     max_warnings: usize,
@@ -117,8 +120,9 @@ fn tree_lines(model: &Model, part: PartId, depth: usize, uses: usize, out: &mut 
     }
 }
 
-/// One line per face: its STEP id, surface type, (u, v) bounds and box (part coordinates).
-fn print_faces(model: &Model) {
+/// One line per face: its STEP id, surface type, (u, v) bounds and box (part coordinates),
+/// optionally followed by its edges' parameter ranges and curve domains.
+fn print_faces(model: &Model, with_edges: bool) {
     let acc = Accuracy::default();
     println!("faces (part coordinates)");
     for face in &model.faces {
@@ -139,7 +143,7 @@ fn print_faces(model: &Model) {
             cadre_brep::bounds::reported_type(surface),
             uv
         );
-        if std::env::var_os("CADRE_DEBUG_EDGES").is_some() {
+        if with_edges {
             for lp in &face.loops {
                 if let cadre_brep::LoopKind::Edges(es) = &lp.kind {
                     for oe in es {
@@ -281,7 +285,7 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             );
         }
         if args.faces {
-            print_faces(model);
+            print_faces(model, args.edges);
         }
         println!(
             "time       parse {:.3} s, map {:.3} s",
