@@ -428,19 +428,42 @@ fn trimmed_curve<S: Space>(m: &mut Mapper<'_>, a: &Attrs<'_, '_>) -> MapResult<C
     })
 }
 
-/// Degree, control points, knots and weights of a B-spline curve in either instance form.
-fn bspline_curve<S: Space>(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSplineCurve<S::P>> {
-    // Simple instances carry the name first and every inherited attribute; complex ones one
-    // record per type with its own attributes only.
-    let (base, offset) = match inst.record("B_SPLINE_CURVE") {
+/// The attributes of a B-spline's base record and the position of its first own attribute:
+/// simple instances carry the name first and every inherited attribute, complex ones one record
+/// per type with that type's attributes only.
+fn base_attrs<'i, 'a>(inst: &'i Instance<'a>, keyword: &str) -> (Attrs<'i, 'a>, usize) {
+    let (base, offset) = match inst.record(keyword) {
         Some(rec) if inst.complex => (rec, 0),
         _ => (&inst.records[0], 1),
     };
-    let a = Attrs {
-        id: inst.id,
-        keyword: base.keyword,
-        params: &base.params,
-    };
+    (
+        Attrs {
+            id: inst.id,
+            keyword: base.keyword,
+            params: &base.params,
+        },
+        offset,
+    )
+}
+
+/// Knot multiplicities: counts, with a bound on their sum so a corrupt file cannot make the
+/// knot vector allocate without limit.
+fn multiplicities(k: &Attrs<'_, '_>, i: usize) -> MapResult<Vec<usize>> {
+    let m = k
+        .list(i)?
+        .iter()
+        .map(|p| p.as_i64().and_then(|v| usize::try_from(v).ok()))
+        .collect::<Option<Vec<usize>>>()
+        .ok_or_else(|| k.err("knot multiplicities are not counts"))?;
+    if m.iter().fold(0usize, |a, &b| a.saturating_add(b)) > MAX_BSPLINE_POINTS * 2 {
+        return Err(k.err("knot multiplicities are beyond reason"));
+    }
+    Ok(m)
+}
+
+/// Degree, control points, knots and weights of a B-spline curve in either instance form.
+fn bspline_curve<S: Space>(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSplineCurve<S::P>> {
+    let (a, offset) = base_attrs(inst, "B_SPLINE_CURVE");
     let degree = a.usize(offset)?;
     let ids = a.refs(offset + 1)?;
     if ids.len() > MAX_BSPLINE_POINTS {
@@ -459,15 +482,7 @@ fn bspline_curve<S: Space>(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSp
             params: &rec.params,
         };
         let o = if inst.complex { 0 } else { offset + 5 };
-        let mults = k
-            .list(o)?
-            .iter()
-            .map(|p| p.as_i64().and_then(|v| usize::try_from(v).ok()))
-            .collect::<Option<Vec<usize>>>()
-            .ok_or_else(|| k.err("knot multiplicities are not counts"))?;
-        if mults.iter().sum::<usize>() > MAX_BSPLINE_POINTS * 2 {
-            return Err(k.err("knot multiplicities are beyond reason"));
-        }
+        let mults = multiplicities(&k, o)?;
         let values = k.f64s(o + 1)?;
         expand_knots(&values, &mults).map_err(|e| k.err(e.to_string()))?
     } else if inst.has("UNIFORM_CURVE") {
@@ -633,15 +648,7 @@ impl Mapper<'_> {
 }
 
 fn bspline_surface(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSplineSurface> {
-    let (base, offset) = match inst.record("B_SPLINE_SURFACE") {
-        Some(rec) if inst.complex => (rec, 0),
-        _ => (&inst.records[0], 1),
-    };
-    let a = Attrs {
-        id: inst.id,
-        keyword: base.keyword,
-        params: &base.params,
-    };
+    let (a, offset) = base_attrs(inst, "B_SPLINE_SURFACE");
     let (pu, pv) = (a.usize(offset)?, a.usize(offset + 1)?);
     let rows = a.list(offset + 2)?;
     if rows.len() > MAX_BSPLINE_POINTS {
@@ -677,17 +684,7 @@ fn bspline_surface(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSplineSurf
             params: &rec.params,
         };
         let o = if inst.complex { 0 } else { offset + 7 };
-        let mults = |i: usize| -> MapResult<Vec<usize>> {
-            k.list(i)?
-                .iter()
-                .map(|p| p.as_i64().and_then(|v| usize::try_from(v).ok()))
-                .collect::<Option<Vec<usize>>>()
-                .ok_or_else(|| k.err("knot multiplicities are not counts"))
-        };
-        let (mu, mv) = (mults(o)?, mults(o + 1)?);
-        if mu.iter().chain(&mv).sum::<usize>() > MAX_BSPLINE_POINTS * 2 {
-            return Err(k.err("knot multiplicities are beyond reason"));
-        }
+        let (mu, mv) = (multiplicities(&k, o)?, multiplicities(&k, o + 1)?);
         (
             expand_knots(&k.f64s(o + 2)?, &mu).map_err(|e| k.err(e.to_string()))?,
             expand_knots(&k.f64s(o + 3)?, &mv).map_err(|e| k.err(e.to_string()))?,

@@ -116,18 +116,24 @@ fn measure_with_unit(m: &Mapper<'_>, id: u64) -> MapResult<(f64, u64)> {
     Ok((a.f64(0)?, a.r#ref(1)?))
 }
 
+/// The references in a context record's list (units, uncertainties): the last list parameter,
+/// which is the only one in the complex form and follows the name in the simple form.
+fn listed_refs<'r>(rec: &'r crate::syntax::Record<'_>) -> impl Iterator<Item = u64> + 'r {
+    rec.params
+        .iter()
+        .rev()
+        .find_map(|p| p.as_list())
+        .unwrap_or(&[])
+        .iter()
+        .filter_map(|p| p.as_ref_id())
+}
+
 /// Reads the units of a representation context.
 fn context_units(m: &Mapper<'_>, inst: &Instance<'_>) -> (Units, Vec<super::MapError>) {
     let mut units = Units::default();
     let mut errors = Vec::new();
     if let Some(rec) = inst.record("GLOBAL_UNIT_ASSIGNED_CONTEXT") {
-        let ids = rec
-            .params
-            .iter()
-            .rev()
-            .find_map(|p| p.as_list())
-            .unwrap_or(&[]);
-        for unit_id in ids.iter().filter_map(|p| p.as_ref_id()) {
+        for unit_id in listed_refs(rec) {
             match unit(m, unit_id, 0) {
                 Ok((UnitKind::Length, size, name)) if size > 0.0 && size.is_finite() => {
                     units.length_to_mm = size;
@@ -148,13 +154,7 @@ fn context_units(m: &Mapper<'_>, inst: &Instance<'_>) -> (Units, Vec<super::MapE
         }
     }
     if let Some(rec) = inst.record("GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT") {
-        let ids = rec
-            .params
-            .iter()
-            .rev()
-            .find_map(|p| p.as_list())
-            .unwrap_or(&[]);
-        for uid in ids.iter().filter_map(|p| p.as_ref_id()) {
+        for uid in listed_refs(rec) {
             if let Ok((value, _)) = measure_with_unit(m, uid) {
                 // Uncertainties are lengths in the context's length unit.
                 units.uncertainty_mm = Some(value * units.length_to_mm);
