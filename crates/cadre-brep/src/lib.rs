@@ -19,6 +19,7 @@ pub mod model;
 pub mod stats;
 pub mod style;
 pub mod topology;
+pub mod trim;
 pub mod units;
 
 pub use assembly::{Body, InstanceVisit, Occurrence, Part};

@@ -2,6 +2,7 @@
 
 mod commands;
 mod load;
+mod progress;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -18,6 +19,9 @@ struct Cli {
 enum Command {
     /// Summarise a STEP file: schema, units, product tree, counts, bounding box, warnings.
     Info(commands::info::InfoArgs),
+    /// Tessellate a STEP file into a watertight mesh: .glb/.gltf (assembly tree, shared
+    /// instances, materials), .stl or .obj.
+    Mesh(commands::mesh::MeshArgs),
     /// Time cadre's stages over a folder of files (used by the scripts in `scripts/`).
     Bench(commands::bench::BenchArgs),
 }
@@ -33,6 +37,7 @@ fn main() -> Result<()> {
     let cli = Cli::parse();
     match cli.command {
         Command::Info(args) => commands::info::run(&args),
+        Command::Mesh(args) => commands::mesh::run(&args),
         Command::Bench(args) => commands::bench::run(&args),
     }
 }

@@ -1,0 +1,591 @@
+//! Closing: turns chains into closed (u, v) loops. Chains that go around a periodic surface
+//! are joined pairwise by seam lines, or closed along a pole or a side of the domain; a face
+//! made only of holes on a closed surface (a sphere with a hole) gets the whole domain as its
+//! outer loop; holes are moved by whole periods into the region they belong to.
+
+use std::collections::HashMap;
+
+use cadre_geom::{Surface, Vec2, Vec3};
+
+use super::uv::{Chain, periods};
+use super::{
+    SegmentSource, TrimError, TrimKey, TrimLoop, TrimPoint, TrimSegment, TrimTolerance,
+    polygon_area,
+};
+use crate::FaceId;
+
+/// Deepest subdivision of a seam or pole line (2^10 pieces).
+const MAX_LINE_DEPTH: u32 = 10;
+
+/// Makes the points a face adds itself, with keys that weld the two sides of a seam and all
+/// the points of a pole.
+struct Maker<'a> {
+    surface: &'a Surface,
+    periods: [Option<f64>; 2],
+    start: [f64; 2],
+    face: FaceId,
+    keys: HashMap<(i64, i64), u64>,
+    /// Known points (vertex loops, chain points) whose keys a made point at the same place
+    /// must reuse.
+    known: Vec<(Vec3, u64)>,
+    same: f64,
+    tol: TrimTolerance,
+}
+
+impl Maker<'_> {
+    /// Canonical parameter: wrapped into the first period.
+    fn canonical(&self, k: usize, x: f64) -> f64 {
+        match self.periods[k] {
+            Some(p) => {
+                let mut f = (x - self.start[k]) / p;
+                f -= f.floor();
+                if f > 1.0 - 1e-9 {
+                    f = 0.0;
+                }
+                f * p
+            }
+            None => x,
+        }
+    }
+
+    /// The surface point at (u, v), wrapped into the domain for evaluation.
+    fn eval(&self, uv: Vec2) -> Vec3 {
+        let w = |k: usize| match self.periods[k] {
+            Some(_) => self.start[k] + self.canonical(k, uv[k]),
+            None => uv[k],
+        };
+        self.surface.eval(w(0), w(1))
+    }
+
+    fn point(&mut self, uv: Vec2, pole: bool) -> TrimPoint {
+        let xyz = self.eval(uv);
+        if let Some(&(_, key)) = self
+            .known
+            .iter()
+            .find(|(p, _)| (*p - xyz).length() <= self.same)
+        {
+            return TrimPoint { uv, xyz, key };
+        }
+        let q = |x: f64| (x * (1u64 << 30) as f64).round() as i64;
+        let id = if pole {
+            (
+                i64::MIN,
+                q(xyz.x) ^ q(xyz.y).rotate_left(21) ^ q(xyz.z).rotate_left(42),
+            )
+        } else {
+            (q(self.canonical(0, uv.x)), q(self.canonical(1, uv.y)))
+        };
+        let next = self.keys.len();
+        let face = self.face;
+        let key = *self
+            .keys
+            .entry(id)
+            .or_insert_with(|| TrimKey::face(face, next));
+        if pole {
+            self.known.push((xyz, key));
+        }
+        TrimPoint { uv, xyz, key }
+    }
+
+    /// Points strictly between `a` and `b` on the (u, v) segment, dense enough for the
+    /// tolerances (these segments are trim constraints: the triangulator will not split them).
+    fn line(&mut self, a: Vec2, b: Vec2, pole: bool) -> Vec<TrimPoint> {
+        let mut params = Vec::new();
+        if !pole {
+            self.split(a, b, 0.0, 1.0, 0, &mut params);
+        }
+        params
+            .into_iter()
+            .map(|s| self.point(a + (b - a) * s, pole))
+            .collect()
+    }
+
+    fn split(&self, a: Vec2, b: Vec2, s0: f64, s1: f64, depth: u32, out: &mut Vec<f64>) {
+        if depth >= MAX_LINE_DEPTH {
+            return;
+        }
+        let (pa, pb) = (a + (b - a) * s0, a + (b - a) * s1);
+        let sm = 0.5 * (s0 + s1);
+        let pm = a + (b - a) * sm;
+        let (xa, xb, xm) = (self.eval(pa), self.eval(pb), self.eval(pm));
+        let deviation = (xm - 0.5 * (xa + xb)).length();
+        let turn = |p: Vec2| self.surface.normal(p.x, p.y);
+        let bent = match (turn(pa), turn(pb)) {
+            (Some(na), Some(nb)) => na.dot(nb).clamp(-1.0, 1.0).acos() > self.tol.angle,
+            _ => false,
+        };
+        // Long lines in a periodic direction get a few points even when straight in 3D, so
+        // the triangulation has something to attach to.
+        let long = (0..2).any(|k| self.periods[k].is_some_and(|p| (pb[k] - pa[k]).abs() > p / 8.0));
+        if deviation > self.tol.deflection || bent || long {
+            self.split(a, b, s0, sm, depth + 1, out);
+            out.push(sm);
+            self.split(a, b, sm, s1, depth + 1, out);
+        }
+    }
+}
+
+fn segment(source: SegmentSource, points: Vec<TrimPoint>) -> TrimSegment {
+    TrimSegment {
+        source,
+        exact: None,
+        points,
+    }
+}
+
+/// How a chain runs in (u, v).
+enum Kind {
+    /// Closed without going around the surface.
+    Contractible,
+    /// Goes once around in direction `axis`, `sign` ±1.
+    Wrap { axis: usize, sign: f64 },
+}
+
+fn shift_chain(chain: &mut Chain, by: Vec2) {
+    for s in &mut chain.segments {
+        for p in &mut s.points {
+            p.uv += by;
+        }
+        if let Some(e) = &mut s.exact {
+            e.offset += by;
+        }
+    }
+}
+
+fn unit(axis: usize) -> Vec2 {
+    if axis == 0 { Vec2::X } else { Vec2::Y }
+}
+
+/// Whether (u, v) is inside a closed polygon (even-odd).
+fn inside(poly: &[TrimPoint], q: Vec2) -> bool {
+    let n = poly.len();
+    let mut c = false;
+    for i in 0..n {
+        let (a, b) = (poly[i].uv, poly[(i + 1) % n].uv);
+        if (a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            c = !c;
+        }
+    }
+    c
+}
+
+/// Closes the chains of one face into loops.
+pub(super) fn close_loops(
+    surface: &Surface,
+    face: FaceId,
+    chains: Vec<Chain>,
+    vertex_loops: &[(Vec3, u64)],
+    tol: &TrimTolerance,
+    notes: &mut Vec<String>,
+) -> Result<Vec<TrimLoop>, TrimError> {
+    let periods = periods(surface);
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let same = (1e-3 * tol.deflection).max(100.0 * tol.accuracy.distance);
+    let mut maker = Maker {
+        surface,
+        periods,
+        start: [
+            if u0.is_finite() { u0 } else { 0.0 },
+            if v0.is_finite() { v0 } else { 0.0 },
+        ],
+        face,
+        keys: HashMap::new(),
+        known: vertex_loops.to_vec(),
+        same,
+        tol: *tol,
+    };
+    let mut contractible: Vec<Chain> = Vec::new();
+    let mut wrapping: Vec<(Chain, usize, f64)> = Vec::new();
+    for chain in chains {
+        let pts = chain.points();
+        if pts.len() < 2 {
+            continue;
+        }
+        let (first, last) = (pts[0], pts[pts.len() - 1]);
+        let closed = first.key == last.key || (first.xyz - last.xyz).length() <= same;
+        if !closed {
+            notes.push("a loop does not close; closed with a straight segment".into());
+            contractible.push(chain);
+            continue;
+        }
+        let d = last.uv - first.uv;
+        let turns = [0, 1].map(|k| periods[k].map_or(0.0, |p| (d[k] / p).round()));
+        let kind = match turns {
+            [0.0, 0.0] => Kind::Contractible,
+            [t, 0.0] if t.abs() == 1.0 => Kind::Wrap { axis: 0, sign: t },
+            [0.0, t] if t.abs() == 1.0 => Kind::Wrap { axis: 1, sign: t },
+            _ => {
+                return Err(TrimError::Wrapping(format!(
+                    "a loop goes around the surface {turns:?} times"
+                )));
+            }
+        };
+        match kind {
+            Kind::Contractible => contractible.push(chain),
+            Kind::Wrap { axis, sign } => wrapping.push((chain, axis, sign)),
+        }
+    }
+    let mut loops: Vec<TrimLoop> = Vec::new();
+    if wrapping.is_empty() {
+        let area: f64 = contractible.iter().map(|c| polygon_area(&c.points())).sum();
+        let closed_all_around = (0..2).all(|k| {
+            periods[k].is_some()
+                || (closing(surface, 1 - k, 1.0, None).is_some_and(|c| c.1)
+                    && closing(surface, 1 - k, -1.0, None).is_some_and(|c| c.1))
+        });
+        if contractible.is_empty() || (area < 0.0 && closed_all_around) {
+            // The whole surface, minus the holes.
+            let [us, vs] = maker.start;
+            let ur = periods[0].map_or((u0, u1), |p| (us, us + p));
+            let vr = periods[1].map_or((v0, v1), |p| (vs, vs + p));
+            if !(ur.0.is_finite() && ur.1.is_finite() && vr.0.is_finite() && vr.1.is_finite()) {
+                return Err(TrimError::Unbounded);
+            }
+            let outer = domain_box(&mut maker, ur, vr);
+            place_holes(&mut contractible, &outer, &periods, notes);
+            loops.push(outer);
+        } else if periods.iter().any(Option::is_some) && contractible.len() > 1 {
+            // Holes go inside the outer loop, whatever period their points landed in.
+            let outer_index = (0..contractible.len())
+                .max_by(|&a, &b| {
+                    polygon_area(&contractible[a].points())
+                        .abs()
+                        .total_cmp(&polygon_area(&contractible[b].points()).abs())
+                })
+                .expect("len > 1");
+            let outer = contractible.remove(outer_index);
+            let outer_loop = TrimLoop {
+                segments: outer.segments,
+            };
+            place_holes(&mut contractible, &outer_loop, &periods, notes);
+            loops.push(outer_loop);
+        }
+        loops.extend(contractible.into_iter().map(|c| TrimLoop {
+            segments: c.segments,
+        }));
+        return Ok(loops);
+    }
+    let axis = wrapping[0].1;
+    if wrapping.iter().any(|w| w.1 != axis) {
+        return Err(TrimError::Wrapping(
+            "loops go around the surface in both directions".into(),
+        ));
+    }
+    let period = periods[axis].expect("wrapping implies a period");
+    let w = 1 - axis;
+    // Face side of each chain along w: left of its direction. Going +u the left is +v; going
+    // +v the left is -u.
+    let side = |sign: f64| if axis == 0 { sign } else { -sign };
+    let mean_w = |c: &Chain| {
+        let pts = c.points();
+        pts.iter().map(|p| p.uv[w]).sum::<f64>() / pts.len() as f64
+    };
+    // Bring every chain into one period of w when w is periodic too (torus).
+    if let Some(pw) = periods[w] {
+        let base = mean_w(&wrapping[0].0);
+        for (c, _, _) in wrapping.iter_mut() {
+            let m = mean_w(c);
+            let k = ((m - base) / pw).floor();
+            if k != 0.0 {
+                shift_chain(c, -unit(w) * k * pw);
+            }
+        }
+    }
+    wrapping.sort_by(|a, b| mean_w(&a.0).total_cmp(&mean_w(&b.0)));
+    if let Some(pw) = periods[w]
+        && wrapping.first().is_some_and(|c| side(c.2) < 0.0)
+    {
+        // On a torus the lowest chain may face down, towards the highest one a period below.
+        let mut c = wrapping.remove(0);
+        shift_chain(&mut c.0, unit(w) * pw);
+        wrapping.push(c);
+    }
+    let holes_d: Vec<(f64, f64)> = contractible
+        .iter()
+        .map(|c| {
+            let pts = c.points();
+            let lo = pts.iter().map(|p| p.uv[axis]).fold(f64::INFINITY, f64::min);
+            let hi = pts
+                .iter()
+                .map(|p| p.uv[axis])
+                .fold(f64::NEG_INFINITY, f64::max);
+            (lo, hi)
+        })
+        .collect();
+    let mut i = 0;
+    while i < wrapping.len() {
+        let (ref b_chain, _, b_sign) = wrapping[i];
+        let b_side = side(b_sign);
+        let paired = b_side > 0.0 && i + 1 < wrapping.len() && side(wrapping[i + 1].2) < 0.0;
+        let b_pts = b_chain.points();
+        let b_at = seam_point(&b_pts, &holes_d, period, axis);
+        let b_rot = rotate(&b_pts, b_at, b_sign * period * unit(axis));
+        let b_end = *b_rot.last().expect("rotated chain has points");
+        let b_start = b_rot[0];
+        let mut pts: Vec<TrimPoint> = Vec::new();
+        pts.extend_from_slice(&b_rot);
+        if paired {
+            let (ref t_chain, _, t_sign) = wrapping[i + 1];
+            let t_pts = t_chain.points();
+            // The T point nearest, in the wrapping direction, to where B ended.
+            let target = b_end.uv[axis];
+            let t_at = (0..t_pts.len() - 1)
+                .min_by(|&a, &b| {
+                    let da = circ(t_pts[a].uv[axis] - target, period);
+                    let db = circ(t_pts[b].uv[axis] - target, period);
+                    da.total_cmp(&db)
+                })
+                .unwrap_or(0);
+            let mut t_rot = rotate(&t_pts, t_at, t_sign * period * unit(axis));
+            let k = ((target - t_rot[0].uv[axis]) / period).round();
+            for p in &mut t_rot {
+                p.uv[axis] += k * period;
+            }
+            let up = maker.line(b_end.uv, t_rot[0].uv, false);
+            let t_end = *t_rot.last().expect("rotated chain has points");
+            // The way back is the same seam line a period over: same points, same keys.
+            let down: Vec<TrimPoint> = up
+                .iter()
+                .rev()
+                .map(|p| TrimPoint {
+                    uv: p.uv - b_sign * period * unit(axis),
+                    ..*p
+                })
+                .collect();
+            let _ = t_end;
+            pts.extend(up);
+            pts.extend(t_rot);
+            pts.extend(down);
+            i += 2;
+        } else {
+            if let Some(pw) = periods[w] {
+                let _ = pw;
+                return Err(TrimError::Wrapping(
+                    "a loop goes around a closed surface with no partner loop".into(),
+                ));
+            }
+            let range = {
+                let lo = b_pts.iter().map(|p| p.uv[w]).fold(f64::INFINITY, f64::min);
+                let hi = b_pts
+                    .iter()
+                    .map(|p| p.uv[w])
+                    .fold(f64::NEG_INFINITY, f64::max);
+                (lo, hi)
+            };
+            let Some((wc, pole)) = closing(surface, axis, b_side, Some(range)) else {
+                return Err(TrimError::Wrapping(
+                    "the face goes around the surface and nothing closes it on one side".into(),
+                ));
+            };
+            if !pole {
+                notes.push("closed along a free side of the surface's domain".into());
+            }
+            let with_w = |p: Vec2| {
+                let mut q = p;
+                q[w] = wc;
+                q
+            };
+            let c_end = with_w(b_end.uv);
+            let c_start = with_w(b_start.uv);
+            let up = maker.line(b_end.uv, c_end, false);
+            let corner_end = maker.point(c_end, pole);
+            let across = maker.line(c_end, c_start, pole);
+            let corner_start = maker.point(c_start, pole);
+            let down: Vec<TrimPoint> = up
+                .iter()
+                .rev()
+                .map(|p| TrimPoint {
+                    uv: p.uv - b_sign * period * unit(axis),
+                    ..*p
+                })
+                .collect();
+            pts.extend(up);
+            pts.push(corner_end);
+            pts.extend(across);
+            pts.push(corner_start);
+            pts.extend(down);
+            i += 1;
+        }
+        loops.push(TrimLoop {
+            segments: vec![segment(SegmentSource::Seam, pts)],
+        });
+    }
+    if let Some(outer) = loops.first().cloned() {
+        place_holes(&mut contractible, &outer, &periods, notes);
+    }
+    loops.extend(contractible.into_iter().map(|c| TrimLoop {
+        segments: c.segments,
+    }));
+    Ok(loops)
+}
+
+/// Distance to the nearest multiple of `period`.
+fn circ(x: f64, period: f64) -> f64 {
+    (x - (x / period).round() * period).abs()
+}
+
+/// Index of the chain point where the seam line starts: the one farthest, around the
+/// wrapping direction, from every hole.
+fn seam_point(pts: &[TrimPoint], holes: &[(f64, f64)], period: f64, axis: usize) -> usize {
+    if holes.is_empty() || pts.len() < 2 {
+        return 0;
+    }
+    let n = pts.len() - 1;
+    let step = (n / 64).max(1);
+    (0..n)
+        .step_by(step)
+        .max_by(|&a, &b| {
+            let score = |i: usize| {
+                let x = pts[i].uv[axis];
+                holes
+                    .iter()
+                    .map(|&(lo, hi)| {
+                        let mid = 0.5 * (lo + hi);
+                        (circ(x - mid, period) - 0.5 * (hi - lo)).max(0.0)
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            };
+            score(a).total_cmp(&score(b))
+        })
+        .unwrap_or(0)
+}
+
+/// A wrapping chain (`pts[last]` is `pts[0]` one period on, by `shift`) restarted at index
+/// `at`: from `pts[at]` around to `pts[at] + shift`.
+fn rotate(pts: &[TrimPoint], at: usize, shift: Vec2) -> Vec<TrimPoint> {
+    let n = pts.len() - 1; // the last point repeats the first, shifted
+    let mut out = Vec::with_capacity(n + 1);
+    out.extend_from_slice(&pts[at..n]);
+    out.extend(pts[..=at].iter().map(|p| TrimPoint {
+        uv: p.uv + shift,
+        ..*p
+    }));
+    out
+}
+
+/// The w value closing a face that goes around in `axis` on its `side` of w (±1): a pole
+/// (sphere, cone apex, B-spline or revolution ending on its axis; second value `true`) or a
+/// finite end of the domain (`false`). `range`: the w values the chain spans.
+fn closing(
+    surface: &Surface,
+    axis: usize,
+    side: f64,
+    range: Option<(f64, f64)>,
+) -> Option<(f64, bool)> {
+    let w = 1 - axis;
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let (w0, w1) = if w == 0 { (u0, u1) } else { (v0, v1) };
+    let mut candidate = if side > 0.0 { w1 } else { w0 };
+    if let Surface::Cone {
+        radius, semi_angle, ..
+    } = surface
+        && w == 1
+    {
+        let apex = -radius / semi_angle.tan();
+        let ok = match range {
+            Some((lo, hi)) => (side > 0.0 && apex >= hi) || (side < 0.0 && apex <= lo),
+            None => true,
+        };
+        candidate = if ok { apex } else { f64::NAN };
+    }
+    if !candidate.is_finite() {
+        return None;
+    }
+    let (a0, a1) = if axis == 0 { (u0, u1) } else { (v0, v1) };
+    let (a0, a1) = if (a1 - a0).is_finite() {
+        (a0, a1)
+    } else {
+        (0.0, std::f64::consts::TAU)
+    };
+    let at = |s: f64| {
+        let a = a0 + (a1 - a0) * s;
+        if axis == 0 {
+            surface.eval(a, candidate)
+        } else {
+            surface.eval(candidate, a)
+        }
+    };
+    let p0 = at(0.0);
+    let size = (0..8)
+        .map(|i| (at(i as f64 / 8.0) - p0).length())
+        .fold(0.0, f64::max);
+    let scale = (at(0.5)
+        - surface.eval(
+            0.5 * (u0.max(-1e9) + u1.min(1e9)),
+            0.5 * (v0.max(-1e9) + v1.min(1e9)),
+        ))
+    .length();
+    let pole = size <= 1e-9 * (1.0 + scale + p0.length());
+    Some((candidate, pole))
+}
+
+/// A rectangle of the domain, counter-clockwise; sides along periods are seams (welded),
+/// sides that are poles collapse to one key.
+fn domain_box(maker: &mut Maker, ur: (f64, f64), vr: (f64, f64)) -> TrimLoop {
+    let corners = [
+        Vec2::new(ur.0, vr.0),
+        Vec2::new(ur.1, vr.0),
+        Vec2::new(ur.1, vr.1),
+        Vec2::new(ur.0, vr.1),
+    ];
+    let surface = maker.surface;
+    let same = maker.same;
+    let is_pole = |a: Vec2, b: Vec2| {
+        let pa = surface.eval(a.x, a.y);
+        (0..=4).all(|i| {
+            let p = a + (b - a) * (i as f64 / 4.0);
+            (surface.eval(p.x, p.y) - pa).length() <= same
+        })
+    };
+    let mut pts = Vec::new();
+    for i in 0..4 {
+        let (a, b) = (corners[i], corners[(i + 1) % 4]);
+        let pole = is_pole(a, b);
+        pts.push(maker.point(a, pole || is_pole(corners[(i + 3) % 4], a)));
+        pts.extend(maker.line(a, b, pole));
+    }
+    TrimLoop {
+        segments: vec![segment(SegmentSource::Boundary, pts)],
+    }
+}
+
+/// Moves each hole by whole periods so it lies inside `outer`.
+fn place_holes(
+    holes: &mut [Chain],
+    outer: &TrimLoop,
+    periods: &[Option<f64>; 2],
+    notes: &mut Vec<String>,
+) {
+    let poly = outer.polygon();
+    if poly.len() < 3 {
+        return;
+    }
+    for hole in holes.iter_mut() {
+        let pts = hole.points();
+        let Some(probe) = pts.first() else { continue };
+        if inside(&poly, probe.uv) {
+            continue;
+        }
+        let ks = |k: usize| -> Vec<f64> {
+            if periods[k].is_some() {
+                vec![0.0, 1.0, -1.0, 2.0, -2.0]
+            } else {
+                vec![0.0]
+            }
+        };
+        let mut placed = false;
+        'search: for a in ks(0) {
+            for b in ks(1) {
+                let by = Vec2::new(a * periods[0].unwrap_or(0.0), b * periods[1].unwrap_or(0.0));
+                if inside(&poly, probe.uv + by) {
+                    shift_chain(hole, by);
+                    placed = true;
+                    break 'search;
+                }
+            }
+        }
+        if !placed {
+            notes.push("a hole lies outside its face's outer loop".into());
+        }
+    }
+}

@@ -1,0 +1,217 @@
+//! Trim loops: each face's boundary as closed, oriented polygons and exact curves in the
+//! (u, v) domain of its surface.
+//!
+//! This is what tessellation and GPU trimming consume. A face's loops come from its oriented
+//! edges: every edge point gets its (u, v) from the file's pcurve when that pcurve agrees with
+//! the 3D point, else by projecting the point on the surface. Parameters are unwrapped so each
+//! loop is continuous across seams; singular points (poles, cone apex) take their free
+//! parameter from their neighbours. Loops that go around a periodic surface (a cylinder face
+//! bounded by two circles, a hemisphere bounded by its equator) are closed here by seam lines
+//! and pole lines, so every [`TrimLoop`] is a closed polygon with the face on its left.
+//!
+//! Points carry weld [`keys`](TrimKey) so the tessellation can join faces without cracks:
+//! edge samples and vertices have keys shared by every face that uses them; seam and pole
+//! points have face-local keys shared by both sides of the seam.
+
+mod close;
+mod exact;
+mod key;
+mod uv;
+
+use cadre_geom::{Accuracy, Curve2, Surface, Vec2, Vec3};
+
+use crate::{EdgeId, FaceId, Model};
+
+pub use key::TrimKey;
+pub use uv::periods;
+
+/// One point of an edge's shared discretisation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeSample {
+    /// Parameter on the edge's 3D curve (0 for an edge without curve).
+    pub t: f64,
+    /// Position, model units.
+    pub xyz: Vec3,
+    /// Weld key ([`TrimKey::vertex`] at the ends, [`TrimKey::edge`] inside).
+    pub key: u64,
+}
+
+/// Source of the edge discretisation a face's loops are built from, so that every face using
+/// an edge gets the same points.
+pub trait EdgeSamples {
+    /// Samples of `edge` from its start vertex to its end vertex (the edge's own direction),
+    /// both ends included. Empty when the edge cannot be sampled.
+    fn samples(&self, edge: EdgeId) -> &[EdgeSample];
+}
+
+/// Tolerances for the points the trim adds itself (seam and pole lines, domain sides).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrimTolerance {
+    /// Largest chordal deviation of a segment from the surface, model units.
+    pub deflection: f64,
+    /// Largest angle between the surface normals at the ends of a segment, radians.
+    pub angle: f64,
+    /// Accuracy of point projections.
+    pub accuracy: Accuracy,
+    /// Whether to keep the exact (u, v) curve of each edge ([`TrimSegment::exact`]); the
+    /// tessellation needs only the polylines.
+    pub keep_exact: bool,
+}
+
+/// A trim polygon point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrimPoint {
+    /// Parameters, unwrapped (may lie outside the surface's first period).
+    pub uv: Vec2,
+    /// Exact position, model units (the shared edge sample, not re-evaluated).
+    pub xyz: Vec3,
+    /// Weld key.
+    pub key: u64,
+}
+
+/// Where a trim segment comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SegmentSource {
+    /// A B-Rep edge, used forward (`true`) or reversed.
+    Edge {
+        /// The edge.
+        edge: EdgeId,
+        /// Whether the loop runs along the edge's direction.
+        forward: bool,
+    },
+    /// A seam line added to close a loop that goes around a periodic surface.
+    Seam,
+    /// A line along a pole (sphere pole, cone apex) or a side of the surface's domain.
+    Boundary,
+    /// A polygonal boundary of a faceted face (`POLY_LOOP`).
+    Polygon,
+}
+
+/// The exact (u, v) curve of a segment: `curve(t) + offset` for `t` from `t0` to `t1`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExactTrim {
+    /// The curve (a pcurve of the file, or the exact image of the 3D curve).
+    pub curve: Curve2,
+    /// Parameter at the segment's start.
+    pub t0: f64,
+    /// Parameter at the segment's end.
+    pub t1: f64,
+    /// Period shift applied to the curve.
+    pub offset: Vec2,
+}
+
+/// A piece of a trim loop.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TrimSegment {
+    /// Where it comes from.
+    pub source: SegmentSource,
+    /// Exact curve when known (pcurves, edges on planes, seam and pole lines).
+    pub exact: Option<ExactTrim>,
+    /// Polyline, in loop order; the last point is the next segment's first.
+    pub points: Vec<TrimPoint>,
+}
+
+/// A closed trim loop, the face on its left in (u, v).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TrimLoop {
+    /// Segments in order.
+    pub segments: Vec<TrimSegment>,
+}
+
+impl TrimLoop {
+    /// The closed polygon: every point once (the closing point is not repeated), consecutive
+    /// duplicates (same key) removed.
+    pub fn polygon(&self) -> Vec<TrimPoint> {
+        let mut out: Vec<TrimPoint> = Vec::new();
+        for s in &self.segments {
+            for p in &s.points {
+                if out
+                    .last()
+                    .is_some_and(|q| q.key == p.key && (q.uv - p.uv).length() < 1e-12)
+                {
+                    continue;
+                }
+                out.push(*p);
+            }
+        }
+        while out.len() > 1 {
+            let (f, l) = (out[0], out[out.len() - 1]);
+            if f.key == l.key && (f.uv - l.uv).length() <= 1e-9 * (1.0 + f.uv.length()) {
+                out.pop();
+            } else {
+                break;
+            }
+        }
+        out
+    }
+
+    /// Signed area of the polygon in (u, v): positive counter-clockwise.
+    pub fn signed_area(&self) -> f64 {
+        polygon_area(&self.polygon())
+    }
+}
+
+/// Signed area of a closed (u, v) polygon.
+pub fn polygon_area(poly: &[TrimPoint]) -> f64 {
+    let n = poly.len();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (poly[i].uv, poly[(i + 1) % n].uv);
+            a.x * b.y - a.y * b.x
+        })
+        .sum::<f64>()
+        * 0.5
+}
+
+/// A face's trim: closed loops, face on the left of each in (u, v).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FaceTrim {
+    /// The loops; the face is what they enclose by the even-odd rule.
+    pub loops: Vec<TrimLoop>,
+    /// Whether the face normal is opposite to the surface normal `Su × Sv` (face
+    /// `same_sense` false). The loops are already oriented for (u, v).
+    pub reversed: bool,
+    /// Repairs made (a loop reversed, …), for reports.
+    pub notes: Vec<String>,
+}
+
+/// Why a face's trim could not be built.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum TrimError {
+    /// The face's surface is unbounded and the face has no boundary.
+    #[error("the face has no boundary and its surface is unbounded")]
+    Unbounded,
+    /// An edge of the face has no discretisation.
+    #[error("edge #{0} could not be sampled")]
+    EdgeNotSampled(u64),
+    /// No point of a loop could be placed on the surface.
+    #[error("loop points do not project onto the surface")]
+    Projection,
+    /// A loop goes around the surface in a way no closing can make a face of.
+    #[error("loops go around the surface inconsistently: {0}")]
+    Wrapping(String),
+}
+
+/// Builds the trim of face `face_id`.
+pub fn face_trim(
+    model: &Model,
+    face_id: FaceId,
+    edges: &impl EdgeSamples,
+    tol: &TrimTolerance,
+) -> Result<FaceTrim, TrimError> {
+    let face = &model.faces[face_id.index()];
+    let surface = &model.surfaces[face.surface.index()];
+    let (chains, vertex_loops) = uv::face_chains(model, face, surface, edges, tol)?;
+    let mut notes = Vec::new();
+    let loops = close::close_loops(surface, face_id, chains, &vertex_loops, tol, &mut notes)?;
+    Ok(FaceTrim {
+        loops,
+        reversed: !face.same_sense,
+        notes,
+    })
+}
+
+/// The surface a face lies on (convenience for callers holding only ids).
+pub fn face_surface(model: &Model, face_id: FaceId) -> &Surface {
+    &model.surfaces[model.faces[face_id.index()].surface.index()]
+}

@@ -1,0 +1,435 @@
+//! (u, v) of loop points: from the file's pcurves when they agree with the 3D points, else
+//! by projection; unwrapped across seams; singular points (poles, apex) completed from their
+//! neighbours.
+
+use std::collections::HashMap;
+
+use cadre_geom::{Accuracy, Curve2, Surface, Vec2, Vec3};
+
+use super::exact;
+use super::{
+    EdgeSamples, ExactTrim, SegmentSource, TrimError, TrimKey, TrimPoint, TrimSegment,
+    TrimTolerance,
+};
+use crate::{EdgeId, Face, LoopKind, Model, OrientedEdge, SurfaceId};
+
+/// Periods used for unwrapping: the surface's own, or for a B-spline closed in a direction
+/// (first and last rows of control points meet), the length of its domain there.
+pub fn periods(surface: &Surface) -> [Option<f64>; 2] {
+    let mut p = [surface.u_period(), surface.v_period()];
+    if let Surface::BSpline(b) = surface
+        && b.is_well_formed()
+    {
+        let ((u0, u1), (v0, v1)) = b.domain();
+        let size = (surface.eval(u0, v0) - surface.eval(u1, v1)).length()
+            + (surface.eval(u0, v1) - surface.eval(u1, v0)).length()
+            + (surface.eval(0.5 * (u0 + u1), v0) - surface.eval(0.5 * (u0 + u1), v1)).length()
+            + 1e-9;
+        let tol = 1e-7 * size.max(1.0);
+        let samples = |f: &dyn Fn(f64) -> bool| (0..=8).all(|i| f(i as f64 / 8.0));
+        if samples(&|s| {
+            let v = v0 + (v1 - v0) * s;
+            (surface.eval(u0, v) - surface.eval(u1, v)).length() <= tol
+        }) {
+            p[0] = Some(u1 - u0);
+        }
+        if samples(&|s| {
+            let u = u0 + (u1 - u0) * s;
+            (surface.eval(u, v0) - surface.eval(u, v1)).length() <= tol
+        }) {
+            p[1] = Some(v1 - v0);
+        }
+    }
+    p
+}
+
+/// A point under construction: which of its parameters are free (the point is a pole in
+/// that direction), and the segment it belongs to.
+#[derive(Clone, Copy, Debug)]
+struct Raw {
+    point: TrimPoint,
+    free: [bool; 2],
+    segment: usize,
+}
+
+/// A chain of segments: a whole loop, or the part of a loop between two uses of a seam.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Chain {
+    pub segments: Vec<TrimSegment>,
+}
+
+impl Chain {
+    /// Runs the chain backwards.
+    pub fn reverse(&mut self) {
+        self.segments.reverse();
+        for s in &mut self.segments {
+            s.points.reverse();
+            if let SegmentSource::Edge { forward, .. } = &mut s.source {
+                *forward = !*forward;
+            }
+            if let Some(e) = &mut s.exact {
+                std::mem::swap(&mut e.t0, &mut e.t1);
+            }
+        }
+    }
+
+    /// All points in order, consecutive repeats (same key and (u, v)) removed.
+    pub fn points(&self) -> Vec<TrimPoint> {
+        let mut out: Vec<TrimPoint> = Vec::new();
+        for s in &self.segments {
+            for p in &s.points {
+                if out
+                    .last()
+                    .is_some_and(|q| q.key == p.key && (q.uv - p.uv).length() <= 1e-12)
+                {
+                    continue;
+                }
+                out.push(*p);
+            }
+        }
+        out
+    }
+}
+
+/// A face bound that is a single vertex: its point and weld key.
+pub(super) type VertexLoop = (Vec3, u64);
+
+/// Tolerances derived once per face.
+struct Ctx<'a> {
+    model: &'a Model,
+    surface_id: SurfaceId,
+    surface: &'a Surface,
+    periods: [Option<f64>; 2],
+    acc: Accuracy,
+    /// Distance under which a pcurve point and the 3D point agree.
+    agree: f64,
+    /// Distance under which a parameter step does not move the point: a pole.
+    pole: f64,
+    /// Parameter steps probing for poles.
+    probe: [f64; 2],
+    keep_exact: bool,
+}
+
+/// The face's loops as chains, seams removed, in (u, v), face on the left. Vertex loops are
+/// returned separately as (point, key).
+pub(super) fn face_chains(
+    model: &Model,
+    face: &Face,
+    surface: &Surface,
+    edges: &impl EdgeSamples,
+    tol: &TrimTolerance,
+) -> Result<(Vec<Chain>, Vec<VertexLoop>), TrimError> {
+    let reversed = !face.same_sense;
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let span = |a: f64, b: f64| {
+        if (b - a).is_finite() {
+            0.25 * (b - a)
+        } else {
+            1.0
+        }
+    };
+    let cx = Ctx {
+        model,
+        surface_id: face.surface,
+        surface,
+        periods: periods(surface),
+        acc: tol.accuracy,
+        agree: 10.0 * tol.deflection + 1e3 * tol.accuracy.distance,
+        pole: (1e-3 * tol.deflection).max(10.0 * tol.accuracy.distance),
+        probe: [span(u0, u1), span(v0, v1)],
+        keep_exact: tol.keep_exact,
+    };
+    // An edge used twice by the face in opposite directions is a seam (or a slit): it bounds
+    // nothing, and the closing step adds its own seam lines where the face needs them.
+    let mut uses: HashMap<EdgeId, [u32; 2]> = HashMap::new();
+    for lp in &face.loops {
+        if let LoopKind::Edges(oes) = &lp.kind {
+            for oe in oes {
+                uses.entry(oe.edge).or_default()[usize::from(oe.forward)] += 1;
+            }
+        }
+    }
+    let is_seam = |e: EdgeId| uses.get(&e).is_some_and(|n| n[0] > 0 && n[1] > 0);
+    let mut chains = Vec::new();
+    let mut vertex_loops = Vec::new();
+    let mut hint: Option<Vec2> = None;
+    for lp in &face.loops {
+        let flip = lp.orientation == reversed;
+        match &lp.kind {
+            LoopKind::Edges(oes) => {
+                let mut pieces: Vec<Vec<TrimSegment>> = vec![Vec::new()];
+                let mut cut = false;
+                for oe in oes {
+                    if is_seam(oe.edge) {
+                        cut = true;
+                        pieces.push(Vec::new());
+                        continue;
+                    }
+                    let seg = edge_segment(&cx, *oe, edges, &mut hint)?;
+                    pieces.last_mut().expect("pieces is never empty").push(seg);
+                }
+                if cut && pieces.len() > 1 {
+                    // The loop is cyclic: its last piece continues into its first.
+                    let first = pieces.remove(0);
+                    pieces
+                        .last_mut()
+                        .expect("len > 1 before remove")
+                        .extend(first);
+                }
+                for piece in pieces.into_iter().filter(|p| !p.is_empty()) {
+                    let mut chain = finish(&cx, piece, !cut)?;
+                    if flip {
+                        chain.reverse();
+                    }
+                    chains.push(chain);
+                }
+            }
+            LoopKind::Poly(points) => {
+                let mut seg = TrimSegment {
+                    source: SegmentSource::Polygon,
+                    exact: None,
+                    points: Vec::with_capacity(points.len() + 1),
+                };
+                for p in points.iter().chain(points.first()) {
+                    let Some((u, v)) = surface.project(*p, hint.map(|h| (h.x, h.y)), cx.acc) else {
+                        continue;
+                    };
+                    hint = Some(Vec2::new(u, v));
+                    seg.points.push(TrimPoint {
+                        uv: Vec2::new(u, v),
+                        xyz: *p,
+                        key: TrimKey::position(*p),
+                    });
+                }
+                if seg.points.len() < 3 {
+                    return Err(TrimError::Projection);
+                }
+                let mut chain = finish(&cx, vec![seg], true)?;
+                if flip {
+                    chain.reverse();
+                }
+                chains.push(chain);
+            }
+            LoopKind::Vertex(v) => {
+                vertex_loops.push((model.vertices[v.index()].point, TrimKey::vertex(*v)));
+            }
+        }
+    }
+    Ok((chains, vertex_loops))
+}
+
+/// One edge's points in (u, v), in loop order, before unwrapping.
+fn edge_segment(
+    cx: &Ctx,
+    oe: OrientedEdge,
+    edges: &impl EdgeSamples,
+    hint: &mut Option<Vec2>,
+) -> Result<TrimSegment, TrimError> {
+    let edge = &cx.model.edges[oe.edge.index()];
+    let samples = edges.samples(oe.edge);
+    if samples.is_empty() {
+        return Err(TrimError::EdgeNotSampled(edge.step_id));
+    }
+    let n = samples.len();
+    let at = |i: usize| {
+        if oe.forward {
+            samples[i]
+        } else {
+            samples[n - 1 - i]
+        }
+    };
+    // The file's pcurve, if it lies where the 3D points are (pcurves are parameterised like
+    // the 3D curve, but files are not always right about it).
+    let pcurve: Option<&Curve2> = edge.curve.and_then(|_| {
+        edge.pcurves
+            .iter()
+            .filter(|(s, _)| *s == cx.surface_id)
+            .map(|(_, p)| &cx.model.pcurves[p.index()])
+            .find(|pc| {
+                [0, n / 2, n - 1].iter().all(|&i| {
+                    let s = samples[i];
+                    let uv = pc.eval(s.t);
+                    uv.is_finite() && (cx.surface.eval(uv.x, uv.y) - s.xyz).length() <= cx.agree
+                })
+            })
+    });
+    let mut points = Vec::with_capacity(n);
+    for i in 0..n {
+        let s = at(i);
+        let uv = match pcurve {
+            Some(pc) => pc.eval(s.t),
+            None => match cx.surface.project(s.xyz, hint.map(|h| (h.x, h.y)), cx.acc) {
+                Some((u, v)) => Vec2::new(u, v),
+                // An inner sample that does not project is left out; the ends may not be.
+                None if i > 0 && i + 1 < n => continue,
+                None => return Err(TrimError::Projection),
+            },
+        };
+        *hint = Some(uv);
+        points.push(TrimPoint {
+            uv,
+            xyz: s.xyz,
+            key: s.key,
+        });
+    }
+    let exact = if !cx.keep_exact {
+        None
+    } else if let Some(pc) = pcurve {
+        Some(ExactTrim {
+            curve: pc.clone(),
+            t0: at(0).t,
+            t1: at(n - 1).t,
+            offset: Vec2::ZERO,
+        })
+    } else {
+        edge.curve
+            .and_then(|c| exact::image(cx.surface, &cx.model.curves[c.index()]))
+            .map(|curve| ExactTrim {
+                curve,
+                t0: at(0).t,
+                t1: at(n - 1).t,
+                offset: Vec2::ZERO,
+            })
+    };
+    Ok(TrimSegment {
+        source: SegmentSource::Edge {
+            edge: oe.edge,
+            forward: oe.forward,
+        },
+        exact,
+        points,
+    })
+}
+
+/// Which parameters of a surface point are free: moving them does not move the point.
+fn free_params(cx: &Ctx, uv: Vec2, xyz: Vec3) -> [bool; 2] {
+    if matches!(
+        cx.surface,
+        Surface::Plane { .. } | Surface::Cylinder { .. } | Surface::Extrusion { .. }
+    ) {
+        return [false, false];
+    }
+    let moved = |du: f64, dv: f64| (cx.surface.eval(uv.x + du, uv.y + dv) - xyz).length();
+    [
+        moved(cx.probe[0], 0.0) <= cx.pole && moved(-cx.probe[0], 0.0) <= cx.pole,
+        moved(0.0, cx.probe[1]) <= cx.pole && moved(0.0, -cx.probe[1]) <= cx.pole,
+    ]
+}
+
+/// Unwraps a chain's points across seams and completes its singular points. `cyclic`: the
+/// chain is a whole loop (its end runs into its start).
+fn finish(cx: &Ctx, segments: Vec<TrimSegment>, cyclic: bool) -> Result<Chain, TrimError> {
+    let mut raw: Vec<Raw> = Vec::new();
+    let mut sources = Vec::with_capacity(segments.len());
+    for (si, s) in segments.into_iter().enumerate() {
+        for p in &s.points {
+            raw.push(Raw {
+                point: *p,
+                free: free_params(cx, p.uv, p.xyz),
+                segment: si,
+            });
+        }
+        sources.push((s.source, s.exact));
+    }
+    let fixed = |r: &Raw| !r.free[0] && !r.free[1];
+    if !raw.iter().any(fixed) {
+        return Err(TrimError::Projection);
+    }
+    // Unwrap: each periodic parameter continues from the previous point that fixes it.
+    let mut prev: [Option<f64>; 2] = [None, None];
+    for r in raw.iter_mut() {
+        for (k, last) in prev.iter_mut().enumerate() {
+            if r.free[k] {
+                continue;
+            }
+            let x = &mut r.point.uv[k];
+            if let (Some(p), Some(period)) = (*last, cx.periods[k]) {
+                *x += ((p - *x) / period).round() * period;
+            }
+            *last = Some(*x);
+        }
+    }
+    // Singular points: each run of points free in a parameter goes, in that parameter, from
+    // the value of the fixed point before the run to the value of the one after it (the pole
+    // line). A lone singular point is doubled so the pole line has both ends.
+    for k in 0..2 {
+        let mut i = 0;
+        let mut out: Vec<Raw> = Vec::with_capacity(raw.len() + 4);
+        while i < raw.len() {
+            if !raw[i].free[k] {
+                out.push(raw[i]);
+                i += 1;
+                continue;
+            }
+            let start = i;
+            while i < raw.len() && raw[i].free[k] {
+                i += 1;
+            }
+            let before = (0..start).rev().find(|&j| !raw[j].free[k]).or_else(|| {
+                cyclic
+                    .then(|| (i..raw.len()).rev().find(|&j| !raw[j].free[k]))
+                    .flatten()
+            });
+            let after = (i..raw.len()).find(|&j| !raw[j].free[k]).or_else(|| {
+                cyclic
+                    .then(|| (0..start).find(|&j| !raw[j].free[k]))
+                    .flatten()
+            });
+            let a = before.map(|j| raw[j].point.uv[k]);
+            let b = after.map(|j| raw[j].point.uv[k]);
+            let (a, b) = match (a, b) {
+                (Some(a), Some(b)) => (a, b),
+                (Some(a), None) => (a, a),
+                (None, Some(b)) => (b, b),
+                (None, None) => (0.0, 0.0),
+            };
+            let mut run: Vec<Raw> = raw[start..i].to_vec();
+            if run.len() == 1 && a != b {
+                run.push(run[0]);
+            }
+            let m = run.len();
+            for (j, r) in run.iter_mut().enumerate() {
+                let s = if m > 1 {
+                    j as f64 / (m - 1) as f64
+                } else {
+                    0.0
+                };
+                r.point.uv[k] = a + (b - a) * s;
+                r.free[k] = false;
+            }
+            out.extend(run);
+        }
+        raw = out;
+    }
+    // Back into segments.
+    let mut segments: Vec<TrimSegment> = sources
+        .into_iter()
+        .map(|(source, exact)| TrimSegment {
+            source,
+            exact,
+            points: Vec::new(),
+        })
+        .collect();
+    for r in raw {
+        segments[r.segment].points.push(r.point);
+    }
+    segments.retain(|s| !s.points.is_empty());
+    // The exact curve's period shift is the one its first point got.
+    for s in &mut segments {
+        if let Some(e) = &mut s.exact {
+            let p = e.curve.eval(e.t0);
+            let first = s.points[0].uv;
+            if p.is_finite() {
+                let mut off = first - p;
+                for k in 0..2 {
+                    off[k] = match cx.periods[k] {
+                        Some(period) => (off[k] / period).round() * period,
+                        None => 0.0,
+                    };
+                }
+                e.offset = off;
+            }
+        }
+    }
+    Ok(Chain { segments })
+}

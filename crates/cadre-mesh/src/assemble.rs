@@ -1,0 +1,270 @@
+//! From a meshed model to an export [`Scene`]: one mesh per part (faces keep their own
+//! vertices so normals stay sharp at edges and each vertex knows its face), one node per
+//! occurrence (the assembly tree), materials from the STEP colours.
+
+use std::collections::HashMap;
+
+use cadre_brep::{Body, FaceId, Model, PartId, ShellId, SolidId, Style};
+
+use crate::ModelMesh;
+use crate::export::{Material, Primitive, Scene, SceneMesh, SceneNode};
+
+/// Most nodes the scene may get; deeper or wider assembly expansions are cut.
+const MAX_NODES: usize = 4_000_000;
+
+/// sRGB-encoded component (as CAD colours are given) to linear (as glTF wants).
+fn linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Material key: colour quantised to 1/1000 and opacity.
+type MaterialKey = Option<[u16; 4]>;
+
+struct Builder<'a> {
+    model: &'a Model,
+    mesh: &'a ModelMesh,
+    materials: Vec<Material>,
+    material_index: HashMap<[u16; 4], usize>,
+}
+
+impl Builder<'_> {
+    fn material(&mut self, style: &Style) -> Option<usize> {
+        let key: MaterialKey = style.color.map(|c| {
+            let q = |x: f32| (x.clamp(0.0, 1.0) * 1000.0).round() as u16;
+            [q(c.r), q(c.g), q(c.b), q(1.0 - style.transparency)]
+        });
+        let key = key?;
+        if let Some(&i) = self.material_index.get(&key) {
+            return Some(i);
+        }
+        let c = style.color.expect("key implies colour");
+        let i = self.materials.len();
+        self.materials.push(Material {
+            name: format!("colour {:.3} {:.3} {:.3}", c.r, c.g, c.b),
+            base_color: [
+                linear(c.r),
+                linear(c.g),
+                linear(c.b),
+                (1.0 - style.transparency).clamp(0.0, 1.0),
+            ],
+            // CAD parts read best as slightly glossy dielectrics unless told otherwise.
+            metallic: 0.0,
+            roughness: 0.45,
+        });
+        self.material_index.insert(key, i);
+        Some(i)
+    }
+
+    /// Appends one face's triangles (own vertices) to `out`, into the primitive of its
+    /// material.
+    fn add_face(
+        &mut self,
+        out: &mut SceneMesh,
+        prims: &mut HashMap<Option<usize>, usize>,
+        face: FaceId,
+        forward: bool,
+        style: Style,
+    ) {
+        if style.invisible {
+            return;
+        }
+        let Some(Some(fm)) = self.mesh.faces.get(face.index()) else {
+            return;
+        };
+        let material = self.material(&style);
+        let slot = *prims.entry(material).or_insert_with(|| {
+            out.primitives.push(Primitive {
+                indices: Vec::new(),
+                material,
+                face_ids: Vec::new(),
+            });
+            out.primitives.len() - 1
+        });
+        let base = out.positions.len() as u32;
+        let sign = if forward { 1.0 } else { -1.0 };
+        for p in &fm.points {
+            out.positions.push(p.xyz.as_vec3().to_array());
+            out.normals.push((p.normal * sign).as_vec3().to_array());
+        }
+        let step_id = u32::try_from(self.model.faces[face.index()].step_id).unwrap_or(0);
+        let prim = &mut out.primitives[slot];
+        for t in &fm.triangles {
+            let [a, b, c] = t.map(|i| base + i);
+            // Triangles that weld to a segment (two corners with one key) are degenerate.
+            let keys = t.map(|i| fm.points[i as usize].key);
+            if keys[0].is_some() && (keys[0] == keys[1] || keys[0] == keys[2])
+                || keys[1].is_some() && keys[1] == keys[2]
+            {
+                continue;
+            }
+            prim.indices
+                .extend(if forward { [a, b, c] } else { [a, c, b] });
+            prim.face_ids.push(step_id);
+        }
+    }
+
+    fn shell(
+        &mut self,
+        out: &mut SceneMesh,
+        prims: &mut HashMap<Option<usize>, usize>,
+        shell: ShellId,
+        solid: Option<SolidId>,
+        part: PartId,
+    ) {
+        for &(face, forward) in &self.model.shells[shell.index()].faces {
+            let style = self.model.face_style(face, Some(shell), solid, Some(part));
+            self.add_face(out, prims, face, forward, style);
+        }
+    }
+
+    fn part_mesh(&mut self, part: PartId) -> Option<SceneMesh> {
+        let p = self.model.part(part);
+        let mut out = SceneMesh {
+            name: p.name.clone(),
+            ..SceneMesh::default()
+        };
+        let mut prims = HashMap::new();
+        for body in &p.bodies {
+            match body {
+                Body::Solid(s) => {
+                    for shell in self.model.solids[s.index()].shells() {
+                        self.shell(&mut out, &mut prims, shell, Some(*s), part);
+                    }
+                }
+                Body::Shell(s) => self.shell(&mut out, &mut prims, *s, None, part),
+                Body::Face(f) => {
+                    let style = self.model.face_style(*f, None, None, Some(part));
+                    self.add_face(&mut out, &mut prims, *f, true, style);
+                }
+                Body::Mesh(m) => {
+                    let tm = &self.model.meshes[m.index()];
+                    let style = self
+                        .model
+                        .styles
+                        .get(&cadre_brep::StyleTarget::Mesh(*m))
+                        .copied()
+                        .unwrap_or_default()
+                        .over(
+                            self.model
+                                .styles
+                                .get(&cadre_brep::StyleTarget::Part(part))
+                                .copied()
+                                .unwrap_or_default(),
+                        );
+                    if style.invisible {
+                        continue;
+                    }
+                    let material = self.material(&style);
+                    let base = out.positions.len() as u32;
+                    out.positions
+                        .extend(tm.positions.iter().map(|p| p.as_vec3().to_array()));
+                    let normals = smooth_normals(tm);
+                    out.normals.extend(normals);
+                    out.primitives.push(Primitive {
+                        indices: tm.triangles.iter().flatten().map(|i| base + i).collect(),
+                        material,
+                        face_ids: vec![u32::try_from(tm.step_id).unwrap_or(0); tm.triangles.len()],
+                    });
+                }
+                Body::Edge(_) | Body::Wire(_) | Body::Point(_) => {}
+            }
+        }
+        out.primitives.retain(|p| !p.indices.is_empty());
+        (!out.primitives.is_empty()).then_some(out)
+    }
+}
+
+/// Normals of a file's mesh: its own when given, else area-weighted vertex normals.
+fn smooth_normals(m: &cadre_brep::TriangleMesh) -> Vec<[f32; 3]> {
+    if m.normals.len() == m.positions.len() {
+        return m
+            .normals
+            .iter()
+            .map(|n| n.normalize_or_zero().as_vec3().to_array())
+            .collect();
+    }
+    let mut acc = vec![cadre_geom::Vec3::ZERO; m.positions.len()];
+    for t in &m.triangles {
+        let [a, b, c] = t.map(|i| m.positions[i as usize]);
+        let n = (b - a).cross(c - a);
+        for i in t {
+            acc[*i as usize] += n;
+        }
+    }
+    acc.iter()
+        .map(|n| n.normalize_or_zero().as_vec3().to_array())
+        .collect()
+}
+
+/// The scene of a meshed model: its assembly tree with shared part meshes.
+pub fn build_scene(model: &Model, mesh: &ModelMesh) -> Scene {
+    let mut b = Builder {
+        model,
+        mesh,
+        materials: Vec::new(),
+        material_index: HashMap::new(),
+    };
+    let mut scene = Scene::new("mm");
+    let mut part_mesh: Vec<Option<usize>> = Vec::with_capacity(model.parts.len());
+    for i in 0..model.parts.len() {
+        let m = b.part_mesh(PartId(i as u32));
+        part_mesh.push(m.map(|m| {
+            scene.meshes.push(m);
+            scene.meshes.len() - 1
+        }));
+    }
+    scene.materials = b.materials;
+    // Expand the assembly DAG into a tree of nodes (glTF nodes have one parent).
+    let name_of = |part: PartId| {
+        let p = model.part(part);
+        if p.name.is_empty() {
+            p.product_id.clone()
+        } else {
+            p.name.clone()
+        }
+    };
+    let mut stack: Vec<(usize, PartId, usize)> = Vec::new();
+    for &root in &model.roots {
+        scene.nodes.push(SceneNode {
+            name: name_of(root),
+            mesh: part_mesh[root.index()],
+            ..SceneNode::default()
+        });
+        let n = scene.nodes.len() - 1;
+        scene.roots.push(n);
+        stack.push((n, root, 0));
+    }
+    while let Some((node, part, depth)) = stack.pop() {
+        if depth >= cadre_brep::assembly::MAX_ASSEMBLY_DEPTH {
+            continue;
+        }
+        for occ in &model.part(occ_part_guard(part)).children {
+            if scene.nodes.len() >= MAX_NODES {
+                break;
+            }
+            let name = if occ.name.is_empty() {
+                name_of(occ.part)
+            } else {
+                occ.name.clone()
+            };
+            scene.nodes.push(SceneNode {
+                name,
+                transform: occ.transform,
+                mesh: part_mesh.get(occ.part.index()).copied().flatten(),
+                children: Vec::new(),
+            });
+            let child = scene.nodes.len() - 1;
+            scene.nodes[node].children.push(child);
+            stack.push((child, occ.part, depth + 1));
+        }
+    }
+    scene
+}
+
+fn occ_part_guard(p: PartId) -> PartId {
+    p
+}

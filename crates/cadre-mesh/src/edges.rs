@@ -1,0 +1,203 @@
+//! Edge discretisation: every edge of the model sampled once, in 3D, to the linear and
+//! angular deflection (like OCCT's `GCPnts_TangentialDeflection`). Every face using an edge
+//! builds its trim polygon from these samples, which is what makes meshes watertight.
+
+use cadre_brep::bounds::edge_range;
+use cadre_brep::trim::{EdgeSample, EdgeSamples, TrimKey};
+use cadre_brep::{EdgeId, Model};
+use cadre_geom::{Accuracy, Curve3, Vec3};
+use rayon::prelude::*;
+
+use crate::MeshParams;
+
+/// Deepest bisection of one curve span (2^18 pieces).
+const MAX_DEPTH: u32 = 18;
+/// Most samples one edge may get, so a pathological curve cannot exhaust memory.
+const MAX_EDGE_SAMPLES: usize = 100_000;
+
+/// The samples of every edge of a model, indexed by edge id.
+#[derive(Clone, Debug, Default)]
+pub struct EdgeDiscretisation {
+    samples: Vec<Vec<EdgeSample>>,
+}
+
+impl EdgeSamples for EdgeDiscretisation {
+    fn samples(&self, edge: EdgeId) -> &[EdgeSample] {
+        self.samples.get(edge.index()).map_or(&[], Vec::as_slice)
+    }
+}
+
+impl EdgeDiscretisation {
+    /// Samples every edge of `model` (in parallel).
+    pub fn new(model: &Model, params: &MeshParams, acc: Accuracy) -> Self {
+        let samples = (0..model.edges.len())
+            .into_par_iter()
+            .map(|i| discretise_edge(model, EdgeId(i as u32), params, acc))
+            .collect();
+        Self { samples }
+    }
+
+    /// Total number of samples (for reports).
+    pub fn len(&self) -> usize {
+        self.samples.iter().map(Vec::len).sum()
+    }
+
+    /// Whether no edge has samples.
+    pub fn is_empty(&self) -> bool {
+        self.samples.iter().all(Vec::is_empty)
+    }
+}
+
+/// Samples of one edge from its start vertex to its end vertex. The ends are the vertices'
+/// own points (so edges meeting at a vertex meet exactly); a degenerate edge (no curve, or one
+/// whose vertices do not lie on it) is its two vertices.
+pub fn discretise_edge(
+    model: &Model,
+    id: EdgeId,
+    params: &MeshParams,
+    acc: Accuracy,
+) -> Vec<EdgeSample> {
+    let edge = &model.edges[id.index()];
+    let start = EdgeSample {
+        t: 0.0,
+        xyz: model.vertices[edge.start.index()].point,
+        key: TrimKey::vertex(edge.start),
+    };
+    let end = EdgeSample {
+        t: 0.0,
+        xyz: model.vertices[edge.end.index()].point,
+        key: TrimKey::vertex(edge.end),
+    };
+    let (Some(curve_id), Some((t0, t1))) = (edge.curve, edge_range(model, edge, acc)) else {
+        return vec![start, end];
+    };
+    let curve = &model.curves[curve_id.index()];
+    let mut params_along = sample_curve(curve, t0, t1, params);
+    if !edge.same_sense {
+        params_along.reverse();
+    }
+    let n = params_along.len();
+    let mut out = Vec::with_capacity(n);
+    for (i, &(t, p)) in params_along.iter().enumerate() {
+        if i == 0 {
+            out.push(EdgeSample { t, ..start });
+        } else if i + 1 == n {
+            out.push(EdgeSample { t, ..end });
+        } else {
+            out.push(EdgeSample {
+                t,
+                xyz: p,
+                key: TrimKey::edge(id, i),
+            });
+        }
+    }
+    out
+}
+
+/// Parameters and points along `curve` over `[t0, t1]` such that each chord is within the
+/// deflection of the curve and turns by at most the angle.
+pub fn sample_curve(curve: &Curve3, t0: f64, t1: f64, params: &MeshParams) -> Vec<(f64, Vec3)> {
+    let mut stops = vec![t0];
+    if !matches!(curve, Curve3::Line { .. }) {
+        stops.extend(curve.breaks_within(t0, t1));
+        // Conics start from quarter turns so the tangent test sees their curvature.
+        if let Some(period) = curve.period() {
+            let pieces = ((t1 - t0) / (0.25 * period)).ceil().max(1.0) as usize;
+            for k in 1..pieces {
+                stops.push(t0 + (t1 - t0) * k as f64 / pieces as f64);
+            }
+        }
+        stops.sort_by(f64::total_cmp);
+        stops.dedup();
+    }
+    stops.push(t1);
+    let mut out = Vec::with_capacity(stops.len() * 4);
+    let d0 = curve.derivs(t0);
+    out.push((t0, d0.point));
+    let mut prev = (t0, d0.point, d0.d1);
+    for &t in &stops[1..] {
+        if t <= prev.0 {
+            continue;
+        }
+        let d = curve.derivs(t);
+        let next = (t, d.point, d.d1);
+        bisect(curve, prev, next, params, 0, &mut out);
+        out.push((t, d.point));
+        prev = next;
+    }
+    out
+}
+
+/// Pushes the inner points of `[a, b]` needed for the tolerances, in order.
+fn bisect(
+    curve: &Curve3,
+    a: (f64, Vec3, Vec3),
+    b: (f64, Vec3, Vec3),
+    params: &MeshParams,
+    depth: u32,
+    out: &mut Vec<(f64, Vec3)>,
+) {
+    if depth >= MAX_DEPTH || out.len() >= MAX_EDGE_SAMPLES {
+        return;
+    }
+    let tm = 0.5 * (a.0 + b.0);
+    let dm = curve.derivs(tm);
+    let chord = b.1 - a.1;
+    let len2 = chord.length_squared();
+    let off = dm.point - a.1;
+    let deviation = if len2 > 0.0 {
+        (off - chord * (off.dot(chord) / len2)).length()
+    } else {
+        off.length()
+    };
+    let turn = match (a.2.try_normalize(), b.2.try_normalize()) {
+        (Some(ta), Some(tb)) => ta.dot(tb).clamp(-1.0, 1.0).acos(),
+        _ => 0.0,
+    };
+    // A tiny chord cannot get better by splitting (and a zero one means a degenerate span).
+    let tiny = len2.sqrt().max(off.length()) <= 1e-3 * params.deflection;
+    if (deviation > params.deflection || turn > params.angle) && !tiny {
+        let m = (tm, dm.point, dm.d1);
+        bisect(curve, a, m, params, depth + 1, out);
+        out.push((tm, dm.point));
+        bisect(curve, m, b, params, depth + 1, out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cadre_geom::curve::CurveFrame;
+
+    #[test]
+    fn circle_samples_meet_the_deflection_and_angle() {
+        let circle = Curve3::Circle {
+            frame: CurveFrame {
+                origin: Vec3::ZERO,
+                x: Vec3::X,
+                y: Vec3::Y,
+            },
+            radius: 10.0,
+        };
+        let params = MeshParams {
+            deflection: 0.01,
+            angle: 0.5,
+            ..MeshParams::default()
+        };
+        let s = sample_curve(&circle, 0.0, std::f64::consts::TAU, &params);
+        for w in s.windows(2) {
+            let dt = w[1].0 - w[0].0;
+            // Sagitta of a chord spanning dt radians.
+            let sagitta = 10.0 * (1.0 - (0.5 * dt).cos());
+            assert!(sagitta <= 0.01 + 1e-12, "sagitta {sagitta}");
+            assert!(dt <= 0.5 + 1e-12);
+        }
+        // And not absurdly many: the optimum is about 2π / (2 acos(1 - 0.001)) ≈ 70.
+        assert!(s.len() < 200, "{}", s.len());
+        let line = Curve3::Line {
+            origin: Vec3::ZERO,
+            direction: Vec3::X,
+        };
+        assert_eq!(sample_curve(&line, 0.0, 5.0, &params).len(), 2);
+    }
+}

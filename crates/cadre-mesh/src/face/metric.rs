@@ -1,0 +1,248 @@
+//! The (u, v) → triangulation-plane scaling and the curvature-based sampling steps.
+
+use cadre_geom::{Surface, Vec2};
+
+use crate::MeshParams;
+
+/// Affine map from (u, v) to the plane the Delaunay triangulation works in: each parameter
+/// is scaled by a representative speed `|∂S/∂u|`, `|∂S/∂v|`, so circumcircle tests there
+/// approximate 3D ones and triangles come out roughly isotropic on the surface.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Metric {
+    /// (u, v) mapped to the origin (the domain's lower corner, for conditioning).
+    pub origin: Vec2,
+    /// Scale of u.
+    pub su: f64,
+    /// Scale of v.
+    pub sv: f64,
+}
+
+impl Metric {
+    /// Samples the domain box on a 5 × 5 grid: the average parameter speeds give an
+    /// isotropic-in-3D scaling, which flat faces use. Curved faces divide each speed by the
+    /// 3D step the curvature allows in that direction (a flat direction counts as coarse as
+    /// the domain is long), so the Delaunay criterion favours the anisotropic triangles a
+    /// cylinder wants (thin across the curvature, long along the rulings) instead of
+    /// filling it with isotropic ones. Zero speeds (poles, apexes) are skipped.
+    pub fn new(surface: &Surface, lo: Vec2, hi: Vec2, tol: &StepTol, planar: bool) -> Metric {
+        const N: usize = 5;
+        let (mut su, mut nu, mut sv, mut nv) = (0.0, 0usize, 0.0, 0usize);
+        let (mut hu, mut hv) = (f64::INFINITY, f64::INFINITY);
+        for i in 0..N {
+            for j in 0..N {
+                let t = Vec2::new((i as f64 + 0.5) / N as f64, (j as f64 + 0.5) / N as f64);
+                let uv = lo + (hi - lo) * t;
+                let d = surface.derivs(uv.x, uv.y);
+                let (a, b) = (d.du.length(), d.dv.length());
+                if a.is_finite() && a > 0.0 {
+                    su += a;
+                    nu += 1;
+                }
+                if b.is_finite() && b > 0.0 {
+                    sv += b;
+                    nv += 1;
+                }
+                if !planar && let Some((du, dv)) = tol.steps(surface, uv.x, uv.y) {
+                    hu = hu.min(du * a);
+                    hv = hv.min(dv * b);
+                }
+            }
+        }
+        let mut su = if nu > 0 { su / nu as f64 } else { 1.0 };
+        let mut sv = if nv > 0 { sv / nv as f64 } else { 1.0 };
+        if nu == 0 {
+            su = sv;
+        } else if nv == 0 {
+            sv = su;
+        }
+        if hu.is_finite() || hv.is_finite() {
+            let (eu, ev) = ((hi.x - lo.x) * su, (hi.y - lo.y) * sv);
+            let hu2 = hu.min(eu.max(hv.min(ev)));
+            let hv2 = hv.min(ev.max(hu2));
+            // Bounded anisotropy keeps the triangulation well conditioned.
+            let r = (hv2 / hu2).clamp(1e-4, 1e4);
+            if r.is_finite() && r > 0.0 {
+                su *= r;
+            }
+        }
+        let r = (su / sv).clamp(1e-8, 1e8);
+        su = sv * r;
+        Metric { origin: lo, su, sv }
+    }
+
+    /// The triangulation-plane position of `uv`; values below spade's smallest accepted
+    /// magnitude are flushed to zero.
+    pub fn to_plane(self, uv: Vec2) -> spade::Point2<f64> {
+        let flush = |x: f64| if x.abs() < 1e-40 { 0.0 } else { x };
+        spade::Point2::new(
+            flush((uv.x - self.origin.x) * self.su),
+            flush((uv.y - self.origin.y) * self.sv),
+        )
+    }
+}
+
+/// Whether the surface is flat, so that no interior point or refinement is needed.
+pub(crate) fn is_planar(surface: &Surface) -> bool {
+    match surface {
+        Surface::Plane { .. } => true,
+        Surface::Trimmed { basis, .. } | Surface::Offset { basis, .. } => is_planar(basis),
+        _ => false,
+    }
+}
+
+/// Tolerances a sampling step must meet.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StepTol {
+    deflection: f64,
+    angle: f64,
+}
+
+impl StepTol {
+    /// From the mesh parameters (non-positive or non-finite values fall back to defaults so
+    /// the step stays finite).
+    pub fn new(params: &MeshParams) -> StepTol {
+        let deflection = if params.deflection.is_finite() && params.deflection > 0.0 {
+            params.deflection
+        } else {
+            MeshParams::default().deflection
+        };
+        let angle = if params.angle.is_finite() && params.angle > 0.0 {
+            params.angle.min(std::f64::consts::FRAC_PI_2)
+        } else {
+            MeshParams::default().angle
+        };
+        StepTol { deflection, angle }
+    }
+
+    /// Largest distance between the mesh and the surface.
+    pub fn deflection(&self) -> f64 {
+        self.deflection
+    }
+
+    /// Largest angle between corner normals of a triangle.
+    pub fn angle(&self) -> f64 {
+        self.angle
+    }
+
+    /// Arc length on a normal section of curvature `k` (1/radius) whose chord deviates at
+    /// most `d` and turns at most `angle`; infinite when flat.
+    fn chord(&self, k: f64, d: f64, angle: f64) -> f64 {
+        if !k.is_finite() || k <= 1e-300 {
+            return f64::INFINITY;
+        }
+        let r = 1.0 / k;
+        let by_dev = if d >= r {
+            std::f64::consts::PI
+        } else {
+            2.0 * (1.0 - d / r).acos()
+        };
+        // Arc length, so that the parameter step of a circle is exactly its angle step.
+        r * by_dev.min(angle)
+    }
+
+    /// Parameter steps `(Δu, Δv)` at `(u, v)` from the normal curvatures of the iso-lines
+    /// (and the twist, which bends the diagonals). `None` where the surface is singular.
+    pub fn steps(&self, surface: &Surface, u: f64, v: f64) -> Option<(f64, f64)> {
+        let d = surface.derivs(u, v);
+        let (lu, lv) = (d.du.length(), d.dv.length());
+        let n = d.du.cross(d.dv);
+        let ln = n.length();
+        if !(lu > 0.0 && lv > 0.0 && ln > 1e-12 * lu * lv && ln.is_finite()) {
+            return None;
+        }
+        let n = n / ln;
+        let twist = (d.duv.dot(n) / (lu * lv)).abs();
+        let ku = (d.duu.dot(n) / (lu * lu)).abs().max(twist);
+        let kv = (d.dvv.dot(n) / (lv * lv)).abs().max(twist);
+        // A grid on a doubly curved surface has triangles whose circumradius exceeds half
+        // the step (the cell diagonal); tighten both tolerances so the triangles, not only
+        // the grid lines, meet them.
+        let (kmin, kmax) = (ku.min(kv), ku.max(kv));
+        let both = kmax > 0.0 && kmin > 0.05 * kmax;
+        let (dd, aa) = if both {
+            (
+                0.5 * self.deflection,
+                std::f64::consts::FRAC_1_SQRT_2 * self.angle,
+            )
+        } else {
+            (self.deflection, self.angle)
+        };
+        Some((self.chord(ku, dd, aa) / lu, self.chord(kv, dd, aa) / lv))
+    }
+}
+
+/// Breaks of `[lo, hi]` for sampling curvature: the B-spline knots inside (thinned to at most
+/// `MAX_SPANS` spans), otherwise `UNIFORM` equal spans. Always starts at `lo`, ends at `hi`.
+pub(crate) fn breaks(surface: &Surface, lo: f64, hi: f64, along_u: bool) -> Vec<f64> {
+    const MAX_SPANS: usize = 24;
+    const UNIFORM: usize = 4;
+    let knots = spline_knots(surface, along_u);
+    let mut out = vec![lo];
+    match knots {
+        Some(k) => {
+            let inner: Vec<f64> = {
+                let mut v: Vec<f64> = k.iter().copied().filter(|&x| x > lo && x < hi).collect();
+                v.dedup();
+                v
+            };
+            let stride = inner.len().div_ceil(MAX_SPANS).max(1);
+            out.extend(inner.iter().copied().skip(stride - 1).step_by(stride));
+        }
+        None => {
+            out.extend((1..UNIFORM).map(|i| lo + (hi - lo) * i as f64 / UNIFORM as f64));
+        }
+    }
+    if hi > lo {
+        out.push(hi);
+    }
+    out.dedup();
+    out
+}
+
+fn spline_knots(surface: &Surface, along_u: bool) -> Option<&[f64]> {
+    match surface {
+        Surface::BSpline(b) => Some(if along_u { &b.u_knots } else { &b.v_knots }),
+        Surface::Trimmed { basis, .. } | Surface::Offset { basis, .. } => {
+            spline_knots(basis, along_u)
+        }
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cadre_geom::Frame;
+
+    #[test]
+    fn cylinder_steps_follow_the_circle() {
+        let s = Surface::Cylinder {
+            frame: Frame::WORLD,
+            radius: 5.0,
+        };
+        let tol = StepTol::new(&MeshParams {
+            deflection: 0.01,
+            angle: 0.5,
+            max_face_points: 1000,
+        });
+        let (du, dv) = tol.steps(&s, 0.3, 1.0).unwrap();
+        // Chord with sagitta 0.01 on radius 5.
+        let expect = 2.0 * (1.0f64 - 0.01 / 5.0).acos();
+        assert!((du - expect).abs() < 1e-9, "{du} vs {expect}");
+        assert!(dv.is_infinite());
+        // Anisotropic: u in units of the arc step, v in units of the height.
+        let m = Metric::new(&s, Vec2::ZERO, Vec2::new(1.0, 10.0), &tol, false);
+        assert!((m.su / m.sv - 10.0 / expect).abs() < 1e-9, "{m:?}");
+        let flat = Metric::new(&s, Vec2::ZERO, Vec2::new(1.0, 10.0), &tol, true);
+        assert!((flat.su / flat.sv - 5.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn breaks_cover_range() {
+        let s = Surface::Plane {
+            frame: Frame::WORLD,
+        };
+        let b = breaks(&s, 1.0, 2.0, true);
+        assert_eq!(b, vec![1.0, 1.25, 1.5, 1.75, 2.0]);
+    }
+}

@@ -1,0 +1,243 @@
+//! Tessellation of one face in its (u, v) parameter domain: constrained Delaunay
+//! triangulation (spade) of the closed trim polygons, refined until the chordal deviation and
+//! the normal deviation are within [`MeshParams`].
+//!
+//! The boundary points come from the shared edge discretisation and are never moved or split,
+//! so two faces meeting at an edge use exactly the same vertices there.
+
+mod cdt;
+mod domain;
+mod grid;
+mod metric;
+mod output;
+mod refine;
+#[cfg(test)]
+mod tests;
+
+use cadre_geom::{Surface, Vec2, Vec3};
+
+use crate::MeshParams;
+use metric::{Metric, StepTol};
+
+/// A point of a trim polygon: its (u, v), its exact 3D position (taken from the shared edge
+/// discretisation, not re-evaluated from `uv`), and the key that welds it to the same point in
+/// other faces (edge samples, vertices) or elsewhere in this face (seams, poles).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoundaryPoint {
+    /// Parameters on the face's surface (unwrapped: may lie outside the surface's first period).
+    pub uv: Vec2,
+    /// Exact position, model units.
+    pub xyz: Vec3,
+    /// Weld key: equal keys become one vertex of the body mesh.
+    pub key: u64,
+}
+
+/// The region of a face in (u, v): closed polygons (the last point connects back to the
+/// first, it is not repeated), the face on the left of each (outer boundaries
+/// counter-clockwise, holes clockwise in (u, v)).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FaceDomain {
+    /// Closed polygons.
+    pub loops: Vec<Vec<BoundaryPoint>>,
+}
+
+/// One vertex of a face mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshPoint {
+    /// Parameters on the surface.
+    pub uv: Vec2,
+    /// Position, model units.
+    pub xyz: Vec3,
+    /// Unit normal of the face (already flipped for a reversed face).
+    pub normal: Vec3,
+    /// Weld key of a boundary point; `None` for points inside the face.
+    pub key: Option<u64>,
+}
+
+/// The triangles of one face.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FaceMesh {
+    /// Vertices.
+    pub points: Vec<MeshPoint>,
+    /// Triangles, counter-clockwise seen from the side the face normal points to.
+    pub triangles: Vec<[u32; 3]>,
+    /// Whether refinement stopped at [`MeshParams::max_face_points`] before meeting the
+    /// tolerances.
+    pub truncated: bool,
+}
+
+/// Why a face could not be triangulated.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum FaceMeshError {
+    /// The domain has fewer than three distinct points or no area.
+    #[error("the trim loops enclose no area")]
+    EmptyDomain,
+    /// A coordinate is NaN or infinite.
+    #[error("a trim point is not finite")]
+    NonFinite,
+    /// The triangulator rejected the constraints (e.g. crossing trim loops).
+    #[error("constrained triangulation failed: {0}")]
+    Triangulation(String),
+}
+
+/// Triangulates `domain` on `surface`. `reversed` is true when the face normal is opposite to
+/// the surface normal (face `same_sense` false, or the face used reversed by its shell); then
+/// triangles and normals are flipped.
+///
+/// The boundary points are kept exactly (same `uv`, `xyz`, `key`) and every loop segment is
+/// an edge of the mesh; interior points are added where the surface is curved, until every
+/// triangle is within `params.deflection` of the surface and the normals at its corners are
+/// within `params.angle` of each other, or the point budget `params.max_face_points` is spent
+/// (then [`FaceMesh::truncated`] is set). Triangles with two corners of the same key (at a
+/// pole or a collapsed seam) are left out.
+///
+/// # Errors
+///
+/// [`FaceMeshError::NonFinite`] for a NaN or infinite coordinate,
+/// [`FaceMeshError::EmptyDomain`] when the loops enclose no area (fewer than three distinct
+/// points, all collinear), [`FaceMeshError::Triangulation`] when trim segments cross or a
+/// trim point lies on another loop's segment (the triangulator would have to split it).
+pub fn triangulate_face(
+    surface: &Surface,
+    reversed: bool,
+    domain: &FaceDomain,
+    params: &MeshParams,
+) -> Result<FaceMesh, FaceMeshError> {
+    let prep = domain::prepare(domain)?;
+    // Spade has had internal assertion failures on near-degenerate constraint sets; one bad
+    // face must cost that face, not the whole model, so such a panic becomes an error.
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        mesh_prepared(surface, reversed, &prep, params)
+    }))
+    .unwrap_or_else(|_| {
+        Err(FaceMeshError::Triangulation(
+            "the triangulator failed on this domain".into(),
+        ))
+    })
+}
+
+/// [`triangulate_face`] after validation.
+fn mesh_prepared(
+    surface: &Surface,
+    reversed: bool,
+    prep: &domain::Prepared,
+    params: &MeshParams,
+) -> Result<FaceMesh, FaceMeshError> {
+    let tol = StepTol::new(params);
+    let planar = metric::is_planar(surface);
+    let metric = Metric::new(surface, prep.lo, prep.hi, &tol, planar);
+    // The boundary is never thinned, so it may exceed the budget on its own.
+    let max_points = params.max_face_points.max(prep.points.len());
+    let budget = max_points - prep.points.len();
+
+    let grid = if planar {
+        grid::Grid::default()
+    } else {
+        grid::interior_points(surface, prep, &tol, &metric, budget)
+    };
+    let mut truncated = grid.truncated;
+
+    let mut pts = Points::with_capacity(prep.points.len() + grid.points.len());
+    // A plane has one normal; computing it once keeps plane faces at the cost of the CDT.
+    let plane_normal = planar.then(|| {
+        let c = 0.5 * (prep.lo + prep.hi);
+        surface.normal(c.x, c.y)
+    });
+    for p in &prep.points {
+        let n = match plane_normal {
+            Some(n) => n,
+            None => surface.normal(p.uv.x, p.uv.y),
+        };
+        pts.push(p.uv, p.xyz, n, Some(p.key));
+    }
+    // Boundary segments whose ends weld together lie on a line the surface collapses to one
+    // point (a pole, an apex). The (u, v) → 3D map folds there, so refinement leaves the
+    // triangles touching it alone; the ring of points `grid` put along it makes them right.
+    pts.collapsed = vec![false; prep.points.len()];
+    for &[a, b] in &prep.edges {
+        if prep.points[a as usize].key == prep.points[b as usize].key {
+            pts.collapsed[a as usize] = true;
+            pts.collapsed[b as usize] = true;
+        }
+    }
+    for &uv in &grid.points {
+        let (x, n) = refine::sample(surface, uv);
+        pts.push(uv, x, n, None);
+    }
+
+    let verts = (0..pts.len())
+        .map(|i| cdt::Vert {
+            pos: metric.to_plane(pts.uv[i]),
+            id: i as u32,
+        })
+        .collect();
+    let edges = prep
+        .edges
+        .iter()
+        .map(|e| [e[0] as usize, e[1] as usize])
+        .collect();
+    let mut tri = cdt::build(verts, edges)?;
+    let mut inside = Vec::new();
+    cdt::classify(&tri, &prep.even_edges, &mut inside);
+    if !planar {
+        truncated |= refine::refine(
+            surface,
+            &metric,
+            &tol,
+            &mut tri,
+            &mut pts,
+            &mut inside,
+            max_points,
+        );
+    }
+    Ok(output::assemble(
+        surface, reversed, &tri, &pts, &inside, truncated,
+    ))
+}
+
+/// The mesh points under construction, by id (boundary points first, then interior ones),
+/// as parallel arrays.
+#[derive(Debug, Default)]
+pub(crate) struct Points {
+    /// Parameters.
+    pub uv: Vec<Vec2>,
+    /// Positions.
+    pub xyz: Vec<Vec3>,
+    /// Unit surface normals (not flipped for reversed faces); `None` at singular points.
+    pub normal: Vec<Option<Vec3>>,
+    /// Weld keys of boundary points.
+    pub key: Vec<Option<u64>>,
+    /// Whether a boundary point lies on a collapsed segment (pole line); shorter than the
+    /// other arrays (interior points are never collapsed).
+    pub collapsed: Vec<bool>,
+}
+
+impl Points {
+    fn with_capacity(n: usize) -> Points {
+        Points {
+            uv: Vec::with_capacity(n),
+            xyz: Vec::with_capacity(n),
+            normal: Vec::with_capacity(n),
+            key: Vec::with_capacity(n),
+            collapsed: Vec::new(),
+        }
+    }
+
+    /// Appends a point; its id is the previous length.
+    pub fn push(&mut self, uv: Vec2, xyz: Vec3, normal: Option<Vec3>, key: Option<u64>) {
+        self.uv.push(uv);
+        self.xyz.push(xyz);
+        self.normal.push(normal);
+        self.key.push(key);
+    }
+
+    /// Whether point `id` lies on a collapsed boundary line (a pole, an apex).
+    pub fn is_collapsed(&self, id: u32) -> bool {
+        self.collapsed.get(id as usize).is_some_and(|&c| c)
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.uv.len()
+    }
+}

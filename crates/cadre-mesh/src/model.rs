@@ -1,0 +1,126 @@
+//! Meshing a whole model: edges once, then every face in parallel from its trim.
+
+use cadre_brep::trim::{FaceTrim, TrimTolerance, face_trim};
+use cadre_brep::{FaceId, Model};
+use cadre_geom::Accuracy;
+use rayon::prelude::*;
+
+use crate::MeshParams;
+use crate::edges::EdgeDiscretisation;
+use crate::face::{BoundaryPoint, FaceDomain, FaceMesh, triangulate_face};
+
+/// A face that could not be tessellated, with the reason.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceFailure {
+    /// The face.
+    pub face: FaceId,
+    /// Its STEP instance id.
+    pub step_id: u64,
+    /// Why.
+    pub reason: String,
+}
+
+/// The tessellation of every face of a model.
+#[derive(Clone, Debug, Default)]
+pub struct ModelMesh {
+    /// Per face id: its triangles (`None` when it failed, see `failures`).
+    pub faces: Vec<Option<FaceMesh>>,
+    /// Faces that could not be tessellated.
+    pub failures: Vec<FaceFailure>,
+    /// Faces whose refinement stopped at the point budget.
+    pub truncated: Vec<FaceId>,
+    /// The shared edge samples.
+    pub edges: EdgeDiscretisation,
+}
+
+/// The trim polygons of a face as the triangulator takes them.
+pub fn face_domain(trim: &FaceTrim) -> FaceDomain {
+    FaceDomain {
+        loops: trim
+            .loops
+            .iter()
+            .map(|l| {
+                l.polygon()
+                    .into_iter()
+                    .map(|p| BoundaryPoint {
+                        uv: p.uv,
+                        xyz: p.xyz,
+                        key: p.key,
+                    })
+                    .collect()
+            })
+            .collect(),
+    }
+}
+
+/// Tessellates every face of `model`. `progress` is called with the number of faces done
+/// so far (from worker threads).
+pub fn mesh_model(
+    model: &Model,
+    params: &MeshParams,
+    progress: Option<&(dyn Fn(usize) + Sync)>,
+) -> ModelMesh {
+    let acc = Accuracy::default();
+    let edges = EdgeDiscretisation::new(model, params, acc);
+    let tol = TrimTolerance {
+        deflection: params.deflection,
+        angle: params.angle,
+        accuracy: acc,
+        keep_exact: false,
+    };
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let results: Vec<Result<FaceMesh, String>> = (0..model.faces.len())
+        .into_par_iter()
+        .map(|i| {
+            let id = FaceId(i as u32);
+            let r = mesh_face(model, id, &edges, &tol, params);
+            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            if let Some(f) = progress {
+                f(n);
+            }
+            r
+        })
+        .collect();
+    let mut out = ModelMesh {
+        faces: Vec::with_capacity(results.len()),
+        failures: Vec::new(),
+        truncated: Vec::new(),
+        edges,
+    };
+    for (i, r) in results.into_iter().enumerate() {
+        let id = FaceId(i as u32);
+        match r {
+            Ok(m) => {
+                if m.truncated {
+                    out.truncated.push(id);
+                }
+                out.faces.push(Some(m));
+            }
+            Err(reason) => {
+                out.failures.push(FaceFailure {
+                    face: id,
+                    step_id: model.faces[i].step_id,
+                    reason,
+                });
+                out.faces.push(None);
+            }
+        }
+    }
+    out
+}
+
+/// Trim and triangulation of one face.
+pub fn mesh_face(
+    model: &Model,
+    id: FaceId,
+    edges: &EdgeDiscretisation,
+    tol: &TrimTolerance,
+    params: &MeshParams,
+) -> Result<FaceMesh, String> {
+    let face = &model.faces[id.index()];
+    let surface = &model.surfaces[face.surface.index()];
+    let trim = face_trim(model, id, edges, tol).map_err(|e| format!("trim: {e}"))?;
+    let domain = face_domain(&trim);
+    triangulate_face(surface, trim.reversed, &domain, params)
+        .map_err(|e| format!("triangulation: {e}"))
+}

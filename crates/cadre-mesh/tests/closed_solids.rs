@@ -1,0 +1,171 @@
+//! End-to-end tessellation of small solids written by hand in STEP, one per way a face can
+//! wrap around its surface: seamless cylinders, hemispheres with and without seam and pole,
+//! a whole sphere and a whole torus bounded by one vertex, a cone closed at its apex. Each
+//! must mesh closed, consistently oriented, with area and volume close to the exact values.
+
+use std::f64::consts::PI;
+
+use cadre_mesh::{MeshParams, mesh_model, mesh_stats};
+use cadre_step::syntax::StepFile;
+
+const CONTEXT: &str = "
+#900=(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#904))
+ GLOBAL_UNIT_ASSIGNED_CONTEXT((#901,#902,#903)) REPRESENTATION_CONTEXT('',''));
+#901=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.));
+#902=(NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.));
+#903=(NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT());
+#904=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#901,'distance_accuracy_value','');
+#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
+#5=CARTESIAN_POINT('',(0.,0.,10.));#6=AXIS2_PLACEMENT_3D('',#5,#2,#3);
+#7=DIRECTION('',(0.,0.,-1.));#8=AXIS2_PLACEMENT_3D('',#1,#7,#3);
+#9=DIRECTION('',(0.,-1.,0.));#19=AXIS2_PLACEMENT_3D('',#1,#9,#3);
+";
+
+/// Meshes a solid `#100` (a `MANIFOLD_SOLID_BREP`) and returns (area, volume, stats).
+fn mesh(data: &str, deflection: f64, angle: f64) -> cadre_mesh::MeshStats {
+    let text = format!(
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('t','',(''),(''),'','','');\n\
+         FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n{CONTEXT}{data}\n\
+         #999=ADVANCED_BREP_SHAPE_REPRESENTATION('',(#100),#900);\nENDSEC;\nEND-ISO-10303-21;\n"
+    );
+    let file = StepFile::parse(text.into_bytes()).expect("parses");
+    let model = cadre_step::map_file(&file);
+    assert!(model.warnings.is_empty(), "{:?}", model.warnings);
+    let params = MeshParams {
+        deflection,
+        angle,
+        ..MeshParams::default()
+    };
+    let m = mesh_model(&model, &params, None);
+    assert!(m.failures.is_empty(), "{:?}", m.failures);
+    mesh_stats(&model, &m)
+}
+
+fn check(name: &str, data: &str, area: f64, volume: f64) {
+    for (deflection, angle, tol) in [(0.05, 0.5, 0.02), (0.002, 0.1, 0.002)] {
+        let s = mesh(data, deflection, angle);
+        assert_eq!(s.solids, 1, "{name}");
+        assert_eq!(s.boundary_edges, 0, "{name}: boundary edges");
+        assert_eq!(s.nonmanifold_edges, 0, "{name}: non-manifold edges");
+        assert_eq!(s.misoriented_edges, 0, "{name}: misoriented edges");
+        let ea = (s.area - area).abs() / area;
+        let ev = (s.volume - volume).abs() / volume;
+        assert!(
+            ea <= tol,
+            "{name} @ {deflection}: area {} vs {area} ({ea:e})",
+            s.area
+        );
+        assert!(
+            ev <= tol,
+            "{name} @ {deflection}: volume {} vs {volume} ({ev:e})",
+            s.volume
+        );
+    }
+}
+
+/// Cylinder r 5, h 10 whose side face is bounded by its two circles, without a seam edge.
+#[test]
+fn seamless_cylinder_is_closed() {
+    let data = "
+#10=CYLINDRICAL_SURFACE('',#4,5.);#11=PLANE('',#4);#12=PLANE('',#6);
+#20=CIRCLE('',#4,5.);#21=CIRCLE('',#6,5.);
+#30=CARTESIAN_POINT('',(5.,0.,0.));#31=VERTEX_POINT('',#30);
+#32=CARTESIAN_POINT('',(5.,0.,10.));#33=VERTEX_POINT('',#32);
+#40=EDGE_CURVE('',#31,#31,#20,.T.);#41=EDGE_CURVE('',#33,#33,#21,.T.);
+#50=ORIENTED_EDGE('',*,*,#40,.T.);#51=EDGE_LOOP('',(#50));#52=FACE_BOUND('',#51,.T.);
+#53=ORIENTED_EDGE('',*,*,#41,.F.);#54=EDGE_LOOP('',(#53));#55=FACE_BOUND('',#54,.T.);
+#56=ADVANCED_FACE('side',(#52,#55),#10,.T.);
+#60=ORIENTED_EDGE('',*,*,#40,.F.);#61=EDGE_LOOP('',(#60));#62=FACE_OUTER_BOUND('',#61,.T.);
+#63=ADVANCED_FACE('bottom',(#62),#11,.F.);
+#64=ORIENTED_EDGE('',*,*,#41,.T.);#65=EDGE_LOOP('',(#64));#66=FACE_OUTER_BOUND('',#65,.T.);
+#67=ADVANCED_FACE('top',(#66),#12,.T.);
+#90=CLOSED_SHELL('',(#56,#63,#67));#100=MANIFOLD_SOLID_BREP('',#90);
+";
+    check("cylinder", data, 150.0 * PI, 250.0 * PI);
+}
+
+const HEMISPHERE_BASE: &str = "
+#10=SPHERICAL_SURFACE('',#4,5.);#11=PLANE('',#4);
+#20=CIRCLE('',#4,5.);
+#30=CARTESIAN_POINT('',(5.,0.,0.));#31=VERTEX_POINT('',#30);
+#40=EDGE_CURVE('',#31,#31,#20,.T.);
+#60=ORIENTED_EDGE('',*,*,#40,.F.);#61=EDGE_LOOP('',(#60));#62=FACE_OUTER_BOUND('',#61,.T.);
+#63=ADVANCED_FACE('disk',(#62),#11,.F.);
+#90=CLOSED_SHELL('',(#56,#63));#100=MANIFOLD_SOLID_BREP('',#90);
+";
+
+/// Hemisphere bounded by its equator only: closed at the pole by the trim.
+#[test]
+fn hemisphere_without_seam_is_closed_at_the_pole() {
+    let data = format!(
+        "{HEMISPHERE_BASE}
+#50=ORIENTED_EDGE('',*,*,#40,.T.);#51=EDGE_LOOP('',(#50));#52=FACE_OUTER_BOUND('',#51,.T.);
+#56=ADVANCED_FACE('dome',(#52),#10,.T.);"
+    );
+    check("hemisphere", &data, 75.0 * PI, 250.0 / 3.0 * PI);
+}
+
+/// Hemisphere with a seam meridian running up to a vertex at the pole, as most CAD systems
+/// write spheres.
+#[test]
+fn hemisphere_with_seam_to_the_pole_is_closed() {
+    let data = format!(
+        "{HEMISPHERE_BASE}
+#22=CIRCLE('',#19,5.);
+#34=CARTESIAN_POINT('',(0.,0.,5.));#35=VERTEX_POINT('',#34);
+#42=EDGE_CURVE('',#31,#35,#22,.T.);
+#50=ORIENTED_EDGE('',*,*,#40,.T.);#57=ORIENTED_EDGE('',*,*,#42,.T.);
+#58=ORIENTED_EDGE('',*,*,#42,.F.);
+#51=EDGE_LOOP('',(#50,#57,#58));#52=FACE_OUTER_BOUND('',#51,.T.);
+#56=ADVANCED_FACE('dome',(#52),#10,.T.);"
+    );
+    check("hemisphere with seam", &data, 75.0 * PI, 250.0 / 3.0 * PI);
+}
+
+/// A whole sphere: one face bounded by a single vertex.
+#[test]
+fn whole_sphere_from_a_vertex_loop() {
+    let data = "
+#10=SPHERICAL_SURFACE('',#4,5.);
+#30=CARTESIAN_POINT('',(5.,0.,0.));#31=VERTEX_POINT('',#30);
+#50=VERTEX_LOOP('',#31);#52=FACE_OUTER_BOUND('',#50,.T.);
+#56=ADVANCED_FACE('sphere',(#52),#10,.T.);
+#90=CLOSED_SHELL('',(#56));#100=MANIFOLD_SOLID_BREP('',#90);
+";
+    check("sphere", data, 100.0 * PI, 500.0 / 3.0 * PI);
+}
+
+/// A whole torus (R 10, r 3): one face bounded by a single vertex, periodic both ways.
+#[test]
+fn whole_torus_from_a_vertex_loop() {
+    let data = "
+#10=TOROIDAL_SURFACE('',#4,10.,3.);
+#30=CARTESIAN_POINT('',(13.,0.,0.));#31=VERTEX_POINT('',#30);
+#50=VERTEX_LOOP('',#31);#52=FACE_OUTER_BOUND('',#50,.T.);
+#56=ADVANCED_FACE('torus',(#52),#10,.T.);
+#90=CLOSED_SHELL('',(#56));#100=MANIFOLD_SOLID_BREP('',#90);
+";
+    check("torus", data, 4.0 * PI * PI * 30.0, 2.0 * PI * PI * 90.0);
+}
+
+/// A cone (base radius 5 at z = 0, apex at z = 10): the side face is bounded by its base
+/// circle and a vertex loop at the apex.
+#[test]
+fn cone_is_closed_at_its_apex() {
+    let data = "
+#10=CONICAL_SURFACE('',#8,5.,0.463647609000806);#11=PLANE('',#4);
+#20=CIRCLE('',#8,5.);
+#30=CARTESIAN_POINT('',(5.,0.,0.));#31=VERTEX_POINT('',#30);
+#34=CARTESIAN_POINT('',(0.,0.,10.));#35=VERTEX_POINT('',#34);
+#40=EDGE_CURVE('',#31,#31,#20,.T.);
+#50=ORIENTED_EDGE('',*,*,#40,.F.);#51=EDGE_LOOP('',(#50));#52=FACE_OUTER_BOUND('',#51,.T.);
+#53=VERTEX_LOOP('',#35);#54=FACE_BOUND('',#53,.T.);
+#56=ADVANCED_FACE('side',(#52,#54),#10,.T.);
+#60=ORIENTED_EDGE('',*,*,#40,.T.);#61=EDGE_LOOP('',(#60));#62=FACE_OUTER_BOUND('',#61,.T.);
+#63=ADVANCED_FACE('base',(#62),#11,.F.);
+#90=CLOSED_SHELL('',(#56,#63));#100=MANIFOLD_SOLID_BREP('',#90);
+";
+    let slant = (125.0f64).sqrt();
+    check("cone", data, PI * 5.0 * (5.0 + slant), 250.0 / 3.0 * PI);
+}
