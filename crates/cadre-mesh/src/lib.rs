@@ -12,6 +12,7 @@ pub mod export;
 pub mod face;
 pub mod model;
 pub mod params;
+pub mod periodic;
 pub mod stats;
 pub mod weld;
 

@@ -2,7 +2,9 @@
 
 use cadre_brep::trim::{FaceTrim, TrimTolerance, face_trim};
 use cadre_brep::{FaceId, Model};
-use cadre_geom::Accuracy;
+use cadre_geom::{Accuracy, Vec2};
+
+use crate::periodic::unwrapped_surface;
 use rayon::prelude::*;
 
 use crate::MeshParams;
@@ -73,7 +75,18 @@ pub fn mesh_model(
         .into_par_iter()
         .map(|i| {
             let id = FaceId(i as u32);
+            tracing::debug!(face = model.faces[i].step_id, "meshing face");
+            let started = std::time::Instant::now();
             let r = mesh_face(model, id, &edges, &tol, params);
+            let seconds = started.elapsed().as_secs_f64();
+            if seconds > 0.5 {
+                tracing::info!(
+                    face = model.faces[i].step_id,
+                    seconds,
+                    triangles = r.as_ref().map_or(0, |m| m.triangles.len()),
+                    "slow face"
+                );
+            }
             let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             if let Some(f) = progress {
                 f(n);
@@ -121,6 +134,13 @@ pub fn mesh_face(
     let surface = &model.surfaces[face.surface.index()];
     let trim = face_trim(model, id, edges, tol).map_err(|e| format!("trim: {e}"))?;
     let domain = face_domain(&trim);
+    let (mut lo, mut hi) = (Vec2::splat(f64::INFINITY), Vec2::splat(f64::NEG_INFINITY));
+    for p in domain.loops.iter().flatten() {
+        lo = lo.min(p.uv);
+        hi = hi.max(p.uv);
+    }
+    let extended = unwrapped_surface(surface, lo, hi);
+    let surface = extended.as_ref().unwrap_or(surface);
     triangulate_face(surface, trim.reversed, &domain, params)
         .map_err(|e| format!("triangulation: {e}"))
 }

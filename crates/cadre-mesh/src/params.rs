@@ -21,7 +21,7 @@ impl Default for MeshParams {
         Self {
             deflection: 0.01,
             angle: 0.5,
-            max_face_points: 2_000_000,
+            max_face_points: 500_000,
         }
     }
 }

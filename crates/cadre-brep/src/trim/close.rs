@@ -201,6 +201,10 @@ pub(super) fn close_loops(
         if pts.len() < 2 {
             continue;
         }
+        if chain.closes_at_pole {
+            contractible.push(chain);
+            continue;
+        }
         let (first, last) = (pts[0], pts[pts.len() - 1]);
         let closed = first.key == last.key || (first.xyz - last.xyz).length() <= same;
         if !closed {

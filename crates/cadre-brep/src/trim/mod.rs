@@ -122,21 +122,10 @@ impl TrimLoop {
     /// The closed polygon: every point once (the closing point is not repeated), consecutive
     /// duplicates (same key) removed.
     pub fn polygon(&self) -> Vec<TrimPoint> {
-        let mut out: Vec<TrimPoint> = Vec::new();
-        for s in &self.segments {
-            for p in &s.points {
-                if out
-                    .last()
-                    .is_some_and(|q| q.key == p.key && (q.uv - p.uv).length() < 1e-12)
-                {
-                    continue;
-                }
-                out.push(*p);
-            }
-        }
+        let mut out = merge_repeats(self.segments.iter().flat_map(|s| s.points.iter().copied()));
         while out.len() > 1 {
             let (f, l) = (out[0], out[out.len() - 1]);
-            if f.key == l.key && (f.uv - l.uv).length() <= 1e-9 * (1.0 + f.uv.length()) {
+            if f.key == l.key && (f.uv - l.uv).length() <= repeat_distance(&out) {
                 out.pop();
             } else {
                 break;
@@ -149,6 +138,38 @@ impl TrimLoop {
     pub fn signed_area(&self) -> f64 {
         polygon_area(&self.polygon())
     }
+}
+
+/// Distance in (u, v) under which two consecutive points with the same key are one point:
+/// a small fraction of the polygon's extent. Where two edges meet, the file's pcurves and the
+/// vertex rarely agree to the last digit (bm2_ec_leverrod-A.stp: 3e-10 apart on a plane),
+/// which left a point lying on its neighbour's segment; pole lines and seam copies share a
+/// key too but are far apart.
+fn repeat_distance(points: &[TrimPoint]) -> f64 {
+    let (mut lo, mut hi) = (Vec2::splat(f64::INFINITY), Vec2::splat(f64::NEG_INFINITY));
+    for p in points {
+        lo = lo.min(p.uv);
+        hi = hi.max(p.uv);
+    }
+    let size = (hi - lo).length();
+    if size.is_finite() { 1e-6 * size } else { 0.0 }
+}
+
+/// The points in order with consecutive repeats (same key, within [`repeat_distance`]) merged.
+pub(crate) fn merge_repeats(points: impl Iterator<Item = TrimPoint>) -> Vec<TrimPoint> {
+    let all: Vec<TrimPoint> = points.collect();
+    let tol = repeat_distance(&all);
+    let mut out: Vec<TrimPoint> = Vec::with_capacity(all.len());
+    for p in all {
+        if out
+            .last()
+            .is_some_and(|q| q.key == p.key && (q.uv - p.uv).length() <= tol)
+        {
+            continue;
+        }
+        out.push(p);
+    }
+    out
 }
 
 /// Signed area of a closed (u, v) polygon.
@@ -203,12 +224,53 @@ pub fn face_trim(
     let surface = &model.surfaces[face.surface.index()];
     let (chains, vertex_loops) = uv::face_chains(model, face, surface, edges, tol)?;
     let mut notes = Vec::new();
-    let loops = close::close_loops(surface, face_id, chains, &vertex_loops, tol, &mut notes)?;
+    let mut loops = close::close_loops(surface, face_id, chains, &vertex_loops, tol, &mut notes)?;
+    recentre(surface, &mut loops);
     Ok(FaceTrim {
         loops,
         reversed: !face.same_sense,
         notes,
     })
+}
+
+/// Shifts all loops by whole periods so the face sits in the middle of the surface's domain:
+/// unwrapping starts wherever the first point projects and may leave a face a period off
+/// (trj9_io1-sy-214.stp: a half cone at v in [-1, 0] of a B-spline closed on [0, 2]), and
+/// surfaces whose evaluation does not wrap (B-splines) are best evaluated inside their domain.
+fn recentre(surface: &Surface, loops: &mut [TrimLoop]) {
+    let p = periods(surface);
+    let ((u0, u1), (v0, v1)) = surface.domain();
+    let (mut lo, mut hi) = (Vec2::splat(f64::INFINITY), Vec2::splat(f64::NEG_INFINITY));
+    for pt in loops
+        .iter()
+        .flat_map(|l| l.segments.iter().flat_map(|s| s.points.iter()))
+    {
+        lo = lo.min(pt.uv);
+        hi = hi.max(pt.uv);
+    }
+    let mut shift = Vec2::ZERO;
+    for (k, (d0, d1)) in [(0, (u0, u1)), (1, (v0, v1))] {
+        if let Some(period) = p[k]
+            && d0.is_finite()
+            && d1.is_finite()
+            && lo[k].is_finite()
+        {
+            shift[k] = ((0.5 * (d0 + d1) - 0.5 * (lo[k] + hi[k])) / period).round() * period;
+        }
+    }
+    if shift == Vec2::ZERO {
+        return;
+    }
+    for l in loops.iter_mut() {
+        for s in &mut l.segments {
+            for pt in &mut s.points {
+                pt.uv += shift;
+            }
+            if let Some(e) = &mut s.exact {
+                e.offset += shift;
+            }
+        }
+    }
 }
 
 /// The surface a face lies on (convenience for callers holding only ids).

@@ -56,6 +56,9 @@ struct Raw {
 #[derive(Clone, Debug, Default)]
 pub(super) struct Chain {
     pub segments: Vec<TrimSegment>,
+    /// Whether the chain's closing point was dropped (a loop closing at a pole): it is closed
+    /// and does not wrap, whatever its end points say.
+    pub closes_at_pole: bool,
 }
 
 impl Chain {
@@ -75,19 +78,7 @@ impl Chain {
 
     /// All points in order, consecutive repeats (same key and (u, v)) removed.
     pub fn points(&self) -> Vec<TrimPoint> {
-        let mut out: Vec<TrimPoint> = Vec::new();
-        for s in &self.segments {
-            for p in &s.points {
-                if out
-                    .last()
-                    .is_some_and(|q| q.key == p.key && (q.uv - p.uv).length() <= 1e-12)
-                {
-                    continue;
-                }
-                out.push(*p);
-            }
-        }
-        out
+        super::merge_repeats(self.segments.iter().flat_map(|s| s.points.iter().copied()))
     }
 }
 
@@ -331,6 +322,17 @@ fn finish(cx: &Ctx, segments: Vec<TrimSegment>, cyclic: bool) -> Result<Chain, T
         }
         sources.push((s.source, s.exact));
     }
+    let mut closes_at_pole = false;
+    // A whole loop that starts and ends at a pole: its last point closes onto its first; keep
+    // one, so the pole line is made once (lune of a sphere from pole to pole: trj3_s1-db-214).
+    if cyclic
+        && raw.len() > 2
+        && raw[0].point.key == raw[raw.len() - 1].point.key
+        && (raw[0].free[0] || raw[0].free[1])
+    {
+        raw.pop();
+        closes_at_pole = true;
+    }
     let fixed = |r: &Raw| !r.free[0] && !r.free[1];
     if !raw.iter().any(fixed) {
         return Err(TrimError::Projection);
@@ -431,5 +433,8 @@ fn finish(cx: &Ctx, segments: Vec<TrimSegment>, cyclic: bool) -> Result<Chain, T
             }
         }
     }
-    Ok(Chain { segments })
+    Ok(Chain {
+        segments,
+        closes_at_pole,
+    })
 }

@@ -34,12 +34,17 @@ fn divisions(brk: &[f64], counts: &[usize], out: &mut Vec<(f64, f64)>) {
     }
 }
 
+/// Most grid intervals in one span of one direction. Curvature estimates blow up near
+/// degenerate B-spline edges (pr1db.stp face #565, degree 8 × 11, asked for ~10^7 rows and
+/// hung); refinement adds whatever a capped grid misses.
+const MAX_SPAN_COUNT: f64 = 2000.0;
+
 /// Number of intervals of length at most `step` covering `len` (1 when `step` is infinite),
-/// bounded so a pathological step cannot overflow.
+/// bounded so a pathological step cannot blow up the grid.
 fn count(len: f64, step: f64) -> usize {
     let n = (len / step).ceil();
     if n.is_finite() && n >= 1.0 {
-        n.min(1e7) as usize
+        n.min(MAX_SPAN_COUNT) as usize
     } else {
         1
     }

@@ -11,6 +11,9 @@ mod grid;
 mod metric;
 mod output;
 mod refine;
+mod repair;
+#[cfg(test)]
+mod repair_tests;
 #[cfg(test)]
 mod tests;
 
@@ -64,6 +67,11 @@ pub struct FaceMesh {
     /// Whether refinement stopped at [`MeshParams::max_face_points`] before meeting the
     /// tolerances.
     pub truncated: bool,
+    /// Whether the trim loops conflicted (crossing segments, a point on another segment,
+    /// coincident points) and were repaired: then some boundary points may be merged away and
+    /// some boundary segments split at new unkeyed points, so the face may not weld exactly
+    /// to its neighbours there (see [`triangulate_face`]).
+    pub repaired: bool,
 }
 
 /// Why a face could not be triangulated.
@@ -75,7 +83,7 @@ pub enum FaceMeshError {
     /// A coordinate is NaN or infinite.
     #[error("a trim point is not finite")]
     NonFinite,
-    /// The triangulator rejected the constraints (e.g. crossing trim loops).
+    /// The triangulator failed, even on the repaired trim loops.
     #[error("constrained triangulation failed: {0}")]
     Triangulation(String),
 }
@@ -91,12 +99,20 @@ pub enum FaceMeshError {
 /// (then [`FaceMesh::truncated`] is set). Triangles with two corners of the same key (at a
 /// pole or a collapsed seam) are left out.
 ///
+/// Loops that conflict (segments crossing, a point on another segment, distinct points that
+/// coincide in the triangulation plane) do not fail the face: it is triangulated again with
+/// the conflicts repaired, and [`FaceMesh::repaired`] is set. Then the contract above holds
+/// only approximately: coincident points are merged (the later ones' keys are missing from
+/// the mesh), crossing segments are split at new points with no key, and the face is the
+/// region of positive winding number of the loops (overlapping outer loops are united, a
+/// hole sticking out of the outer loop cuts only what it overlaps).
+///
 /// # Errors
 ///
 /// [`FaceMeshError::NonFinite`] for a NaN or infinite coordinate,
 /// [`FaceMeshError::EmptyDomain`] when the loops enclose no area (fewer than three distinct
-/// points, all collinear), [`FaceMeshError::Triangulation`] when trim segments cross or a
-/// trim point lies on another loop's segment (the triangulator would have to split it).
+/// points, all collinear), [`FaceMeshError::Triangulation`] only if the triangulator fails
+/// even on the repaired loops.
 pub fn triangulate_face(
     surface: &Surface,
     reversed: bool,
@@ -104,19 +120,22 @@ pub fn triangulate_face(
     params: &MeshParams,
 ) -> Result<FaceMesh, FaceMeshError> {
     let prep = domain::prepare(domain)?;
-    // Spade has had internal assertion failures on near-degenerate constraint sets; one bad
-    // face must cost that face, not the whole model, so such a panic becomes an error.
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        mesh_prepared(surface, reversed, &prep, params)
-    }))
-    .unwrap_or_else(|_| {
+    guarded(|| mesh_prepared(surface, reversed, &prep, params))
+}
+
+/// Runs `f`, turning a panic into an error. Spade has had internal assertion failures on
+/// near-degenerate constraint sets; one bad face must cost at most that attempt, not the
+/// whole model.
+fn guarded(f: impl FnOnce() -> Result<FaceMesh, FaceMeshError>) -> Result<FaceMesh, FaceMeshError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).unwrap_or_else(|_| {
         Err(FaceMeshError::Triangulation(
             "the triangulator failed on this domain".into(),
         ))
     })
 }
 
-/// [`triangulate_face`] after validation.
+/// [`triangulate_face`] after validation: the strict triangulation, and when the loops
+/// conflict, the repaired ones (see [`repair`]) from the most faithful to the most robust.
 fn mesh_prepared(
     surface: &Surface,
     reversed: bool,
@@ -135,7 +154,6 @@ fn mesh_prepared(
     } else {
         grid::interior_points(surface, prep, &tol, &metric, budget)
     };
-    let mut truncated = grid.truncated;
 
     let mut pts = Points::with_capacity(prep.points.len() + grid.points.len());
     // A plane has one normal; computing it once keeps plane faces at the cost of the CDT.
@@ -165,39 +183,114 @@ fn mesh_prepared(
         pts.push(uv, x, n, None);
     }
 
-    let verts = (0..pts.len())
-        .map(|i| cdt::Vert {
-            pos: metric.to_plane(pts.uv[i]),
-            id: i as u32,
-        })
-        .collect();
-    let edges = prep
-        .edges
-        .iter()
-        .map(|e| [e[0] as usize, e[1] as usize])
-        .collect();
-    let mut tri = cdt::build(verts, edges)?;
-    let mut inside = Vec::new();
-    cdt::classify(&tri, &prep.even_edges, &mut inside);
-    if !planar {
-        truncated |= refine::refine(
-            surface,
-            &metric,
-            &tol,
-            &mut tri,
-            &mut pts,
-            &mut inside,
-            max_points,
-        );
+    let job = Job {
+        surface,
+        reversed,
+        prep,
+        metric,
+        tol,
+        planar,
+        max_points,
+        truncated: grid.truncated,
+        pts,
+    };
+    let reason = match guarded(|| job.run(None, true)) {
+        Err(FaceMeshError::Triangulation(reason)) => reason,
+        done => return done,
+    };
+    // Splitting keeps the whole boundary in the mesh; skipping cannot fail on crossings; no
+    // refinement is the last resort should refinement trip over the repaired triangulation.
+    let mut last = Err(FaceMeshError::Triangulation(reason.clone()));
+    for (mode, refine) in [
+        (repair::Mode::Split, true),
+        (repair::Mode::Skip, true),
+        (repair::Mode::Skip, false),
+    ] {
+        last = guarded(|| job.run(Some(mode), refine));
+        if let Ok(m) = &last {
+            tracing::debug!(%reason, ?mode, refine, triangles = m.triangles.len(), "trim loops repaired");
+            break;
+        }
     }
-    Ok(output::assemble(
-        surface, reversed, &tri, &pts, &inside, truncated,
-    ))
+    last
+}
+
+/// Everything one triangulation attempt needs; the grid is computed once for all attempts.
+struct Job<'a> {
+    surface: &'a Surface,
+    reversed: bool,
+    prep: &'a domain::Prepared,
+    metric: Metric,
+    tol: StepTol,
+    planar: bool,
+    max_points: usize,
+    truncated: bool,
+    /// Boundary points, then the interior grid points.
+    pts: Points,
+}
+
+impl Job<'_> {
+    /// Triangulates strictly (`repair` `None`: every segment one constraint edge, or an
+    /// error) or with the conflicts repaired, refines unless told not to, and assembles.
+    fn run(&self, repair: Option<repair::Mode>, refine: bool) -> Result<FaceMesh, FaceMeshError> {
+        let mut pts = self.pts.clone();
+        let (mut tri, mut inside) = match repair {
+            None => {
+                let verts = (0..pts.len())
+                    .map(|i| cdt::Vert {
+                        pos: self.metric.to_plane(pts.uv[i]),
+                        id: i as u32,
+                    })
+                    .collect();
+                let edges = self
+                    .prep
+                    .edges
+                    .iter()
+                    .map(|e| [e[0] as usize, e[1] as usize])
+                    .collect();
+                let tri = cdt::build(verts, edges)?;
+                let mut inside = Vec::new();
+                cdt::classify(&tri, &self.prep.even_edges, &mut inside);
+                (tri, inside)
+            }
+            Some(mode) => {
+                let r = repair::build(self.surface, self.prep, &self.metric, &mut pts, mode)?;
+                tracing::debug!(
+                    merged = r.merged,
+                    skipped = r.skipped,
+                    split_points = r.split_points,
+                    "repaired trim loops"
+                );
+                (r.cdt, r.inside)
+            }
+        };
+        let mut truncated = self.truncated;
+        if refine && !self.planar {
+            truncated |= refine::refine(
+                self.surface,
+                &self.metric,
+                &self.tol,
+                &mut tri,
+                &mut pts,
+                &mut inside,
+                self.max_points,
+            );
+        }
+        Ok(output::assemble(
+            self.surface,
+            self.reversed,
+            &tri,
+            &pts,
+            &inside,
+            truncated,
+            repair.is_some(),
+        ))
+    }
 }
 
 /// The mesh points under construction, by id (boundary points first, then interior ones),
 /// as parallel arrays.
-#[derive(Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub(crate) struct Points {
     /// Parameters.
     pub uv: Vec<Vec2>,

@@ -7,7 +7,8 @@ use spade::Triangulation;
 use super::cdt::Cdt;
 use super::{FaceMesh, MeshPoint, Points};
 
-/// Builds the output mesh from the final triangulation and its face classification.
+/// Builds the output mesh from the final triangulation and its face classification;
+/// `repaired` says whether the trim loops needed repair.
 pub(crate) fn assemble(
     surface: &Surface,
     reversed: bool,
@@ -15,6 +16,7 @@ pub(crate) fn assemble(
     pts: &Points,
     inside: &[bool],
     truncated: bool,
+    repaired: bool,
 ) -> FaceMesh {
     let sign = if reversed { -1.0 } else { 1.0 };
 
@@ -57,6 +59,7 @@ pub(crate) fn assemble(
         points,
         triangles,
         truncated,
+        repaired,
     }
 }
 

@@ -26,6 +26,10 @@ pub struct MeshArgs {
     /// Angular deflection in radians (largest angle between normals of a triangle).
     #[arg(long, default_value_t = 0.5)]
     angle: f64,
+    /// Print the trim loops of the face with this STEP id as JSON ((u, v), key per point) and
+    /// stop: for diagnosing a face that does not mesh.
+    #[arg(long, value_name = "STEP_ID")]
+    dump_trim: Option<u64>,
     /// Print one JSON object with the mesh's figures (triangles, area, volume, boundary and
     /// non-manifold edges, seconds, failed faces) instead of the human summary.
     #[arg(long)]
@@ -34,7 +38,7 @@ pub struct MeshArgs {
 
 /// Runs `cadre mesh`.
 pub fn run(args: &MeshArgs) -> Result<()> {
-    if args.output.is_none() && !args.json {
+    if args.output.is_none() && !args.json && args.dump_trim.is_none() {
         bail!("give an output file with -o (or --json to only measure)");
     }
     let deflection = match (args.deflection, args.deflection_rel) {
@@ -58,12 +62,21 @@ pub fn run(args: &MeshArgs) -> Result<()> {
     let t0 = Instant::now();
     let loaded = load_step(&args.file)?;
     let model = &loaded.model;
-    let diagonal = quick_bbox(model).diagonal();
+    let quick = quick_bbox(model);
+    // Faces without edges (whole surfaces) are not in the quick box; then take the exact one.
+    let diagonal = if quick.is_empty() || quick.diagonal() <= 0.0 {
+        model.bbox(cadre_geom::Accuracy::default()).diagonal()
+    } else {
+        quick.diagonal()
+    };
     let params = MeshParams {
         deflection: deflection.resolve(diagonal),
         angle: args.angle,
         ..MeshParams::default()
     };
+    if let Some(id) = args.dump_trim {
+        return dump_trim(model, id, &params);
+    }
     let bar = crate::progress::bar(model.faces.len() as u64, "meshing faces", !args.json);
     let tick = |n: usize| bar.set_position(n as u64);
     let mesh = mesh_model(model, &params, Some(&tick));
@@ -131,5 +144,52 @@ pub fn run(args: &MeshArgs) -> Result<()> {
             println!("wrote {}", out.display());
         }
     }
+    Ok(())
+}
+
+/// `--dump-trim`: the face's trim as the triangulator receives it.
+fn dump_trim(model: &cadre_brep::Model, step_id: u64, params: &MeshParams) -> Result<()> {
+    let Some(index) = model.faces.iter().position(|f| f.step_id == step_id) else {
+        bail!("no face #{step_id} in the model");
+    };
+    let face = cadre_brep::FaceId(index as u32);
+    let acc = cadre_geom::Accuracy::default();
+    let edges = cadre_mesh::edges::EdgeDiscretisation::new(model, params, acc);
+    let tol = cadre_brep::trim::TrimTolerance {
+        deflection: params.deflection,
+        angle: params.angle,
+        accuracy: acc,
+        keep_exact: false,
+    };
+    let trim = cadre_brep::trim::face_trim(model, face, &edges, &tol)
+        .map_err(|e| anyhow::anyhow!("face #{step_id}: {e}"))?;
+    let surface = cadre_brep::trim::face_surface(model, face);
+    let loops: Vec<_> = trim
+        .loops
+        .iter()
+        .map(|l| {
+            l.polygon()
+                .iter()
+                .map(|p| {
+                    json!([
+                        p.uv.x,
+                        p.uv.y,
+                        p.key,
+                        (surface.eval(p.uv.x, p.uv.y) - p.xyz).length()
+                    ])
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let j = json!({
+        "face": step_id,
+        "surface": surface.type_name(),
+        "domain": surface.domain(),
+        "periods": cadre_brep::trim::periods(surface),
+        "reversed": trim.reversed,
+        "notes": trim.notes,
+        "loops": loops,
+    });
+    println!("{j}");
     Ok(())
 }

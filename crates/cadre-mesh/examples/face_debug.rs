@@ -1,0 +1,86 @@
+//! Meshes one face of a STEP file and prints its figures: `cargo run --release -p cadre-mesh
+//! --example face_debug -- FILE STEP_ID [DEFLECTION]`. For diagnosing faces that mesh badly.
+
+use cadre_brep::FaceId;
+use cadre_brep::trim::TrimTolerance;
+use cadre_geom::Accuracy;
+use cadre_mesh::edges::EdgeDiscretisation;
+use cadre_mesh::{MeshParams, mesh_face};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let (Some(path), Some(id)) = (args.get(1), args.get(2).and_then(|s| s.parse::<u64>().ok()))
+    else {
+        eprintln!("usage: face_debug FILE STEP_ID [DEFLECTION]");
+        std::process::exit(2);
+    };
+    let deflection = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(0.1);
+    let file = match cadre_step::syntax::StepFile::read(std::path::Path::new(path)) {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(1);
+        }
+    };
+    let model = cadre_step::map_file(&file);
+    let Some(index) = model.faces.iter().position(|f| f.step_id == id) else {
+        eprintln!("no face #{id}");
+        std::process::exit(1);
+    };
+    let params = MeshParams {
+        deflection,
+        ..MeshParams::default()
+    };
+    let acc = Accuracy::default();
+    let edges = EdgeDiscretisation::new(&model, &params, acc);
+    let tol = TrimTolerance {
+        deflection,
+        angle: params.angle,
+        accuracy: acc,
+        keep_exact: false,
+    };
+    let surface = &model.surfaces[model.faces[index].surface.index()];
+    for (u, v) in [(0.0, 1.5), (0.5, 1.2), (1.0, 1.9), (0.3, 0.2)] {
+        let d = surface.derivs(u, v);
+        println!(
+            "eval {:?} derivs.point {:?} du {:?} dv {:?}",
+            surface.eval(u, v),
+            d.point,
+            d.du,
+            d.dv
+        );
+    }
+    if let Some(ext) = cadre_mesh::periodic::unwrapped_surface(
+        surface,
+        cadre_geom::Vec2::new(0.0, -1.0),
+        cadre_geom::Vec2::new(1.0, 0.0),
+    ) {
+        for (u, v) in [(0.0, 1.5), (0.5, 1.2), (1.0, 1.9), (0.3, 0.2)] {
+            let a = surface.eval(u, v);
+            let b = ext.eval(u, v - 2.0);
+            let c = ext.eval(u, v);
+            println!("S({u},{v}) = {a:?}; ext(v-2) = {b:?}; ext(v) = {c:?}");
+        }
+    }
+    let started = std::time::Instant::now();
+    match mesh_face(&model, FaceId(index as u32), &edges, &tol, &params) {
+        Ok(m) => {
+            let area: f64 = m
+                .triangles
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| m.points[i as usize].xyz);
+                    0.5 * (b - a).cross(c - a).length()
+                })
+                .sum();
+            println!(
+                "face #{id}: {} points, {} triangles, area {area:.4}, truncated {}, {:.3} s",
+                m.points.len(),
+                m.triangles.len(),
+                m.truncated,
+                started.elapsed().as_secs_f64()
+            );
+        }
+        Err(e) => println!("face #{id}: {e}"),
+    }
+}
