@@ -73,6 +73,33 @@ fn main() {
                     0.5 * (b - a).cross(c - a).length()
                 })
                 .sum();
+            let folded = m
+                .triangles
+                .iter()
+                .filter(|t| {
+                    let [a, b, c] = t.map(|i| m.points[i as usize]);
+                    let nt = (b.xyz - a.xyz).cross(c.xyz - a.xyz);
+                    nt.dot(a.normal + b.normal + c.normal) < 0.0
+                })
+                .count();
+            let (mut lo, mut hi) = (
+                cadre_geom::Vec2::splat(f64::INFINITY),
+                cadre_geom::Vec2::splat(f64::NEG_INFINITY),
+            );
+            for p in &m.points {
+                lo = lo.min(p.uv);
+                hi = hi.max(p.uv);
+            }
+            println!("folded triangles {folded}; uv range {lo:?} .. {hi:?}");
+            for (i, p) in m
+                .points
+                .iter()
+                .enumerate()
+                .filter(|(_, p)| p.uv.x > 1.0 + 1e-9)
+                .take(5)
+            {
+                println!("outside: #{i} {:?} key {:?}", p.uv, p.key);
+            }
             println!(
                 "face #{id}: {} points, {} triangles, area {area:.4}, truncated {}, {:.3} s",
                 m.points.len(),

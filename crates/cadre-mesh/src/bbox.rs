@@ -81,3 +81,14 @@ pub fn quick_bbox(model: &Model) -> BoundingBox {
     });
     out
 }
+
+/// The diagonal a relative deflection is taken of: the quick box's, or, when the model has
+/// faces without edges (whole surfaces) so that box is empty, the exact box's.
+pub fn deflection_diagonal(model: &Model) -> f64 {
+    let quick = quick_bbox(model);
+    if quick.is_empty() || quick.diagonal() <= 0.0 {
+        model.bbox(Accuracy::default()).diagonal()
+    } else {
+        quick.diagonal()
+    }
+}

@@ -16,7 +16,7 @@ pub mod periodic;
 pub mod stats;
 pub mod weld;
 
-pub use bbox::quick_bbox;
+pub use bbox::{deflection_diagonal, quick_bbox};
 pub use model::{FaceFailure, ModelMesh, mesh_face, mesh_model};
 pub use params::{Deflection, MeshParams};
 pub use stats::{MeshStats, mesh_stats};

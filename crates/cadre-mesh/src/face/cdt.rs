@@ -48,7 +48,8 @@ pub(crate) type Cdt =
 /// Every segment must come out as one constraint edge: a loop vertex lying exactly on
 /// another segment makes spade split that segment (and share the pieces between loops),
 /// which breaks the boundary contract and the even-odd classification, so it is rejected
-/// too, as are distinct points that coincide once scaled.
+/// too, as are distinct points that coincide once scaled. Such loops are then triangulated
+/// by [`super::repair`], which relaxes these rules.
 pub(crate) fn build(verts: Vec<Vert>, edges: Vec<[usize; 2]>) -> Result<Cdt, FaceMeshError> {
     let n = verts.len();
     let mut conflicts = 0usize;

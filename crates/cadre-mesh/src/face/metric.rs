@@ -82,7 +82,7 @@ impl Metric {
 
     /// The (u, v) of a triangulation-plane position: the inverse of [`Metric::to_plane`],
     /// for vertices the triangulator creates itself (split points of crossing trims).
-    pub fn from_plane(self, p: spade::Point2<f64>) -> Vec2 {
+    pub fn plane_to_uv(self, p: spade::Point2<f64>) -> Vec2 {
         Vec2::new(self.origin.x + p.x / self.su, self.origin.y + p.y / self.sv)
     }
 }

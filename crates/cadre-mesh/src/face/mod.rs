@@ -215,6 +215,9 @@ fn mesh_prepared(
     last
 }
 
+/// Smallest point budget of a repaired face (see [`Job::run`]).
+const REPAIRED_MIN_BUDGET: usize = 50_000;
+
 /// Everything one triangulation attempt needs; the grid is computed once for all attempts.
 struct Job<'a> {
     surface: &'a Surface,
@@ -265,6 +268,17 @@ impl Job<'_> {
             }
         };
         let mut truncated = self.truncated;
+        // Conflicting loops often come from a wrong trim (a loop retracing a pole line, a
+        // misplaced edge) whose region refinement can never satisfy: on trj2_f1-db-214.stp
+        // such faces refined to the full point budget, 17 s each. A repaired face gets a
+        // budget proportional to what the grid needed, generous for a sound face with one
+        // bad crossing.
+        let max_points = match repair {
+            None => self.max_points,
+            Some(_) => self
+                .max_points
+                .min((8 * pts.len()).max(REPAIRED_MIN_BUDGET)),
+        };
         if refine && !self.planar {
             truncated |= refine::refine(
                 self.surface,
@@ -273,7 +287,7 @@ impl Job<'_> {
                 &mut tri,
                 &mut pts,
                 &mut inside,
-                self.max_points,
+                max_points,
             );
         }
         Ok(output::assemble(

@@ -157,7 +157,7 @@ pub(crate) fn build(
     created.sort_unstable_by_key(|c| c.0);
     let split_points = created.len();
     for (k, &(_, h)) in created.iter().enumerate() {
-        let uv = metric.from_plane(cdt.vertex(h).position());
+        let uv = metric.plane_to_uv(cdt.vertex(h).position());
         let (xyz, n) = sample(surface, uv);
         pts.push(uv, xyz, n, None);
         cdt.vertex_data_mut(h).id = (total + k) as u32;
@@ -390,7 +390,7 @@ mod tests {
     use super::*;
 
     fn sq(x0: f64, y0: f64, s: f64, ccw: bool) -> Vec<[Vec2; 2]> {
-        let mut c = vec![
+        let mut c = [
             Vec2::new(x0, y0),
             Vec2::new(x0 + s, y0),
             Vec2::new(x0 + s, y0 + s),

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
-use cadre_mesh::{Deflection, MeshParams, mesh_model, mesh_stats, quick_bbox};
+use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model, mesh_stats};
 use serde_json::json;
 
 use crate::load::load_step;
@@ -62,13 +62,7 @@ pub fn run(args: &MeshArgs) -> Result<()> {
     let t0 = Instant::now();
     let loaded = load_step(&args.file)?;
     let model = &loaded.model;
-    let quick = quick_bbox(model);
-    // Faces without edges (whole surfaces) are not in the quick box; then take the exact one.
-    let diagonal = if quick.is_empty() || quick.diagonal() <= 0.0 {
-        model.bbox(cadre_geom::Accuracy::default()).diagonal()
-    } else {
-        quick.diagonal()
-    };
+    let diagonal = deflection_diagonal(model);
     let params = MeshParams {
         deflection: deflection.resolve(diagonal),
         angle: args.angle,
