@@ -39,29 +39,6 @@ fn main() {
         accuracy: acc,
         keep_exact: false,
     };
-    let surface = &model.surfaces[model.faces[index].surface.index()];
-    for (u, v) in [(0.0, 1.5), (0.5, 1.2), (1.0, 1.9), (0.3, 0.2)] {
-        let d = surface.derivs(u, v);
-        println!(
-            "eval {:?} derivs.point {:?} du {:?} dv {:?}",
-            surface.eval(u, v),
-            d.point,
-            d.du,
-            d.dv
-        );
-    }
-    if let Some(ext) = cadre_mesh::periodic::unwrapped_surface(
-        surface,
-        cadre_geom::Vec2::new(0.0, -1.0),
-        cadre_geom::Vec2::new(1.0, 0.0),
-    ) {
-        for (u, v) in [(0.0, 1.5), (0.5, 1.2), (1.0, 1.9), (0.3, 0.2)] {
-            let a = surface.eval(u, v);
-            let b = ext.eval(u, v - 2.0);
-            let c = ext.eval(u, v);
-            println!("S({u},{v}) = {a:?}; ext(v-2) = {b:?}; ext(v) = {c:?}");
-        }
-    }
     let started = std::time::Instant::now();
     match mesh_face(&model, FaceId(index as u32), &edges, &tol, &params) {
         Ok(m) => {
@@ -90,7 +67,9 @@ fn main() {
                 lo = lo.min(p.uv);
                 hi = hi.max(p.uv);
             }
-            println!("folded triangles {folded}; uv range {lo:?} .. {hi:?}");
+            println!(
+                "triangles facing against their normals: {folded}; (u, v) range {lo:?} .. {hi:?}"
+            );
             for (i, p) in m
                 .points
                 .iter()
