@@ -67,6 +67,33 @@ fn main() {
                 lo = lo.min(p.uv);
                 hi = hi.max(p.uv);
             }
+            let surface = &model.surfaces[model.faces[index].surface.index()];
+            let worst = m
+                .points
+                .iter()
+                .map(|p| {
+                    (
+                        (surface.eval(p.uv.x, p.uv.y) - p.xyz).length(),
+                        p.key.is_some(),
+                        p.uv,
+                    )
+                })
+                .max_by(|a, b| a.0.total_cmp(&b.0));
+            let mut big: Vec<(f64, [u32; 3])> = m
+                .triangles
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| m.points[i as usize].xyz);
+                    (0.5 * (b - a).cross(c - a).length(), *t)
+                })
+                .collect();
+            big.sort_by(|a, b| b.0.total_cmp(&a.0));
+            for (area, t) in big.iter().take(3) {
+                let uv = t.map(|i| m.points[i as usize].uv);
+                let key = t.map(|i| m.points[i as usize].key.is_some());
+                println!("big triangle {area:.3}: uv {uv:?} boundary {key:?}");
+            }
+            println!("largest |S(u, v) - point| (distance, boundary, uv): {worst:?}");
             println!(
                 "triangles facing against their normals: {folded}; (u, v) range {lo:?} .. {hi:?}"
             );

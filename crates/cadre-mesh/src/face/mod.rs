@@ -218,6 +218,12 @@ fn mesh_prepared(
 /// Smallest point budget of a repaired face (see [`Job::run`]).
 const REPAIRED_MIN_BUDGET: usize = 50_000;
 
+/// How many times its grid and boundary points a sound face may grow by refinement.
+const SOUND_GROWTH: usize = 24;
+
+/// Smallest point budget of a sound face.
+const SOUND_MIN_BUDGET: usize = 20_000;
+
 /// Everything one triangulation attempt needs; the grid is computed once for all attempts.
 struct Job<'a> {
     surface: &'a Surface,
@@ -273,8 +279,16 @@ impl Job<'_> {
         // such faces refined to the full point budget, 17 s each. A repaired face gets a
         // budget proportional to what the grid needed, generous for a sound face with one
         // bad crossing.
+        //
+        // Sound faces get a wider but still proportional budget: refinement normally adds a
+        // few times the grid's points, while a face it cannot satisfy (slivers standing on
+        // the surface on narrow B-spline bands, trj9_io1-sy-214.stp face #439, root cause
+        // not found yet) would otherwise grow to the whole point budget, ~10 s a face. Such a
+        // face is reported as truncated.
         let max_points = match repair {
-            None => self.max_points,
+            None => self
+                .max_points
+                .min((SOUND_GROWTH * pts.len()).max(SOUND_MIN_BUDGET)),
             Some(_) => self
                 .max_points
                 .min((8 * pts.len()).max(REPAIRED_MIN_BUDGET)),
