@@ -99,6 +99,8 @@ struct Ctx<'a> {
     /// Parameter steps probing for poles.
     probe: [f64; 2],
     keep_exact: bool,
+    /// The surface's parameter domain, `[(u0, u1), (v0, v1)]`.
+    domain: [(f64, f64); 2],
 }
 
 /// The face's loops as chains, seams removed, in (u, v), face on the left. Vertex loops are
@@ -132,6 +134,7 @@ pub(super) fn face_chains(
         pole: (1e-3 * tol.deflection).max(10.0 * tol.accuracy.distance),
         probe: [span(u0, u1), span(v0, v1)],
         keep_exact: tol.keep_exact,
+        domain: [(u0, u1), (v0, v1)],
     };
     // An edge used twice by the face in opposite directions is a seam (or a slit): it bounds
     // nothing, and the closing step adds its own seam lines where the face needs them.
@@ -275,7 +278,7 @@ fn edge_segment(
             }
         };
         let uv = match uv {
-            Some(uv) => uv,
+            Some(uv) => snap_to_domain(cx, uv),
             // An inner sample that does not project is left out; the ends may not be.
             None if i > 0 && i + 1 < n => continue,
             None => return Err(TrimError::Projection),
@@ -315,6 +318,31 @@ fn edge_segment(
         points,
     })
 }
+
+/// Puts points that lie on a side of a bounded domain exactly on it. Vertices sit a little
+/// off their surface (file tolerance), so an edge along a B-spline patch boundary projects to a
+/// zigzag a hair inside and outside the side (trj9_io1-sy-214.stp face #439: u = 0 and
+/// 1.7e-5 alternately); the triangulation then spans long chords between those points that
+/// refinement can never shorten, and it ran away.
+fn snap_to_domain(cx: &Ctx, uv: Vec2) -> Vec2 {
+    let mut out = uv;
+    for k in 0..2 {
+        let (d0, d1) = cx.domain[k];
+        if cx.periods[k].is_some() || !(d0.is_finite() && d1.is_finite()) || d1 <= d0 {
+            continue;
+        }
+        let tol = SNAP * (d1 - d0);
+        if (out[k] - d0).abs() <= tol {
+            out[k] = d0;
+        } else if (out[k] - d1).abs() <= tol {
+            out[k] = d1;
+        }
+    }
+    out
+}
+
+/// Relative distance to a side of the domain under which a point is put on it.
+const SNAP: f64 = 1e-4;
 
 /// Which parameters of a surface point are free: moving them does not move the point.
 fn free_params(cx: &Ctx, uv: Vec2, xyz: Vec3) -> [bool; 2] {
