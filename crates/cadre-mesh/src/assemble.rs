@@ -242,7 +242,7 @@ pub fn build_scene(model: &Model, mesh: &ModelMesh) -> Scene {
         if depth >= cadre_brep::assembly::MAX_ASSEMBLY_DEPTH {
             continue;
         }
-        for occ in &model.part(occ_part_guard(part)).children {
+        for occ in &model.part(part).children {
             if scene.nodes.len() >= MAX_NODES {
                 break;
             }
@@ -263,8 +263,4 @@ pub fn build_scene(model: &Model, mesh: &ModelMesh) -> Scene {
         }
     }
     scene
-}
-
-fn occ_part_guard(p: PartId) -> PartId {
-    p
 }

@@ -2,7 +2,6 @@
 //! explorer (a part placed three times counts three times).
 
 use cadre_brep::{Body, Model};
-use cadre_geom::Vec3;
 
 use crate::ModelMesh;
 use crate::weld::{EdgeCensus, WeldedMesh};
@@ -131,6 +130,5 @@ pub fn mesh_stats(model: &Model, mesh: &ModelMesh) -> MeshStats {
         s.misoriented_edges += f.closed.misoriented as u64;
         s.open_boundary_edges += f.open_boundary;
     });
-    let _ = Vec3::ZERO;
     s
 }

@@ -346,24 +346,13 @@ pub(super) fn close_loops(
                 p.uv[axis] += k * period;
             }
             let up = maker.line(b_end.uv, t_rot[0].uv, false);
-            let t_end = *t_rot.last().expect("rotated chain has points");
-            // The way back is the same seam line a period over: same points, same keys.
-            let down: Vec<TrimPoint> = up
-                .iter()
-                .rev()
-                .map(|p| TrimPoint {
-                    uv: p.uv - b_sign * period * unit(axis),
-                    ..*p
-                })
-                .collect();
-            let _ = t_end;
+            let down = way_back(&up, b_sign * period * unit(axis));
             pts.extend(up);
             pts.extend(t_rot);
             pts.extend(down);
             i += 2;
         } else {
-            if let Some(pw) = periods[w] {
-                let _ = pw;
+            if periods[w].is_some() {
                 return Err(TrimError::Wrapping(
                     "a loop goes around a closed surface with no partner loop".into(),
                 ));
@@ -395,14 +384,7 @@ pub(super) fn close_loops(
             let corner_end = maker.point(c_end, pole);
             let across = maker.line(c_end, c_start, pole);
             let corner_start = maker.point(c_start, pole);
-            let down: Vec<TrimPoint> = up
-                .iter()
-                .rev()
-                .map(|p| TrimPoint {
-                    uv: p.uv - b_sign * period * unit(axis),
-                    ..*p
-                })
-                .collect();
+            let down = way_back(&up, b_sign * period * unit(axis));
             pts.extend(up);
             pts.push(corner_end);
             pts.extend(across);
@@ -421,6 +403,18 @@ pub(super) fn close_loops(
         segments: c.segments,
     }));
     Ok(loops)
+}
+
+/// The seam line `up` walked back one period over (`shift` is the period the wrapping chain
+/// advanced by): the same points with the same keys, in reverse.
+fn way_back(up: &[TrimPoint], shift: Vec2) -> Vec<TrimPoint> {
+    up.iter()
+        .rev()
+        .map(|p| TrimPoint {
+            uv: p.uv - shift,
+            ..*p
+        })
+        .collect()
 }
 
 /// Distance to the nearest multiple of `period`.
