@@ -79,6 +79,12 @@ pub fn mesh_model(
             let started = std::time::Instant::now();
             let r = mesh_face(model, id, &edges, &tol, params);
             let seconds = started.elapsed().as_secs_f64();
+            tracing::debug!(
+                face = model.faces[i].step_id,
+                seconds,
+                triangles = r.as_ref().map_or(0, |m| m.triangles.len()),
+                "face meshed"
+            );
             if seconds > 0.5 {
                 tracing::info!(
                     face = model.faces[i].step_id,

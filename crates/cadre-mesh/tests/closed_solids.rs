@@ -123,6 +123,29 @@ fn hemisphere_with_seam_to_the_pole_is_closed() {
     check("hemisphere with seam", &data, 75.0 * PI, 250.0 / 3.0 * PI);
 }
 
+/// A sphere as two half-sphere lunes between the meridians at u = 0 and u = π, each bounded
+/// by two edges from pole to pole. Across a pole the loop jumps by exactly half a period, so
+/// the nearest copy of the next meridian is a tie: it must be the one that keeps the face on
+/// the left (a B-spline sphere in pr1db.stp became a hole beyond its domain).
+#[test]
+fn sphere_of_two_lunes_is_closed() {
+    let data = "
+#10=SPHERICAL_SURFACE('',#4,5.);
+#22=CIRCLE('',#19,5.);
+#34=CARTESIAN_POINT('',(0.,0.,5.));#35=VERTEX_POINT('',#34);
+#36=CARTESIAN_POINT('',(0.,0.,-5.));#37=VERTEX_POINT('',#36);
+#42=EDGE_CURVE('via -x',#35,#37,#22,.T.);#43=EDGE_CURVE('via +x',#35,#37,#22,.F.);
+#50=ORIENTED_EDGE('',*,*,#42,.F.);#51=ORIENTED_EDGE('',*,*,#43,.T.);
+#52=EDGE_LOOP('',(#50,#51));#53=FACE_OUTER_BOUND('',#52,.T.);
+#54=ADVANCED_FACE('y > 0',(#53),#10,.T.);
+#60=ORIENTED_EDGE('',*,*,#43,.F.);#61=ORIENTED_EDGE('',*,*,#42,.T.);
+#62=EDGE_LOOP('',(#60,#61));#63=FACE_OUTER_BOUND('',#62,.T.);
+#64=ADVANCED_FACE('y < 0',(#63),#10,.T.);
+#90=CLOSED_SHELL('',(#54,#64));#100=MANIFOLD_SOLID_BREP('',#90);
+";
+    check("two lunes", data, 100.0 * PI, 500.0 / 3.0 * PI);
+}
+
 /// A whole sphere: one face bounded by a single vertex.
 #[test]
 fn whole_sphere_from_a_vertex_loop() {

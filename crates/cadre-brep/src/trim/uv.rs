@@ -174,7 +174,7 @@ pub(super) fn face_chains(
                         .extend(first);
                 }
                 for piece in pieces.into_iter().filter(|p| !p.is_empty()) {
-                    let mut chain = finish(&cx, piece, !cut)?;
+                    let mut chain = finish(&cx, piece, !cut, flip)?;
                     if flip {
                         chain.reverse();
                     }
@@ -201,7 +201,7 @@ pub(super) fn face_chains(
                 if seg.points.len() < 3 {
                     return Err(TrimError::Projection);
                 }
-                let mut chain = finish(&cx, vec![seg], true)?;
+                let mut chain = finish(&cx, vec![seg], true, flip)?;
                 if flip {
                     chain.reverse();
                 }
@@ -359,9 +359,38 @@ fn free_params(cx: &Ctx, uv: Vec2, xyz: Vec3) -> [bool; 2] {
     ]
 }
 
+/// The multiple of `period` to add to `x`, the first value of periodic parameter `k` after a
+/// pole, which follows `prev` before the pole. Across a pole the loop may jump by anything
+/// (a lune of a sphere goes up one meridian and down another), so the nearest copy is no
+/// guide (half a period is a tie: pr1db.stp face #578 became a hole beyond the domain).
+/// Instead the jump takes the direction in which a loop with the face on its left runs along
+/// the pole line: leftwards (decreasing u) along a pole above the loop, rightwards below it;
+/// for a pole free in v, downwards on the loop's left side (`high` false), upwards on its
+/// right. `flip`: the chain is reversed afterwards, so the direction is too.
+fn pole_crossing_shift(k: usize, prev: f64, x: f64, period: f64, high: bool, flip: bool) -> f64 {
+    // Whether the parameter must increase across the pole, in the chain's final direction.
+    let increasing = if k == 0 { !high } else { high };
+    let d = x - prev;
+    let mut n = -(d / period).floor();
+    // Now prev <= x + n·period < prev + period.
+    if increasing == flip {
+        // Decreasing: prev - period < x + n·period <= prev.
+        if d + n * period > 0.0 {
+            n -= 1.0;
+        }
+    }
+    n * period
+}
+
 /// Unwraps a chain's points across seams and completes its singular points. `cyclic`: the
-/// chain is a whole loop (its end runs into its start).
-fn finish(cx: &Ctx, segments: Vec<TrimSegment>, cyclic: bool) -> Result<Chain, TrimError> {
+/// chain is a whole loop (its end runs into its start); `flip`: the chain will be reversed
+/// afterwards (see [`pole_crossing_shift`]).
+fn finish(
+    cx: &Ctx,
+    segments: Vec<TrimSegment>,
+    cyclic: bool,
+    flip: bool,
+) -> Result<Chain, TrimError> {
     let mut raw: Vec<Raw> = Vec::new();
     let mut sources = Vec::with_capacity(segments.len());
     for (si, s) in segments.into_iter().enumerate() {
@@ -389,17 +418,35 @@ fn finish(cx: &Ctx, segments: Vec<TrimSegment>, cyclic: bool) -> Result<Chain, T
     if !raw.iter().any(fixed) {
         return Err(TrimError::Projection);
     }
-    // Unwrap: each periodic parameter continues from the previous point that fixes it.
+    // Unwrap: each periodic parameter continues from the previous point that fixes it, by
+    // the nearest copy; across a pole (a run of points free in that parameter) by the copy
+    // that keeps the face on the left.
+    let mean_fixed: [f64; 2] = std::array::from_fn(|k| {
+        let (sum, n) = raw
+            .iter()
+            .filter(|r| !r.free[k])
+            .fold((0.0, 0usize), |(s, n), r| (s + r.point.uv[k], n + 1));
+        if n > 0 { sum / n as f64 } else { 0.0 }
+    });
     let mut prev: [Option<f64>; 2] = [None, None];
+    let mut crossed: [Option<f64>; 2] = [None, None];
     for r in raw.iter_mut() {
         for (k, last) in prev.iter_mut().enumerate() {
             if r.free[k] {
+                // The pole's other parameter, to tell which side of the loop it is on.
+                crossed[k] = Some(r.point.uv[1 - k]);
                 continue;
             }
             let x = &mut r.point.uv[k];
             if let (Some(p), Some(period)) = (*last, cx.periods[k]) {
-                *x += ((p - *x) / period).round() * period;
+                *x += match crossed[k] {
+                    Some(pole) => {
+                        pole_crossing_shift(k, p, *x, period, pole > mean_fixed[1 - k], flip)
+                    }
+                    None => ((p - *x) / period).round() * period,
+                };
             }
+            crossed[k] = None;
             *last = Some(*x);
         }
     }

@@ -4,6 +4,24 @@ use cadre_geom::{Surface, Vec2};
 
 use crate::MeshParams;
 
+/// Largest stretch of the metric plane, either way, beyond the isotropic-in-3D scaling, that
+/// a face falls back to when the stretch its curvature asks for ([`WIDE_STRETCH`]) makes
+/// refinement run away.
+///
+/// Measured on the corpus at `--deflection-rel 0.001 --angle 0.5` with this cap alone: the
+/// uncapped stretch ran away wherever the boundary did not already hold the columns a long
+/// thin triangle needs (a cone face with notches, bug30053.stp #944: 20,000 folded points
+/// instead of 553), because midpoint splits of skewed edges kept creating new rows; 1.8 M
+/// triangles (5.8× OCCT) and 32 faces stopped by the budget. Capped at 2, 3, 5 or 10: 0.27 M
+/// triangles (0.86×), none stopped; the cap matters little within that range. But a capped
+/// stretch costs plain cylinders many interior points, hence the first, wide attempt.
+pub(crate) const MAX_STRETCH: f64 = 4.0;
+
+/// The stretch a face first tries: whatever the curvature asks for, bounded only to keep the
+/// triangulation plane well conditioned (a cylinder: long thin triangles along its rulings,
+/// often no interior point at all).
+pub(crate) const WIDE_STRETCH: f64 = 1e4;
+
 /// Affine map from (u, v) to the plane the Delaunay triangulation works in: each parameter
 /// is scaled by a representative speed `|∂S/∂u|`, `|∂S/∂v|`, so circumcircle tests there
 /// approximate 3D ones and triangles come out roughly isotropic on the surface.
@@ -23,8 +41,16 @@ impl Metric {
     /// 3D step the curvature allows in that direction (a flat direction counts as coarse as
     /// the domain is long), so the Delaunay criterion favours the anisotropic triangles a
     /// cylinder wants (thin across the curvature, long along the rulings) instead of
-    /// filling it with isotropic ones. Zero speeds (poles, apexes) are skipped.
-    pub fn new(surface: &Surface, lo: Vec2, hi: Vec2, tol: &StepTol, planar: bool) -> Metric {
+    /// filling it with isotropic ones, up to [`MAX_STRETCH`]. Zero speeds (poles, apexes) are
+    /// skipped.
+    pub fn new(
+        surface: &Surface,
+        lo: Vec2,
+        hi: Vec2,
+        tol: &StepTol,
+        planar: bool,
+        max_stretch: f64,
+    ) -> Metric {
         const N: usize = 5;
         let (mut su, mut nu, mut sv, mut nv) = (0.0, 0usize, 0.0, 0usize);
         let (mut hu, mut hv) = (f64::INFINITY, f64::INFINITY);
@@ -59,8 +85,7 @@ impl Metric {
             let (eu, ev) = ((hi.x - lo.x) * su, (hi.y - lo.y) * sv);
             let hu2 = hu.min(eu.max(hv.min(ev)));
             let hv2 = hv.min(ev.max(hu2));
-            // Bounded anisotropy keeps the triangulation well conditioned.
-            let r = (hv2 / hu2).clamp(1e-4, 1e4);
+            let r = (hv2 / hu2).clamp(1.0 / max_stretch, max_stretch);
             if r.is_finite() && r > 0.0 {
                 su *= r;
             }
@@ -153,7 +178,11 @@ impl StepTol {
         let (lu, lv) = (d.du.length(), d.dv.length());
         let n = d.du.cross(d.dv);
         let ln = n.length();
-        if !(lu > 0.0 && lv > 0.0 && ln > 1e-12 * lu * lv && ln.is_finite()) {
+        // Near a pole one speed is tiny but not zero (rational B-spline spheres, pr1db.stp
+        // #565: |∂S/∂u| ~ 1e-14 of |∂S/∂v|), and the twist term below, divided by it, asked
+        // for a v step of 1e-16: treat such points as singular too.
+        let (slow, fast) = (lu.min(lv), lu.max(lv));
+        if !(slow > 1e-7 * fast && ln > 1e-12 * lu * lv && ln.is_finite()) {
             return None;
         }
         let n = n / ln;
@@ -236,11 +265,64 @@ mod tests {
         let expect = 2.0 * (1.0f64 - 0.01 / 5.0).acos();
         assert!((du - expect).abs() < 1e-9, "{du} vs {expect}");
         assert!(dv.is_infinite());
-        // Anisotropic: u in units of the arc step, v in units of the height.
-        let m = Metric::new(&s, Vec2::ZERO, Vec2::new(1.0, 10.0), &tol, false);
-        assert!((m.su / m.sv - 10.0 / expect).abs() < 1e-9, "{m:?}");
-        let flat = Metric::new(&s, Vec2::ZERO, Vec2::new(1.0, 10.0), &tol, true);
+        // Anisotropic: u in units of the arc step, v in units of the height, up to the
+        // largest stretch.
+        let wide = Metric::new(
+            &s,
+            Vec2::ZERO,
+            Vec2::new(1.0, 10.0),
+            &tol,
+            false,
+            WIDE_STRETCH,
+        );
+        assert!((wide.su / wide.sv - 10.0 / expect).abs() < 1e-9, "{wide:?}");
+        let m = Metric::new(
+            &s,
+            Vec2::ZERO,
+            Vec2::new(1.0, 10.0),
+            &tol,
+            false,
+            MAX_STRETCH,
+        );
+        assert!((m.su / m.sv - 5.0 * MAX_STRETCH).abs() < 1e-9, "{m:?}");
+        let short = Metric::new(
+            &s,
+            Vec2::ZERO,
+            Vec2::new(1.0, 2.0),
+            &tol,
+            false,
+            MAX_STRETCH,
+        );
+        let stretch = 2.0 / (expect * 5.0);
+        assert!(stretch > 1.0 && stretch < MAX_STRETCH);
+        assert!(
+            (short.su / short.sv - 5.0 * stretch).abs() < 1e-9,
+            "{short:?}"
+        );
+        let flat = Metric::new(
+            &s,
+            Vec2::ZERO,
+            Vec2::new(1.0, 10.0),
+            &tol,
+            true,
+            WIDE_STRETCH,
+        );
         assert!((flat.su / flat.sv - 5.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn points_next_to_a_pole_count_as_singular() {
+        let s = Surface::Sphere {
+            frame: Frame::WORLD,
+            radius: 5.0,
+        };
+        let tol = StepTol::new(&MeshParams::default());
+        assert!(tol.steps(&s, 0.3, 0.2).is_some());
+        // |∂S/∂u| is 1e-9 of |∂S/∂v| here.
+        assert!(
+            tol.steps(&s, 0.3, std::f64::consts::FRAC_PI_2 - 1e-9)
+                .is_none()
+        );
     }
 
     #[test]

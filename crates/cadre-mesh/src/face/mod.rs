@@ -134,8 +134,9 @@ fn guarded(f: impl FnOnce() -> Result<FaceMesh, FaceMeshError>) -> Result<FaceMe
     })
 }
 
-/// [`triangulate_face`] after validation: the strict triangulation, and when the loops
-/// conflict, the repaired ones (see [`repair`]) from the most faithful to the most robust.
+/// [`triangulate_face`] after validation: first in the metric plane stretched as much as the
+/// curvature asks ([`metric::WIDE_STRETCH`]) on a short point budget, and if refinement does
+/// not converge within it, in the plane of bounded stretch ([`metric::MAX_STRETCH`]).
 fn mesh_prepared(
     surface: &Surface,
     reversed: bool,
@@ -144,7 +145,40 @@ fn mesh_prepared(
 ) -> Result<FaceMesh, FaceMeshError> {
     let tol = StepTol::new(params);
     let planar = metric::is_planar(surface);
-    let metric = Metric::new(surface, prep.lo, prep.hi, &tol, planar);
+    let metric_with = |stretch| Metric::new(surface, prep.lo, prep.hi, &tol, planar, stretch);
+    let (wide, capped) = (
+        metric_with(metric::WIDE_STRETCH),
+        metric_with(metric::MAX_STRETCH),
+    );
+    if !planar && wide.su != capped.su {
+        let first = mesh_in_plane(surface, reversed, prep, params, wide, Some(WIDE_GROWTH));
+        if first.as_ref().is_ok_and(|m| !m.truncated) {
+            return first;
+        }
+        tracing::debug!("refinement ran away in the wide metric; bounded stretch instead");
+    }
+    mesh_in_plane(surface, reversed, prep, params, capped, None)
+}
+
+/// How many times its grid and boundary points a face may grow in the wide metric before it
+/// falls back to the bounded stretch. Runaway refinement doubles the points every round
+/// (bug30053.stp #944: 74, 128, 213, 417, 679, ...) while a converging face rarely needs more
+/// than a few times its start.
+const WIDE_GROWTH: usize = 4;
+
+/// One triangulation in the plane of `metric`: the strict triangulation, and when the loops
+/// conflict, the repaired ones (see [`repair`]) from the most faithful to the most robust.
+/// `growth`: a tighter refinement budget, in multiples of the start points (see [`Job::run`]).
+fn mesh_in_plane(
+    surface: &Surface,
+    reversed: bool,
+    prep: &domain::Prepared,
+    params: &MeshParams,
+    metric: Metric,
+    growth: Option<usize>,
+) -> Result<FaceMesh, FaceMeshError> {
+    let tol = StepTol::new(params);
+    let planar = metric::is_planar(surface);
     // The boundary is never thinned, so it may exceed the budget on its own.
     let max_points = params.max_face_points.max(prep.points.len());
     let budget = max_points - prep.points.len();
@@ -191,6 +225,7 @@ fn mesh_prepared(
         tol,
         planar,
         max_points,
+        growth,
         truncated: grid.truncated,
         pts,
     };
@@ -233,6 +268,8 @@ struct Job<'a> {
     tol: StepTol,
     planar: bool,
     max_points: usize,
+    /// A tighter refinement budget, in multiples of the start points.
+    growth: Option<usize>,
     truncated: bool,
     /// Boundary points, then the interior grid points.
     pts: Points,
@@ -285,11 +322,12 @@ impl Job<'_> {
         // the surface on narrow B-spline bands, trj9_io1-sy-214.stp face #439, root cause
         // not found yet) would otherwise grow to the whole point budget, ~10 s a face. Such a
         // face is reported as truncated.
-        let max_points = match repair {
-            None => self
+        let max_points = match (self.growth, repair) {
+            (Some(g), _) => self.max_points.min(g * pts.len()),
+            (None, None) => self
                 .max_points
                 .min((SOUND_GROWTH * pts.len()).max(SOUND_MIN_BUDGET)),
-            Some(_) => self
+            (None, Some(_)) => self
                 .max_points
                 .min((8 * pts.len()).max(REPAIRED_MIN_BUDGET)),
         };
