@@ -58,16 +58,30 @@ pub fn edge_range(model: &Model, edge: &Edge, acc: Accuracy) -> Option<(f64, f64
         }
         return Some((t0, t1));
     }
-    // A closed edge on a closed, non-periodic curve (a circle written as a B-spline): the
-    // edge is the whole curve.
-    if (t1 - t0).abs() <= 1e-12 * (1.0 + t0.abs())
-        && let Some((d0, d1)) = curve.domain()
-        && d0.is_finite()
-        && d1.is_finite()
-        && (curve.eval(d0) - curve.eval(d1)).length() <= acc.distance.max(1e-9) * 1e3
-        && (curve.eval(0.5 * (d0 + d1)) - p0).length() > acc.distance * 1e3
-    {
-        return Some((d0, d1));
+    let closed_domain = curve.domain().filter(|&(d0, d1)| {
+        d0.is_finite()
+            && d1.is_finite()
+            && (curve.eval(d0) - curve.eval(d1)).length() <= acc.distance.max(1e-9) * 1e3
+    });
+    if let Some((d0, d1)) = closed_domain {
+        // A closed edge on a closed, non-periodic curve (a circle written as a B-spline): the
+        // edge is the whole curve.
+        if (t1 - t0).abs() <= 1e-12 * (1.0 + t0.abs())
+            && (curve.eval(0.5 * (d0 + d1)) - p0).length() > acc.distance * 1e3
+        {
+            return Some((d0, d1));
+        }
+        // A vertex at the closing point projects to either end; the edge runs forward from
+        // its start (trj3_s1-ec-214.stp: two edges split one closed B-spline, the second
+        // ending at the closing point came out as the first's range).
+        let tiny = 1e-9 * (d1 - d0).abs().max(1.0);
+        if t1 < t0 {
+            if (t1 - d0).abs() <= tiny {
+                t1 = d1;
+            } else if (t0 - d1).abs() <= tiny {
+                return Some((d0, t1));
+            }
+        }
     }
     if t1 < t0 {
         // A bounded curve run against its parameter: keep the interval increasing anyway.
@@ -736,6 +750,41 @@ mod tests {
         assert!(is_axis_aligned(&swap));
         let tilted = Transform::from_rotation_z(0.3);
         assert!(!is_axis_aligned(&tilted));
+    }
+
+    /// Two edges split a closed B-spline (a square loop, first control point repeated last):
+    /// the one ending at the closing point runs to the curve's end, not back to its start.
+    #[test]
+    fn edge_ending_at_the_closing_point_of_a_closed_curve() {
+        let square = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(0.0, 0.0, 0.0),
+        ];
+        let curve = cadre_geom::BSplineCurve::try_new(
+            1,
+            vec![0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 4.0],
+            square.to_vec(),
+            None,
+        )
+        .unwrap();
+        let mut model = Model::default();
+        model.curves.push(cadre_geom::Curve::BSpline(curve));
+        model.vertices.push(crate::Vertex { point: square[0] });
+        model.vertices.push(crate::Vertex { point: square[2] });
+        let edge = |start: u32, end: u32| crate::Edge {
+            curve: Some(crate::CurveId(0)),
+            start: crate::VertexId(start),
+            end: crate::VertexId(end),
+            same_sense: true,
+            pcurves: Vec::new(),
+            step_id: 0,
+        };
+        let acc = Accuracy::default();
+        assert_eq!(edge_range(&model, &edge(0, 1), acc), Some((0.0, 2.0)));
+        assert_eq!(edge_range(&model, &edge(1, 0), acc), Some((2.0, 4.0)));
     }
 
     #[test]

@@ -46,9 +46,10 @@ pub enum Surface {
     },
     /// A (possibly rational) B-spline or Bézier surface.
     BSpline(Box<BSplineSurface>),
-    /// Sweep of `profile` about an axis: `u` is the profile's parameter and `v` the rotation
-    /// angle (ISO 10303-42 order):
-    /// `S = c + ((P(u)−c)·a)a + cos v ((P(u)−c) − ((P(u)−c)·a)a) + sin v (a × (P(u)−c))`.
+    /// Sweep of `profile` about an axis: `u` is the rotation angle and `v` the profile's
+    /// parameter (ISO 10303-42 and OCCT order, so the file's pcurves and its face senses
+    /// apply as written):
+    /// `S = c + ((P(v)−c)·a)a + cos u ((P(v)−c) − ((P(v)−c)·a)a) + sin u (a × (P(v)−c))`.
     Revolution {
         /// Swept curve.
         profile: Box<Curve3>,

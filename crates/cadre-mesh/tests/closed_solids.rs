@@ -67,8 +67,32 @@ fn check(name: &str, data: &str, area: f64, volume: f64) {
 /// Cylinder r 5, h 10 whose side face is bounded by its two circles, without a seam edge.
 #[test]
 fn seamless_cylinder_is_closed() {
-    let data = "
-#10=CYLINDRICAL_SURFACE('',#4,5.);#11=PLANE('',#4);#12=PLANE('',#6);
+    check(
+        "cylinder",
+        &cylinder_with_side("CYLINDRICAL_SURFACE('',#4,5.)"),
+        150.0 * PI,
+        250.0 * PI,
+    );
+}
+
+/// The same cylinder with its side a surface of revolution of a line: u is the angle and v
+/// the line's parameter (ISO 10303-42), so the face sense applies as written.
+#[test]
+fn cylinder_as_surface_of_revolution_is_closed() {
+    let side = "SURFACE_OF_REVOLUTION('',#70,#73);#70=LINE('',#30,#72);#72=VECTOR('',#2,1.);\n#73=AXIS1_PLACEMENT('',#1,#2)";
+    check(
+        "revolution",
+        &cylinder_with_side(side),
+        150.0 * PI,
+        250.0 * PI,
+    );
+}
+
+/// Cylinder r 5, h 10 with side surface `side` (entity #10).
+fn cylinder_with_side(side: &str) -> String {
+    format!(
+        "
+#10={side};#11=PLANE('',#4);#12=PLANE('',#6);
 #20=CIRCLE('',#4,5.);#21=CIRCLE('',#6,5.);
 #30=CARTESIAN_POINT('',(5.,0.,0.));#31=VERTEX_POINT('',#30);
 #32=CARTESIAN_POINT('',(5.,0.,10.));#33=VERTEX_POINT('',#32);
@@ -81,8 +105,8 @@ fn seamless_cylinder_is_closed() {
 #64=ORIENTED_EDGE('',*,*,#41,.T.);#65=EDGE_LOOP('',(#64));#66=FACE_OUTER_BOUND('',#65,.T.);
 #67=ADVANCED_FACE('top',(#66),#12,.T.);
 #90=CLOSED_SHELL('',(#56,#63,#67));#100=MANIFOLD_SOLID_BREP('',#90);
-";
-    check("cylinder", data, 150.0 * PI, 250.0 * PI);
+"
+    )
 }
 
 const HEMISPHERE_BASE: &str = "

@@ -223,9 +223,8 @@ impl Surface {
     fn samples_per_piece(&self) -> (usize, usize) {
         match self {
             Surface::BSpline(b) => ((b.u_degree + 3).max(6), (b.v_degree + 3).max(6)),
-            Surface::Revolution { profile, .. } | Surface::Extrusion { profile, .. } => {
-                (profile.samples_per_piece(), 6)
-            }
+            Surface::Extrusion { profile, .. } => (profile.samples_per_piece(), 6),
+            Surface::Revolution { profile, .. } => (6, profile.samples_per_piece()),
             Surface::Offset { basis, .. } | Surface::Trimmed { basis, .. } => {
                 let (a, b) = basis.samples_per_piece();
                 (a + 2, b + 2)
@@ -261,15 +260,14 @@ impl Surface {
             Surface::Cylinder { .. }
             | Surface::Cone { .. }
             | Surface::Sphere { .. }
-            | Surface::Torus { .. } => {
+            | Surface::Torus { .. }
+            | Surface::Revolution { .. } => {
                 if angular {
                     angular_breaks(u0, u1, out)
                 }
             }
             Surface::BSpline(b) => out.extend(b.u_breaks_within(u0, u1)),
-            Surface::Revolution { profile, .. } | Surface::Extrusion { profile, .. } => {
-                profile.breaks(u0, u1, angular, out)
-            }
+            Surface::Extrusion { profile, .. } => profile.breaks(u0, u1, angular, out),
             Surface::Offset { basis, .. } | Surface::Trimmed { basis, .. } => {
                 basis.u_breaks(u0, u1, angular, out)
             }
@@ -283,11 +281,12 @@ impl Surface {
             | Surface::Cylinder { .. }
             | Surface::Cone { .. }
             | Surface::Extrusion { .. } => {}
-            Surface::Sphere { .. } | Surface::Torus { .. } | Surface::Revolution { .. } => {
+            Surface::Sphere { .. } | Surface::Torus { .. } => {
                 if angular {
                     angular_breaks(v0, v1, out)
                 }
             }
+            Surface::Revolution { profile, .. } => profile.breaks(v0, v1, angular, out),
             Surface::BSpline(b) => out.extend(b.v_breaks_within(v0, v1)),
             Surface::Offset { basis, .. } | Surface::Trimmed { basis, .. } => {
                 basis.v_breaks(v0, v1, angular, out)
@@ -465,7 +464,7 @@ mod tests {
             axis_origin: Vec3::ZERO,
             axis_direction: Vec3::Z,
         };
-        let b = rev.bbox_over(0.0, 3.0, 0.0, TAU).to_array();
+        let b = rev.bbox_over(0.0, TAU, 0.0, 3.0).to_array();
         assert!(close(b, [-2.0, -2.0, 0.0, 2.0, 2.0, 3.0], 1e-12), "{b:?}");
         let ext = Surface::Extrusion {
             profile: Box::new(Curve::Circle {

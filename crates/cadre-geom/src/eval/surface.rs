@@ -107,7 +107,7 @@ impl Surface {
             Surface::Torus { .. } => ((0.0, TAU), (0.0, TAU)),
             Surface::BSpline(b) if b.is_well_formed() => b.domain(),
             Surface::BSpline(_) => ((0.0, 0.0), (0.0, 0.0)),
-            Surface::Revolution { profile, .. } => (profile.domain().unwrap_or(ALL), (0.0, TAU)),
+            Surface::Revolution { profile, .. } => ((0.0, TAU), profile.domain().unwrap_or(ALL)),
             Surface::Extrusion { profile, .. } => (profile.domain().unwrap_or(ALL), ALL),
             Surface::Offset { basis, .. } => basis.domain(),
             Surface::Trimmed {
@@ -124,26 +124,27 @@ impl Surface {
     }
 
     /// The period in u, for surfaces closed and periodic in u: `2π` for cylinder, cone,
-    /// sphere and torus; the profile's for revolutions and extrusions of periodic curves.
+    /// sphere, torus and revolutions; the profile's for extrusions of periodic curves.
     /// B-splines report `None` (evaluation does not wrap), as do trimmed surfaces.
     pub fn u_period(&self) -> Option<f64> {
         match self {
             Surface::Cylinder { .. }
             | Surface::Cone { .. }
             | Surface::Sphere { .. }
-            | Surface::Torus { .. } => Some(TAU),
-            Surface::Revolution { profile, .. } | Surface::Extrusion { profile, .. } => {
-                profile.period()
-            }
+            | Surface::Torus { .. }
+            | Surface::Revolution { .. } => Some(TAU),
+            Surface::Extrusion { profile, .. } => profile.period(),
             Surface::Offset { basis, .. } => basis.u_period(),
             Surface::Plane { .. } | Surface::BSpline(_) | Surface::Trimmed { .. } => None,
         }
     }
 
-    /// The period in v: `2π` for tori and revolutions, else `None`.
+    /// The period in v: `2π` for tori, the profile's for revolutions of periodic curves, else
+    /// `None`.
     pub fn v_period(&self) -> Option<f64> {
         match self {
-            Surface::Torus { .. } | Surface::Revolution { .. } => Some(TAU),
+            Surface::Torus { .. } => Some(TAU),
+            Surface::Revolution { profile, .. } => profile.period(),
             Surface::Offset { basis, .. } => basis.v_period(),
             _ => None,
         }
@@ -197,20 +198,20 @@ impl Surface {
                 axis_direction,
             } => {
                 let a = axis_direction.try_normalize().unwrap_or(Vec3::Z);
-                let p = profile.ders(u, order);
-                let (s, c) = v.sin_cos();
-                for (i, &pi) in p.iter().enumerate().take(order + 1) {
+                let p = profile.ders(v, order);
+                let (s, c) = u.sin_cos();
+                for (j, &pj) in p.iter().enumerate().take(order + 1) {
                     // Only the point itself is measured from the axis origin.
-                    let w = if i == 0 { pi - *axis_origin } else { pi };
+                    let w = if j == 0 { pj - *axis_origin } else { pj };
                     let axial = a * a.dot(w);
                     let perp = w - axial;
                     let side = a.cross(w);
-                    // d^j/dv^j of (cos v, sin v) = (cos(v + jπ/2), sin(v + jπ/2)).
+                    // d^i/du^i of (cos u, sin u) = (cos(u + iπ/2), sin(u + iπ/2)).
                     let trig = [(c, s), (-s, c), (-c, -s), (s, -c)];
-                    for (j, &(cj, sj)) in trig.iter().enumerate().take(order + 1 - i) {
-                        d[i][j] = perp * cj + side * sj;
+                    for (i, &(ci, si)) in trig.iter().enumerate().take(order + 1 - j) {
+                        d[i][j] = perp * ci + side * si;
                     }
-                    d[i][0] += axial;
+                    d[0][j] += axial;
                 }
                 d[0][0] += *axis_origin;
             }
@@ -340,14 +341,15 @@ mod tests {
             radius: 2.0,
         };
         for (u, v) in [(0.0, 0.0), (1.0, 0.5), (-2.0, 3.0)] {
-            // Revolution: u along the profile, v the angle; cylinder the other way round.
-            assert!((rev.eval(u, v) - cyl.eval(v, u)).length() < 1e-14);
+            // Both: u the angle, v along the axis.
+            assert!((rev.eval(u, v) - cyl.eval(u, v)).length() < 1e-14);
             let a = rev.derivs(u, v);
-            let b = cyl.derivs(v, u);
-            assert!((a.du - b.dv).length() < 1e-14 && (a.dv - b.du).length() < 1e-14);
-            assert!((a.dvv - b.duu).length() < 1e-14);
+            let b = cyl.derivs(u, v);
+            assert!((a.du - b.du).length() < 1e-14 && (a.dv - b.dv).length() < 1e-14);
+            assert!((a.duu - b.duu).length() < 1e-14 && (a.duv - b.duv).length() < 1e-14);
         }
-        assert_eq!(rev.v_period(), Some(2.0 * PI));
+        assert_eq!(rev.u_period(), Some(2.0 * PI));
+        assert_eq!(rev.v_period(), None);
     }
 
     #[test]

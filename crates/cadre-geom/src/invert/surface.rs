@@ -172,47 +172,54 @@ impl Surface {
             let d = (self.eval(u, v) - p).length();
             if d.is_finite() { d } else { f64::INFINITY }
         };
-        let u_pieces = self.seed_pieces_u(p, u0, u1);
         // Starting points: local minima of the sampled distance within each smooth piece,
         // each bracketing a local minimum of the true distance.
         let mut starts: Vec<((f64, f64), f64)> = Vec::new();
-        if self.best_v(p, 0.0).is_some() {
-            // Sweeps: the best v for each u is known in closed form, leaving a 1D search.
-            let along = |u: f64| self.best_v(p, u).map_or(f64::INFINITY, |v| dist(u, v));
-            // d/du of the distance at the best v is (S − p)·Su there (envelope theorem).
-            let slope = |u: f64| {
-                self.best_v(p, u).map_or(0.0, |v| {
+        if let Some(axis) = self.profile_axis() {
+            // Sweeps: the best other parameter for each profile parameter t is known in
+            // closed form, leaving a 1D search over t.
+            let (t0, t1) = if axis == 0 { (u0, u1) } else { (v0, v1) };
+            let along = |t: f64| {
+                self.sweep_point(p, t)
+                    .map_or(f64::INFINITY, |(u, v)| dist(u, v))
+            };
+            // d/dt of the distance at the best other parameter is (S − p)·S_t there
+            // (envelope theorem).
+            let slope = |t: f64| {
+                self.sweep_point(p, t).map_or(0.0, |(u, v)| {
                     let d = self.ders(u, v, 1);
-                    (d[0][0] - p).dot(d[1][0])
+                    let st = if axis == 0 { d[1][0] } else { d[0][1] };
+                    (d[0][0] - p).dot(st)
                 })
             };
-            for us in &u_pieces {
-                let ds: Vec<f64> = us.iter().map(|&u| along(u)).collect();
-                let gs: Vec<f64> = us.iter().map(|&u| slope(u)).collect();
-                let last = us.len().saturating_sub(1);
+            for ts in &self.profile_seeds(p, t0, t1) {
+                let ds: Vec<f64> = ts.iter().map(|&t| along(t)).collect();
+                let gs: Vec<f64> = ts.iter().map(|&t| slope(t)).collect();
+                let last = ts.len().saturating_sub(1);
                 let mut cands = Vec::new();
                 for k in local_minima_1d(&ds) {
-                    cands.push(us[k]);
+                    cands.push(ts[k]);
                     // Golden section on each side of the sample (see the curve case).
                     for n in [k.saturating_sub(1), (k + 1).min(last)] {
                         if n != k {
-                            let (a, b) = (us[n].min(us[k]), us[n].max(us[k]));
+                            let (a, b) = (ts[n].min(ts[k]), ts[n].max(ts[k]));
                             cands.push(golden_min(along, a, b, 24));
                         }
                     }
                 }
-                for k in 1..us.len() {
+                for k in 1..ts.len() {
                     if gs[k - 1] < 0.0 && gs[k] > 0.0 {
-                        cands.push(golden_min(along, us[k - 1], us[k], 24));
+                        cands.push(golden_min(along, ts[k - 1], ts[k], 24));
                     }
                 }
-                for u in cands {
-                    if let Some(v) = self.best_v(p, u) {
+                for t in cands {
+                    if let Some((u, v)) = self.sweep_point(p, t) {
                         starts.push(((u, v), dist(u, v)));
                     }
                 }
             }
         } else if v0.is_finite() && v1.is_finite() {
+            let u_pieces = self.seed_pieces_u(u0, u1);
             let vb = self.v_breaks_within(v0, v1);
             let v_pieces = sample_pieces(v0, v1, &vb, self.seed_per_piece().1, SEED_MAX);
             for us in &u_pieces {
@@ -253,40 +260,57 @@ impl Surface {
         best.map(|b| (b.0, b.1))
     }
 
-    /// Seed u values by smooth piece: a grid over the finite u range (the profile's seeds
-    /// for sweeps, whose search is one-dimensional); for sweeps of unbounded profiles the
-    /// profile's own projection of `p`.
-    fn seed_pieces_u(&self, p: Vec3, u0: f64, u1: f64) -> Vec<Vec<f64>> {
-        match self {
-            Surface::Revolution { profile, .. } | Surface::Extrusion { profile, .. } => {
-                if u0.is_finite() && u1.is_finite() {
-                    profile.seeds(u0, u1)
-                } else {
-                    vec![
-                        profile
-                            .project(p, None, Accuracy::new(1e-9))
-                            .into_iter()
-                            .collect(),
-                    ]
-                }
-            }
-            _ if u0.is_finite() && u1.is_finite() => sample_pieces(
+    /// Seed u values by smooth piece: a grid over the finite u range.
+    fn seed_pieces_u(&self, u0: f64, u1: f64) -> Vec<Vec<f64>> {
+        if u0.is_finite() && u1.is_finite() {
+            sample_pieces(
                 u0,
                 u1,
                 &self.u_breaks_within(u0, u1),
                 self.seed_per_piece().0,
                 SEED_MAX,
-            ),
-            _ => vec![vec![0.0]],
+            )
+        } else {
+            vec![vec![0.0]]
         }
     }
 
-    /// For sweeps, the v minimising the distance to `p` at fixed `u`.
-    fn best_v(&self, p: Vec3, u: f64) -> Option<f64> {
+    /// For sweeps, the parameter that runs along the profile: u (0) for extrusions, v (1)
+    /// for revolutions.
+    fn profile_axis(&self) -> Option<usize> {
+        match self {
+            Surface::Extrusion { .. } => Some(0),
+            Surface::Revolution { .. } => Some(1),
+            _ => None,
+        }
+    }
+
+    /// For sweeps, seed profile parameters by smooth piece over `[t0, t1]`; for unbounded
+    /// profiles the profile's own projection of `p`.
+    fn profile_seeds(&self, p: Vec3, t0: f64, t1: f64) -> Vec<Vec<f64>> {
+        let (Surface::Revolution { profile, .. } | Surface::Extrusion { profile, .. }) = self
+        else {
+            return Vec::new();
+        };
+        if t0.is_finite() && t1.is_finite() {
+            profile.seeds(t0, t1)
+        } else {
+            vec![
+                profile
+                    .project(p, None, Accuracy::new(1e-9))
+                    .into_iter()
+                    .collect(),
+            ]
+        }
+    }
+
+    /// For sweeps, the (u, v) at profile parameter `t` whose other parameter (extrusion
+    /// length, rotation angle) brings the surface closest to `p`.
+    fn sweep_point(&self, p: Vec3, t: f64) -> Option<(f64, f64)> {
         match self {
             Surface::Extrusion { profile, direction } => {
                 let dd = direction.length_squared();
-                (dd > 0.0).then(|| (p - profile.eval(u)).dot(*direction) / dd)
+                (dd > 0.0).then(|| (t, (p - profile.eval(t)).dot(*direction) / dd))
             }
             Surface::Revolution {
                 profile,
@@ -294,14 +318,15 @@ impl Surface {
                 axis_direction,
             } => {
                 let a = axis_direction.try_normalize()?;
-                let q = profile.eval(u) - *axis_origin;
+                let q = profile.eval(t) - *axis_origin;
                 let w = p - *axis_origin;
                 let (x, y) = ((q - a * a.dot(q)).dot(w), a.cross(q).dot(w));
-                Some(if x == 0.0 && y == 0.0 {
+                let angle = if x == 0.0 && y == 0.0 {
                     0.0
                 } else {
                     y.atan2(x).rem_euclid(TAU)
-                })
+                };
+                Some((angle, t))
             }
             _ => None,
         }

@@ -733,7 +733,7 @@ pub fn parameter_scale(surface: &Surface, units: &cadre_brep::Units) -> (f64, f6
         Surface::Plane { .. } => (l, l),
         Surface::Cylinder { .. } | Surface::Cone { .. } => (a, l),
         Surface::Sphere { .. } | Surface::Torus { .. } => (a, a),
-        Surface::Revolution { .. } => (1.0, a),
+        Surface::Revolution { .. } => (a, 1.0),
         Surface::BSpline(_) | Surface::Extrusion { .. } => (1.0, 1.0),
         Surface::Offset { basis, .. } | Surface::Trimmed { basis, .. } => {
             parameter_scale(basis, units)
