@@ -107,7 +107,10 @@ pub struct BSplineCurve<P> {
     pub control_points: Vec<P>,
     /// One positive weight per control point, or `None` when polynomial.
     pub weights: Option<Vec<f64>>,
-    /// Whether the file declared the curve closed (informative; evaluation does not wrap).
+    /// Whether the curve is closed and evaluated as periodic: parameters outside the domain
+    /// wrap into it, and [`Curve::period`](crate::Curve::period) is the domain's length.
+    /// Readers set it where the ends meet ([`BSplineCurve::ends_meet`]), not from a file's
+    /// flag (files flag closed curves open: trj5_k1-md-203.stp).
     pub closed: bool,
 }
 

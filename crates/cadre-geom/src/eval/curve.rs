@@ -23,8 +23,8 @@ const FD_STEP: f64 = 1e-4;
 impl<P: GeomPoint> Curve<P> {
     /// The point at parameter `t`.
     ///
-    /// Outside a bounded curve's domain: B-splines extend their end pieces polynomially,
-    /// polylines and composites their end segments; conics just continue.
+    /// Outside a bounded curve's domain: B-splines extend their end pieces polynomially (closed
+    /// ones wrap), polylines and composites their end segments; conics just continue.
     pub fn eval(&self, t: f64) -> P {
         match self {
             // Point-only basis: no derivative tables (see `BSplineCurve::derivatives_on_span`).
@@ -105,15 +105,20 @@ impl<P: GeomPoint> Curve<P> {
         }
     }
 
-    /// Whether the curve is periodic (circles, ellipses and offsets of them).
+    /// Whether the curve is periodic (circles, ellipses, closed B-splines and offsets of them).
     pub fn is_periodic(&self) -> bool {
         self.period().is_some()
     }
 
-    /// The period of a periodic curve (`2π` for circles and ellipses), else `None`.
+    /// The period of a periodic curve (`2π` for circles and ellipses, the domain's length for
+    /// [closed](crate::BSplineCurve::closed) B-splines), else `None`.
     pub fn period(&self) -> Option<f64> {
         match self {
             Curve::Circle { .. } | Curve::Ellipse { .. } => Some(TAU),
+            Curve::BSpline(b) if b.closed && b.is_well_formed() => {
+                let (a, z) = b.domain();
+                Some(z - a)
+            }
             Curve::Offset { basis, .. } => basis.period(),
             _ => None,
         }

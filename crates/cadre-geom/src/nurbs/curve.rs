@@ -25,8 +25,51 @@ impl<P: GeomPoint> BSplineCurve<P> {
             out.fill(P::ZERO);
             return;
         }
+        let t = self.wrap(t);
         let span = find_span(&self.knots, self.control_points.len(), self.degree, t);
         self.derivatives_on_span(span, t, out);
+    }
+
+    /// `t` moved into the domain by whole periods when the curve is [closed]
+    /// (BSplineCurve::closed); unchanged otherwise or inside the domain.
+    fn wrap(&self, t: f64) -> f64 {
+        if !self.closed {
+            return t;
+        }
+        let (a, b) = self.domain();
+        if (a..=b).contains(&t) || !t.is_finite() {
+            t
+        } else {
+            a + (t - a).rem_euclid(b - a)
+        }
+    }
+
+    /// Whether the curve ends where it starts (within 1e-9 of its control polygon's size):
+    /// then it may be evaluated as periodic (see [`BSplineCurve::closed`]).
+    pub fn ends_meet(&self) -> bool {
+        if !self.is_well_formed() {
+            return false;
+        }
+        let (a, b) = self.domain();
+        let mut ends = [P::ZERO];
+        let mut end = [P::ZERO];
+        self.derivatives_on_span(
+            find_span(&self.knots, self.control_points.len(), self.degree, a),
+            a,
+            &mut ends,
+        );
+        self.derivatives_on_span(
+            find_span(&self.knots, self.control_points.len(), self.degree, b),
+            b,
+            &mut end,
+        );
+        let first = self.control_points[0];
+        let size = self
+            .control_points
+            .iter()
+            .map(|&q| (q - first).length_p())
+            .fold(0.0, f64::max);
+        (ends[0] - end[0]).length_p() <= 1e-9 * size.max(1e-300)
     }
 
     /// [`BSplineCurve::derivatives_into`] using the polynomial piece of knot span `span`
@@ -122,11 +165,27 @@ impl<P: GeomPoint> BSplineCurve<P> {
 
     /// Distinct interior knots strictly inside `(t0, t1)`: where the curve may lose
     /// smoothness, so samplers split there.
+    /// For a [closed](BSplineCurve::closed) curve the knots repeat every period.
     pub fn breaks_within(&self, t0: f64, t1: f64) -> Vec<f64> {
         let mut out: Vec<f64> = Vec::new();
-        for &k in &self.knots {
-            if k > t0 && k < t1 && out.last() != Some(&k) {
-                out.push(k);
+        let (a, b) = self.domain();
+        let (first, last) =
+            if self.closed && self.is_well_formed() && t0.is_finite() && t1.is_finite() {
+                let p = b - a;
+                // At most a few periods: a range is never much longer than one.
+                let lo = ((t0 - b) / p).floor().max(-4.0) as i64;
+                let hi = ((t1 - a) / p).ceil().min(4.0) as i64;
+                (lo, hi)
+            } else {
+                (0, 0)
+            };
+        for m in first..=last {
+            let shift = m as f64 * (b - a);
+            for &k in &self.knots {
+                let k = k + shift;
+                if k > t0 && k < t1 && out.last().is_none_or(|&l| k > l) {
+                    out.push(k);
+                }
             }
         }
         out
@@ -137,6 +196,30 @@ impl<P: GeomPoint> BSplineCurve<P> {
 mod tests {
     use crate::bspline::BSplineCurve;
     use crate::{Vec2, Vec3};
+
+    #[test]
+    fn closed_curves_wrap_and_open_ones_extend() {
+        let square = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(0.0, 0.0),
+        ];
+        let knots = vec![0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 4.0];
+        let mut c = BSplineCurve::try_new(1, knots.clone(), square, None).unwrap();
+        assert!(c.ends_meet());
+        // Not flagged: the last piece extends linearly.
+        assert!((c.point_at(4.5) - Vec2::new(0.0, -0.5)).length() < 1e-12);
+        c.closed = true;
+        assert!((c.point_at(4.5) - Vec2::new(0.5, 0.0)).length() < 1e-12);
+        assert!((c.point_at(-0.5) - Vec2::new(0.0, 0.5)).length() < 1e-12);
+        assert_eq!(c.breaks_within(3.5, 5.5), vec![4.0, 5.0]);
+        assert_eq!(crate::Curve::BSpline(c).period(), Some(4.0));
+        let open = vec![Vec2::ZERO, Vec2::X, Vec2::ONE];
+        let open = BSplineCurve::try_new(1, vec![0.0, 0.0, 1.0, 2.0, 2.0], open, None).unwrap();
+        assert!(!open.ends_meet());
+    }
 
     #[test]
     fn rational_quarter_circle_is_on_circle() {

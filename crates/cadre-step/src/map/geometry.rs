@@ -469,7 +469,6 @@ fn bspline_curve<S: Space>(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSp
     if ids.len() > MAX_BSPLINE_POINTS {
         return Err(a.err(format!("{} control points is beyond reason", ids.len())));
     }
-    let closed = a.bool_or(offset + 3, false);
     let points = ids
         .iter()
         .map(|&p| point::<S>(m, p))
@@ -507,7 +506,7 @@ fn bspline_curve<S: Space>(m: &Mapper<'_>, inst: &Instance<'_>) -> MapResult<BSp
     };
     let mut c = BSplineCurve::try_new(degree, knots, points, weights)
         .map_err(|e| MapError::new(inst.id, format!("B-spline curve: {e}")))?;
-    c.closed = closed;
+    c.closed = c.ends_meet();
     Ok(c)
 }
 
