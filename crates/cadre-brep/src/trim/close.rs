@@ -238,8 +238,14 @@ pub(super) fn close_loops(
                     && closing(surface, 1 - k, -1.0, None).is_some_and(|c| c.1))
         });
         if contractible.is_empty() || (area < 0.0 && closed_all_around) {
-            // The whole surface, minus the holes.
-            let [us, vs] = maker.start;
+            // The whole surface, minus the holes; its seams run through the widest gap
+            // between the holes, so no hole straddles them (bug28414: a hole across both
+            // seams of a torus was cut by the box).
+            let start = |k: usize| match periods[k] {
+                Some(p) => seam_between_holes(&contractible, k, p, maker.start[k]),
+                None => maker.start[k],
+            };
+            let (us, vs) = (start(0), start(1));
             let ur = periods[0].map_or((u0, u1), |p| (us, us + p));
             let vr = periods[1].map_or((v0, v1), |p| (vs, vs + p));
             if !(ur.0.is_finite() && ur.1.is_finite() && vr.0.is_finite() && vr.1.is_finite()) {
@@ -547,6 +553,54 @@ fn domain_box(maker: &mut Maker, ur: (f64, f64), vr: (f64, f64)) -> TrimLoop {
     }
 }
 
+/// Where to put the seam of periodic parameter `k` (period `period`) so that it crosses no
+/// hole: the middle of the widest gap between the holes' ranges, in the period starting at
+/// `default`; `default` when there are no holes or they cover the whole period.
+fn seam_between_holes(holes: &[Chain], k: usize, period: f64, default: f64) -> f64 {
+    let mut ranges: Vec<(f64, f64)> = Vec::new();
+    for hole in holes {
+        let pts = hole.points();
+        let lo = pts.iter().map(|p| p.uv[k]).fold(f64::INFINITY, f64::min);
+        let hi = pts
+            .iter()
+            .map(|p| p.uv[k])
+            .fold(f64::NEG_INFINITY, f64::max);
+        if !(lo.is_finite() && hi.is_finite()) {
+            continue;
+        }
+        if hi - lo >= period {
+            return default;
+        }
+        let shift = ((lo - default) / period).floor() * period;
+        ranges.push((lo - shift, hi - shift));
+    }
+    if ranges.is_empty() {
+        return default;
+    }
+    ranges.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Sweep once around the circle, tracking how far the covered part reaches.
+    let mut best = (f64::NEG_INFINITY, default);
+    let mut reach = ranges[0].1;
+    for w in 1..=ranges.len() {
+        let next = if w < ranges.len() {
+            ranges[w].0
+        } else {
+            ranges[0].0 + period
+        };
+        if next - reach > best.0 {
+            best = (next - reach, 0.5 * (next + reach));
+        }
+        if w < ranges.len() {
+            reach = reach.max(ranges[w].1);
+        }
+    }
+    if best.0 <= 0.0 {
+        return default;
+    }
+    let s = best.1;
+    s - ((s - default) / period).floor() * period
+}
+
 /// Moves each hole by whole periods so it lies inside `outer`.
 fn place_holes(
     holes: &mut [Chain],
@@ -585,5 +639,40 @@ fn place_holes(
         if !placed {
             notes.push("a hole lies outside its face's outer loop".into());
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn hole(u: (f64, f64)) -> Chain {
+        let p = |x: f64, y: f64| TrimPoint {
+            uv: Vec2::new(x, y),
+            xyz: Vec3::ZERO,
+            key: 0,
+        };
+        Chain {
+            segments: vec![segment(
+                SegmentSource::Polygon,
+                vec![p(u.0, 0.0), p(u.1, 0.0), p(u.1, 1.0)],
+            )],
+            closes_at_pole: false,
+        }
+    }
+
+    #[test]
+    fn seams_go_through_the_widest_gap_between_holes() {
+        let tau = std::f64::consts::TAU;
+        // No holes: the default.
+        assert_eq!(seam_between_holes(&[], 0, tau, 0.0), 0.0);
+        // One hole across 0: the seam goes opposite it.
+        let s = seam_between_holes(&[hole((-0.3, 0.3))], 0, tau, 0.0);
+        assert!((s - std::f64::consts::PI).abs() < 1e-12, "{s}");
+        // Two holes: the wider gap is between 4 and 1 + 2π.
+        let s = seam_between_holes(&[hole((1.0, 2.0)), hole((3.0, 4.0))], 0, tau, 0.0);
+        assert!((s - 0.5 * (4.0 + 1.0 + tau)).abs() < 1e-12, "{s}");
+        // A hole around the whole period leaves the default.
+        assert_eq!(seam_between_holes(&[hole((0.0, 7.0))], 0, tau, 0.5), 0.5);
     }
 }
