@@ -99,7 +99,7 @@ fn main() {
             );
             // Sampled deviation: facet points against the surface at the same barycentric
             // (u, v), measured along the facet normal.
-            const K: usize = 6;
+            const K: usize = 12;
             let mut dev = (0.0f64, [0u32; 3]);
             for t in &m.triangles {
                 let q = t.map(|i| m.points[i as usize]);

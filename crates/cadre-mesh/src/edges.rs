@@ -144,18 +144,28 @@ fn bisect(
     let dm = curve.derivs(tm);
     let chord = b.1 - a.1;
     let len2 = chord.length_squared();
-    let off = dm.point - a.1;
-    let deviation = if len2 > 0.0 {
-        (off - chord * (off.dot(chord) / len2)).length()
-    } else {
-        off.length()
+    let off_chord = |p: Vec3| {
+        let off = p - a.1;
+        if len2 > 0.0 {
+            (off - chord * (off.dot(chord) / len2)).length()
+        } else {
+            off.length()
+        }
     };
-    let turn = match (a.2.try_normalize(), b.2.try_normalize()) {
-        (Some(ta), Some(tb)) => ta.dot(tb).clamp(-1.0, 1.0).acos(),
+    // The quarter points too: an S-shaped span (an inflection) has its midpoint on the chord
+    // and parallel end tangents, yet bulges on both sides.
+    let quarter = |s: f64| curve.eval(a.0 + (b.0 - a.0) * s);
+    let deviation = off_chord(dm.point)
+        .max(off_chord(quarter(0.25)))
+        .max(off_chord(quarter(0.75)));
+    let angle = |x: Vec3, y: Vec3| match (x.try_normalize(), y.try_normalize()) {
+        (Some(tx), Some(ty)) => tx.dot(ty).clamp(-1.0, 1.0).acos(),
         _ => 0.0,
     };
+    // Total turning through the midpoint: an arc's end-to-end angle, and more for an S.
+    let turn = angle(a.2, dm.d1) + angle(dm.d1, b.2);
     // A tiny chord cannot get better by splitting (and a zero one means a degenerate span).
-    let tiny = len2.sqrt().max(off.length()) <= 1e-3 * params.deflection;
+    let tiny = len2.sqrt().max((dm.point - a.1).length()) <= 1e-3 * params.deflection;
     if (deviation > params.deflection || turn > params.angle) && !tiny {
         let m = (tm, dm.point, dm.d1);
         bisect(curve, a, m, params, depth + 1, out);
@@ -168,6 +178,38 @@ fn bisect(
 mod tests {
     use super::*;
     use cadre_geom::curve::CurveFrame;
+
+    #[test]
+    fn s_shaped_span_is_split() {
+        // Midpoint on the chord, end tangents parallel: only the quarter points see it.
+        let s = cadre_geom::BSplineCurve::bezier(
+            vec![
+                Vec3::ZERO,
+                Vec3::new(1.0, 1.0, 0.0),
+                Vec3::new(2.0, -1.0, 0.0),
+                Vec3::new(3.0, 0.0, 0.0),
+            ],
+            None,
+        )
+        .unwrap();
+        let params = MeshParams {
+            deflection: 0.01,
+            angle: 0.5,
+            ..MeshParams::default()
+        };
+        let curve = Curve3::BSpline(s);
+        let samples = sample_curve(&curve, 0.0, 1.0, &params);
+        assert!(samples.len() > 8, "{}", samples.len());
+        for w in samples.windows(2) {
+            for k in 1..10 {
+                let t = w[0].0 + (w[1].0 - w[0].0) * k as f64 / 10.0;
+                let p = curve.eval(t);
+                let (a, b) = (w[0].1, w[1].1);
+                let d = (p - a) - (b - a) * ((p - a).dot(b - a) / (b - a).length_squared());
+                assert!(d.length() <= 0.0101, "{}", d.length());
+            }
+        }
+    }
 
     #[test]
     fn circle_samples_meet_the_deflection_and_angle() {
