@@ -57,7 +57,11 @@ fn part_figures(model: &Model, mesh: &ModelMesh, bodies: &[Body]) -> PartFigures
                     let w = WeldedMesh::shell(model, mesh, shell);
                     f.triangles += w.triangles.len() as u64;
                     f.area += w.area();
-                    volume += w.signed_volume();
+                    // Voids subtract whatever their shells' stated orientation: files orient
+                    // them either way (brep_wv1.stp's reversed void shells still face out of
+                    // the void), and OCCT's reader reorients them too.
+                    let v = w.signed_volume().abs();
+                    volume += if shell == solid.outer { v } else { -v };
                     add(&mut f.closed, w.census());
                 }
                 f.volume += volume.abs();

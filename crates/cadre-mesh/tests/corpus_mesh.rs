@@ -7,16 +7,89 @@
 //! its solids' volume for 95 % of the files OCCT reads, no boundary edges for 95 % of the
 //! files with solids. The assertions below are floors at what the code achieves today (so a
 //! regression fails), printed next to the targets; raise them as the mesher improves.
+//!
+//! `tests/data/reference_corrections.jsonl` replaces the reference's area or volume where
+//! OCCT's default integration rule is measurably wrong (its adaptive rule and its own fine
+//! mesh agree on another value), and names the files whose shape OCCT misreads; the figures
+//! are printed both with and without those files.
 
 use std::path::{Path, PathBuf};
 
 use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model, mesh_stats};
 
-/// Measured 2026-11-26 (see BENCHMARKS.md); the test fails below these.
-/// Measured then: area 93/133 (69.9 %), volume 68/85 (80.0 %), closed 70/87 (80.5 %).
-const AREA_FLOOR: f64 = 0.68;
-const VOLUME_FLOOR: f64 = 0.78;
-const CLOSED_FLOOR: f64 = 0.79;
+/// Floors, over all files OCCT reads, with the corrections applied; the test fails below
+/// these. Measured 2026-11-26 (see BENCHMARKS.md): area 125/133 (94.0 %), volume 80/85
+/// (94.1 %), closed 83/87 (95.4 %); without the files OCCT misreads 97.7 %, 98.8 %, 96.4 %.
+const AREA_FLOOR: f64 = 0.935;
+const VOLUME_FLOOR: f64 = 0.935;
+const CLOSED_FLOOR: f64 = 0.95;
+
+/// Corrections to the reference: file → (area, volume, OCCT misreads the shape).
+type Corrections = std::collections::HashMap<String, (Option<f64>, Option<f64>, bool)>;
+
+fn corrections() -> Corrections {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/reference_corrections.jsonl");
+    let text = std::fs::read_to_string(path).expect("reference corrections");
+    text.lines()
+        .filter(|l| l.starts_with('{'))
+        .map(|l| {
+            let r: serde_json::Value = serde_json::from_str(l).expect("correction line");
+            (
+                r["file"].as_str().expect("file").to_string(),
+                (
+                    r["area"].as_f64(),
+                    r["volume"].as_f64(),
+                    r.get("occt_misreads").is_some(),
+                ),
+            )
+        })
+        .collect()
+}
+
+/// Passed / counted, over all files and over the files OCCT reads correctly.
+#[derive(Default)]
+struct Tally {
+    all: (usize, usize),
+    read_right: (usize, usize),
+}
+
+impl Tally {
+    fn add(&mut self, ok: bool, misread: bool) {
+        self.all.1 += 1;
+        self.all.0 += usize::from(ok);
+        if !misread {
+            self.read_right.1 += 1;
+            self.read_right.0 += usize::from(ok);
+        }
+    }
+
+    fn all_fraction(&self) -> f64 {
+        if self.all.1 == 0 {
+            1.0
+        } else {
+            self.all.0 as f64 / self.all.1 as f64
+        }
+    }
+
+    fn show(&self) -> String {
+        let pct = |(a, b): (usize, usize)| {
+            if b == 0 {
+                100.0
+            } else {
+                100.0 * a as f64 / b as f64
+            }
+        };
+        format!(
+            "{}/{} ({:.1} %; {}/{} = {:.1} % without the files OCCT misreads)",
+            self.all.0,
+            self.all.1,
+            pct(self.all),
+            self.read_right.0,
+            self.read_right.1,
+            pct(self.read_right)
+        )
+    }
+}
 
 fn corpus() -> Option<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
@@ -30,8 +103,8 @@ fn corpus_meshes_match_occt_areas_and_volumes_and_close() {
         return;
     };
     let reference = std::fs::read_to_string(dir.join("reference.jsonl")).expect("reference");
-    let (mut files, mut area_ok, mut vol_files, mut vol_ok, mut solid_files, mut closed) =
-        (0, 0, 0, 0, 0, 0);
+    let fixes = corrections();
+    let (mut area, mut volume, mut closed) = (Tally::default(), Tally::default(), Tally::default());
     let mut failed_faces = 0;
     let mut report = Vec::new();
     for line in reference.lines().filter(|l| !l.trim().is_empty()) {
@@ -40,9 +113,10 @@ fn corpus_meshes_match_occt_areas_and_volumes_and_close() {
             continue;
         }
         let name = r["file"].as_str().expect("file name");
+        let (fixed_area, fixed_volume, misread) = fixes.get(name).copied().unwrap_or_default();
         let Ok(file) = cadre_step::syntax::StepFile::read(&dir.join("step").join(name)) else {
             report.push(format!("{name}: does not read"));
-            files += 1;
+            area.add(false, misread);
             continue;
         };
         let model = cadre_step::map_file(&file);
@@ -54,61 +128,58 @@ fn corpus_meshes_match_occt_areas_and_volumes_and_close() {
         let mesh = mesh_model(&model, &params, None);
         let stats = mesh_stats(&model, &mesh);
         failed_faces += mesh.failures.len();
-        files += 1;
-        let ref_area = r["area"].as_f64().unwrap_or(0.0);
+        let note = if misread { " [OCCT misreads]" } else { "" };
+        let ref_area = fixed_area.unwrap_or(r["area"].as_f64().unwrap_or(0.0));
         let area_error = (stats.area - ref_area).abs() / ref_area.max(1e-12);
-        if area_error <= 0.002 || (ref_area == 0.0 && stats.area == 0.0) {
-            area_ok += 1;
-        } else {
+        let ok = area_error <= 0.002 || (ref_area == 0.0 && stats.area == 0.0);
+        area.add(ok, misread);
+        if !ok {
             report.push(format!(
-                "{name}: area {} vs {ref_area} ({:.3} %)",
+                "{name}: area {} vs {ref_area} ({:.3} %){note}",
                 stats.area,
                 area_error * 100.0
             ));
         }
-        let ref_volume = r["volume"].as_f64().unwrap_or(0.0);
+        let ref_volume = fixed_volume.unwrap_or(r["volume"].as_f64().unwrap_or(0.0));
         if ref_volume > 0.0 {
-            vol_files += 1;
             let e = (stats.volume - ref_volume).abs() / ref_volume;
-            if e <= 0.002 {
-                vol_ok += 1;
-            } else {
+            volume.add(e <= 0.002, misread);
+            if e > 0.002 {
                 report.push(format!(
-                    "{name}: volume {} vs {ref_volume} ({:.3} %)",
+                    "{name}: volume {} vs {ref_volume} ({:.3} %){note}",
                     stats.volume,
                     e * 100.0
                 ));
             }
         }
         if r["solids"].as_u64().unwrap_or(0) > 0 {
-            solid_files += 1;
-            if stats.boundary_edges == 0 {
-                closed += 1;
-            } else {
-                report.push(format!("{name}: {} boundary edges", stats.boundary_edges));
+            closed.add(stats.boundary_edges == 0, misread);
+            if stats.boundary_edges > 0 {
+                report.push(format!(
+                    "{name}: {} boundary edges{note}",
+                    stats.boundary_edges
+                ));
             }
         }
     }
-    let frac = |a: usize, b: usize| if b == 0 { 1.0 } else { a as f64 / b as f64 };
     eprintln!("{}", report.join("\n"));
     eprintln!(
-        "area within 0.2 %: {area_ok}/{files} ({:.1} %, target 95 %); volume: {vol_ok}/{vol_files} \
-         ({:.1} %, target 95 %); closed: {closed}/{solid_files} ({:.1} %, target 95 %); \
-         faces not meshed: {failed_faces}",
-        100.0 * frac(area_ok, files),
-        100.0 * frac(vol_ok, vol_files),
-        100.0 * frac(closed, solid_files)
+        "area within 0.2 %: {} (target 95 %)\nvolume within 0.2 %: {} (target 95 %)\n\
+         closed: {} (target 95 %)\nfaces not meshed: {failed_faces}",
+        area.show(),
+        volume.show(),
+        closed.show()
     );
     assert!(
-        frac(area_ok, files) >= AREA_FLOOR,
+        area.all_fraction() >= AREA_FLOOR,
         "area agreement fell below the floor"
     );
     assert!(
-        frac(vol_ok, vol_files) >= VOLUME_FLOOR,
+        volume.all_fraction() >= VOLUME_FLOOR,
         "volume agreement fell below the floor"
     );
     assert!(
-        frac(closed, solid_files) >= CLOSED_FLOOR,
+        closed.all_fraction() >= CLOSED_FLOOR,
         "closed solids fell below the floor"
     );
 }
