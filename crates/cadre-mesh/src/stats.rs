@@ -87,11 +87,7 @@ fn part_figures(model: &Model, mesh: &ModelMesh, bodies: &[Body]) -> PartFigures
             }
             Body::Mesh(id) => {
                 let m = &model.meshes[id.index()];
-                let w = WeldedMesh {
-                    positions: m.positions.clone(),
-                    triangles: m.triangles.clone(),
-                    triangle_faces: Vec::new(),
-                };
+                let w = WeldedMesh::from_positions(&m.positions, &m.triangles);
                 f.triangles += w.triangles.len() as u64;
                 f.area += w.area();
                 if m.solid_count > 0 {

@@ -65,6 +65,39 @@ impl WeldedMesh {
         }
     }
 
+    /// A mesh given as positions and triangles, with equal positions welded into one vertex:
+    /// tessellated STEP faces repeat their shared vertices, one copy per face, taken from the
+    /// same coordinate list (so the copies are bitwise equal).
+    pub fn from_positions(positions: &[Vec3], triangles: &[[u32; 3]]) -> Self {
+        let mut w = Self::default();
+        let mut index: HashMap<[u64; 3], u32> = HashMap::with_capacity(positions.len());
+        let map: Vec<u32> = positions
+            .iter()
+            .map(|p| {
+                // +0.0 and -0.0 are the same point.
+                let key = [p.x, p.y, p.z].map(|c| (c + 0.0).to_bits());
+                *index.entry(key).or_insert_with(|| {
+                    w.positions.push(*p);
+                    (w.positions.len() - 1) as u32
+                })
+            })
+            .collect();
+        for t in triangles {
+            let Some([a, b, c]) = t
+                .iter()
+                .map(|&i| map.get(i as usize).copied())
+                .collect::<Option<Vec<u32>>>()
+                .and_then(|v| <[u32; 3]>::try_from(v).ok())
+            else {
+                continue;
+            };
+            if a != b && b != c && a != c {
+                w.triangles.push([a, b, c]);
+            }
+        }
+        w
+    }
+
     /// The mesh of a shell, faces oriented as the shell uses them.
     pub fn shell(model: &Model, mesh: &ModelMesh, shell: ShellId) -> Self {
         let mut w = Self::default();
@@ -121,5 +154,35 @@ impl WeldedMesh {
             }
         }
         c
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equal_positions_weld_across_faces() {
+        // A tetrahedron written as four faces with their own copies of the corners.
+        let c = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+        let faces = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let mut positions = Vec::new();
+        let mut triangles = Vec::new();
+        for f in faces {
+            let base = positions.len() as u32;
+            positions.extend(f.map(|i| c[i]));
+            triangles.push([base, base + 1, base + 2]);
+        }
+        let w = WeldedMesh::from_positions(&positions, &triangles);
+        assert_eq!(w.positions.len(), 4);
+        assert_eq!(w.census(), EdgeCensus::default());
+        assert!((w.signed_volume() - 1.0 / 6.0).abs() < 1e-12);
+        // Unwelded, every edge is a boundary.
+        let open = WeldedMesh {
+            positions,
+            triangles,
+            triangle_faces: Vec::new(),
+        };
+        assert_eq!(open.census().boundary, 12);
     }
 }
