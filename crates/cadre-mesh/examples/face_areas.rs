@@ -4,7 +4,10 @@
 //! Compared with OCCT's per-face figures (scripts/face_areas_occt.py) it finds the faces
 //! whose mesh is wrong.
 
-use cadre_mesh::{MeshParams, deflection_diagonal, mesh_model};
+#[path = "common/mod.rs"]
+mod common;
+
+use cadre_mesh::mesh_model;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -13,19 +16,8 @@ fn main() {
         std::process::exit(2);
     };
     let rel: f64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(0.0002);
-    let file = match cadre_step::syntax::StepFile::read(std::path::Path::new(path)) {
-        Ok(f) => f,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(1);
-        }
-    };
-    let model = cadre_step::map_file(&file);
-    let params = MeshParams {
-        deflection: rel * deflection_diagonal(&model),
-        angle: 0.1,
-        ..MeshParams::default()
-    };
+    let model = common::load(path);
+    let params = common::relative_params(&model, rel);
     let mesh = mesh_model(&model, &params, None);
     for (face, m) in model.faces.iter().zip(&mesh.faces) {
         let (mut area, mut c) = (0.0, cadre_geom::Vec3::ZERO);

@@ -1,6 +1,9 @@
 //! Meshes one face of a STEP file and prints its figures: `cargo run --release -p cadre-mesh
 //! --example face_debug -- FILE STEP_ID [DEFLECTION]`. For diagnosing faces that mesh badly.
 
+#[path = "common/mod.rs"]
+mod common;
+
 use cadre_brep::FaceId;
 use cadre_brep::trim::TrimTolerance;
 use cadre_geom::Accuracy;
@@ -15,14 +18,7 @@ fn main() {
         std::process::exit(2);
     };
     let deflection = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(0.1);
-    let file = match cadre_step::syntax::StepFile::read(std::path::Path::new(path)) {
-        Ok(f) => f,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(1);
-        }
-    };
-    let model = cadre_step::map_file(&file);
+    let model = common::load(path);
     let Some(index) = model.faces.iter().position(|f| f.step_id == id) else {
         eprintln!("no face #{id}");
         std::process::exit(1);
