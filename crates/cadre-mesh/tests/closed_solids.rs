@@ -22,8 +22,8 @@ const CONTEXT: &str = "
 #9=DIRECTION('',(0.,-1.,0.));#19=AXIS2_PLACEMENT_3D('',#1,#9,#3);
 ";
 
-/// Meshes a solid `#100` (a `MANIFOLD_SOLID_BREP`) and returns (area, volume, stats).
-fn mesh(data: &str, deflection: f64, angle: f64) -> cadre_mesh::MeshStats {
+/// Reads a solid `#100` (a `MANIFOLD_SOLID_BREP`) written with the shared context.
+fn model(data: &str) -> cadre_brep::Model {
     let text = format!(
         "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('t','',(''),(''),'','','');\n\
          FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n{CONTEXT}{data}\n\
@@ -32,6 +32,12 @@ fn mesh(data: &str, deflection: f64, angle: f64) -> cadre_mesh::MeshStats {
     let file = StepFile::parse(text.into_bytes()).expect("parses");
     let model = cadre_step::map_file(&file);
     assert!(model.warnings.is_empty(), "{:?}", model.warnings);
+    model
+}
+
+/// Meshes a solid `#100` (a `MANIFOLD_SOLID_BREP`) and returns its figures.
+fn mesh(data: &str, deflection: f64, angle: f64) -> cadre_mesh::MeshStats {
+    let model = model(data);
     let params = MeshParams {
         deflection,
         angle,
@@ -215,4 +221,87 @@ fn cone_is_closed_at_its_apex() {
 ";
     let slant = (125.0f64).sqrt();
     check("cone", data, PI * 5.0 * (5.0 + slant), 250.0 / 3.0 * PI);
+}
+
+/// Every trim segment of these faces (edges, seam lines, pole lines) keeps an exact (u, v)
+/// curve, and the curve runs from the segment's first point to its last.
+#[test]
+fn trims_keep_exact_curves() {
+    let two_lunes = "
+#10=SPHERICAL_SURFACE('',#4,5.);
+#22=CIRCLE('',#19,5.);
+#34=CARTESIAN_POINT('',(0.,0.,5.));#35=VERTEX_POINT('',#34);
+#36=CARTESIAN_POINT('',(0.,0.,-5.));#37=VERTEX_POINT('',#36);
+#42=EDGE_CURVE('',#35,#37,#22,.T.);#43=EDGE_CURVE('',#35,#37,#22,.F.);
+#50=ORIENTED_EDGE('',*,*,#42,.F.);#51=ORIENTED_EDGE('',*,*,#43,.T.);
+#52=EDGE_LOOP('',(#50,#51));#53=FACE_OUTER_BOUND('',#52,.T.);
+#54=ADVANCED_FACE('',(#53),#10,.T.);
+#60=ORIENTED_EDGE('',*,*,#43,.F.);#61=ORIENTED_EDGE('',*,*,#42,.T.);
+#62=EDGE_LOOP('',(#60,#61));#63=FACE_OUTER_BOUND('',#62,.T.);
+#64=ADVANCED_FACE('',(#63),#10,.T.);
+#90=CLOSED_SHELL('',(#54,#64));#100=MANIFOLD_SOLID_BREP('',#90);
+";
+    let cylinder = cylinder_with_side("CYLINDRICAL_SURFACE('',#4,5.)");
+    for data in [cylinder.as_str(), two_lunes] {
+        let model = model(data);
+        let params = MeshParams {
+            deflection: 0.01,
+            angle: 0.2,
+            ..MeshParams::default()
+        };
+        let acc = cadre_geom::Accuracy::default();
+        let edges = cadre_mesh::edges::EdgeDiscretisation::new(&model, &params, acc);
+        let tol = cadre_brep::trim::TrimTolerance {
+            deflection: params.deflection,
+            angle: params.angle,
+            accuracy: acc,
+            keep_exact: true,
+        };
+        for f in 0..model.faces.len() {
+            let trim =
+                cadre_brep::trim::face_trim(&model, cadre_brep::FaceId(f as u32), &edges, &tol)
+                    .expect("trims");
+            let surface = cadre_brep::trim::face_surface(&model, cadre_brep::FaceId(f as u32));
+            let on = |uv: cadre_geom::Vec2| surface.eval(uv.x, uv.y);
+            for s in trim.loops.iter().flat_map(|l| &l.segments) {
+                let e = s
+                    .exact
+                    .as_ref()
+                    .unwrap_or_else(|| panic!("{:?} has no exact curve", s.source));
+                // Compared on the surface: at a pole the (u, v) of an end is a matter of
+                // convention, the point is not.
+                let (first, last) = (s.points[0].uv, s.points[s.points.len() - 1].uv);
+                let start = e.curve.eval(e.t0) + e.offset;
+                let end = e.curve.eval(e.t1) + e.offset;
+                assert!(
+                    (on(start) - on(first)).length() < 1e-6,
+                    "{:?}: {start} vs {first}",
+                    s.source
+                );
+                assert!(
+                    (on(end) - on(last)).length() < 1e-6,
+                    "{:?}: {end} vs {last}",
+                    s.source
+                );
+                // The curve's middle lies on the segment's (u, v) polyline (every curve here is
+                // a (u, v) line or circle sampled finely).
+                let mid = e.curve.eval(0.5 * (e.t0 + e.t1)) + e.offset;
+                let d = s
+                    .points
+                    .windows(2)
+                    .map(|w| {
+                        let (a, b) = (w[0].uv, w[1].uv);
+                        let t = ((mid - a).dot(b - a) / (b - a).length_squared().max(1e-300))
+                            .clamp(0.0, 1.0);
+                        (a + (b - a) * t - mid).length()
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    d < 1e-3,
+                    "{:?}: the curve's middle is {d} from the segment",
+                    s.source
+                );
+            }
+        }
+    }
 }

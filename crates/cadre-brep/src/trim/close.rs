@@ -5,11 +5,11 @@
 
 use std::collections::HashMap;
 
-use cadre_geom::{Surface, Vec2, Vec3};
+use cadre_geom::{Curve2, Surface, Vec2, Vec3};
 
 use super::uv::{Chain, periods};
 use super::{
-    SegmentSource, TrimError, TrimKey, TrimLoop, TrimPoint, TrimSegment, TrimTolerance,
+    ExactTrim, SegmentSource, TrimError, TrimKey, TrimLoop, TrimPoint, TrimSegment, TrimTolerance,
     polygon_area,
 };
 use crate::FaceId;
@@ -142,14 +142,7 @@ enum Kind {
 }
 
 fn shift_chain(chain: &mut Chain, by: Vec2) {
-    for s in &mut chain.segments {
-        for p in &mut s.points {
-            p.uv += by;
-        }
-        if let Some(e) = &mut s.exact {
-            e.offset += by;
-        }
-    }
+    shift_segments(&mut chain.segments, by);
 }
 
 fn unit(axis: usize) -> Vec2 {
@@ -327,35 +320,50 @@ pub(super) fn close_loops(
         let (ref b_chain, _, b_sign) = wrapping[i];
         let b_side = side(b_sign);
         let paired = b_side > 0.0 && i + 1 < wrapping.len() && side(wrapping[i + 1].2) < 0.0;
-        let b_pts = b_chain.points();
-        let b_at = seam_point(&b_pts, &holes_d, period, axis);
-        let b_rot = rotate(&b_pts, b_at, b_sign * period * unit(axis));
-        let b_end = *b_rot.last().expect("rotated chain has points");
-        let b_start = b_rot[0];
-        let mut pts: Vec<TrimPoint> = Vec::new();
-        pts.extend_from_slice(&b_rot);
+        let b_tagged = tagged_points(b_chain);
+        let b_pts: Vec<TrimPoint> = b_tagged.iter().map(|t| t.0).collect();
+        let b_at = seam_point(&b_tagged, &holes_d, period, axis);
+        let b_shift = b_sign * period * unit(axis);
+        let b_segments = rotate(b_chain, &b_tagged, b_at, b_shift);
+        let b_start = b_pts[b_at];
+        let b_end = TrimPoint {
+            uv: b_start.uv + b_shift,
+            ..b_start
+        };
+        // The loop keeps the chains' edge segments (and their exact curves); the lines
+        // added to close it are seam or boundary segments.
+        let mut segments: Vec<TrimSegment> = b_segments;
         if paired {
             let (ref t_chain, _, t_sign) = wrapping[i + 1];
-            let t_pts = t_chain.points();
+            let t_tagged = tagged_points(t_chain);
             // The T point nearest, in the wrapping direction, to where B ended.
             let target = b_end.uv[axis];
-            let t_at = (0..t_pts.len() - 1)
+            let t_at = (0..t_tagged.len() - 1)
                 .min_by(|&a, &b| {
-                    let da = circ(t_pts[a].uv[axis] - target, period);
-                    let db = circ(t_pts[b].uv[axis] - target, period);
+                    let da = circ(t_tagged[a].0.uv[axis] - target, period);
+                    let db = circ(t_tagged[b].0.uv[axis] - target, period);
                     da.total_cmp(&db)
                 })
                 .unwrap_or(0);
-            let mut t_rot = rotate(&t_pts, t_at, t_sign * period * unit(axis));
-            let k = ((target - t_rot[0].uv[axis]) / period).round();
-            for p in &mut t_rot {
-                p.uv[axis] += k * period;
-            }
-            let up = maker.line(b_end.uv, t_rot[0].uv, false);
-            let down = way_back(&up, b_sign * period * unit(axis));
-            pts.extend(up);
-            pts.extend(t_rot);
-            pts.extend(down);
+            let t_shift = t_sign * period * unit(axis);
+            let mut t_segments = rotate(t_chain, &t_tagged, t_at, t_shift);
+            let t_first = t_tagged[t_at].0;
+            let k = ((target - t_first.uv[axis]) / period).round();
+            let by = unit(axis) * (k * period);
+            shift_segments(&mut t_segments, by);
+            let t_start = TrimPoint {
+                uv: t_first.uv + by,
+                ..t_first
+            };
+            let t_end = TrimPoint {
+                uv: t_start.uv + t_shift,
+                ..t_start
+            };
+            let up = maker.line(b_end.uv, t_start.uv, false);
+            let down = way_back(&up, b_shift);
+            segments.push(straight(SegmentSource::Seam, b_end, up, t_start));
+            segments.extend(t_segments);
+            segments.push(straight(SegmentSource::Seam, t_end, down, b_start));
             i += 2;
         } else {
             if periods[w].is_some() {
@@ -390,17 +398,18 @@ pub(super) fn close_loops(
             let corner_end = maker.point(c_end, pole);
             let across = maker.line(c_end, c_start, pole);
             let corner_start = maker.point(c_start, pole);
-            let down = way_back(&up, b_sign * period * unit(axis));
-            pts.extend(up);
-            pts.push(corner_end);
-            pts.extend(across);
-            pts.push(corner_start);
-            pts.extend(down);
+            let down = way_back(&up, b_shift);
+            segments.push(straight(SegmentSource::Seam, b_end, up, corner_end));
+            segments.push(straight(
+                SegmentSource::Boundary,
+                corner_end,
+                across,
+                corner_start,
+            ));
+            segments.push(straight(SegmentSource::Seam, corner_start, down, b_start));
             i += 1;
         }
-        loops.push(TrimLoop {
-            segments: vec![segment(SegmentSource::Seam, pts)],
-        });
+        loops.push(TrimLoop { segments });
     }
     if let Some(outer) = loops.first().cloned() {
         place_holes(&mut contractible, &outer, &periods, notes);
@@ -429,42 +438,159 @@ fn circ(x: f64, period: f64) -> f64 {
 }
 
 /// Index of the chain point where the seam line starts: the one farthest, around the
-/// wrapping direction, from every hole.
-fn seam_point(pts: &[TrimPoint], holes: &[(f64, f64)], period: f64, axis: usize) -> usize {
+/// wrapping direction, from every hole, preferring the start of a segment (a vertex) so that
+/// no edge is cut and every edge keeps its exact curve.
+fn seam_point(pts: &[(TrimPoint, usize)], holes: &[(f64, f64)], period: f64, axis: usize) -> usize {
     if holes.is_empty() || pts.len() < 2 {
         return 0;
     }
     let n = pts.len() - 1;
+    let score = |i: usize| {
+        let x = pts[i].0.uv[axis];
+        holes
+            .iter()
+            .map(|&(lo, hi)| {
+                let mid = 0.5 * (lo + hi);
+                (circ(x - mid, period) - 0.5 * (hi - lo)).max(0.0)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let best = |candidates: &mut dyn Iterator<Item = usize>| {
+        candidates.max_by(|&a, &b| score(a).total_cmp(&score(b)))
+    };
+    let starts = best(&mut (0..n).filter(|&i| i == 0 || pts[i].1 != pts[i - 1].1));
+    if let Some(i) = starts.filter(|&i| score(i) > 0.0) {
+        return i;
+    }
     let step = (n / 64).max(1);
-    (0..n)
-        .step_by(step)
-        .max_by(|&a, &b| {
-            let score = |i: usize| {
-                let x = pts[i].uv[axis];
-                holes
-                    .iter()
-                    .map(|&(lo, hi)| {
-                        let mid = 0.5 * (lo + hi);
-                        (circ(x - mid, period) - 0.5 * (hi - lo)).max(0.0)
-                    })
-                    .fold(f64::INFINITY, f64::min)
-            };
-            score(a).total_cmp(&score(b))
-        })
-        .unwrap_or(0)
+    best(&mut (0..n).step_by(step)).unwrap_or(0)
 }
 
-/// A wrapping chain (`pts[last]` is `pts[0]` one period on, by `shift`) restarted at index
-/// `at`: from `pts[at]` around to `pts[at] + shift`.
-fn rotate(pts: &[TrimPoint], at: usize, shift: Vec2) -> Vec<TrimPoint> {
-    let n = pts.len() - 1; // the last point repeats the first, shifted
-    let mut out = Vec::with_capacity(n + 1);
-    out.extend_from_slice(&pts[at..n]);
-    out.extend(pts[..=at].iter().map(|p| TrimPoint {
-        uv: p.uv + shift,
-        ..*p
-    }));
+/// A chain's points in order, each with the index of the segment it comes from; the point two
+/// consecutive segments share appears once, with the first. The last point is the first one a
+/// period on (the chain wraps).
+fn tagged_points(chain: &Chain) -> Vec<(TrimPoint, usize)> {
+    let flat: Vec<TrimPoint> = chain
+        .segments
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .collect();
+    let tol = super::repeat_distance(&flat);
+    let mut out: Vec<(TrimPoint, usize)> = Vec::with_capacity(flat.len());
+    for (i, s) in chain.segments.iter().enumerate() {
+        for &p in &s.points {
+            if out
+                .last()
+                .is_some_and(|(q, _)| q.key == p.key && (q.uv - p.uv).length() <= tol)
+            {
+                continue;
+            }
+            out.push((p, i));
+        }
+    }
     out
+}
+
+/// A wrapping chain (`tagged` from [`tagged_points`]) restarted at point `at`, as segments:
+/// from `tagged[at]` to the chain's end, then its beginning moved on by `shift` (one period)
+/// up to `tagged[at]` again (`at` 0: the chain as it is). A segment cut in two by the restart keeps its source but loses
+/// its exact curve (its parameter range is no longer known); the others keep theirs, the
+/// moved ones with `shift` added to their offset.
+fn rotate(
+    chain: &Chain,
+    tagged: &[(TrimPoint, usize)],
+    at: usize,
+    shift: Vec2,
+) -> Vec<TrimSegment> {
+    // The last point is the first one a period on: the restarted chain runs from `at` to the
+    // end, then over the beginning (its first point is that last one) moved on by `shift`.
+    let moved = |&(p, tag): &(TrimPoint, usize)| {
+        (
+            TrimPoint {
+                uv: p.uv + shift,
+                ..p
+            },
+            tag,
+            true,
+        )
+    };
+    let order: Vec<(TrimPoint, usize, bool)> = tagged[at..]
+        .iter()
+        .map(|&(p, tag)| (p, tag, false))
+        .chain(tagged[1..=at].iter().map(moved))
+        .collect();
+    // Groups of consecutive points from one segment on one side of the restart.
+    let mut groups: Vec<(usize, bool, Vec<TrimPoint>)> = Vec::new();
+    for (p, tag, shifted) in order {
+        // Each segment starts where the one before ended.
+        let previous_end = groups.last().and_then(|g| g.2.last().copied());
+        match groups.last_mut() {
+            Some((t, s, pts)) if *t == tag && *s == shifted => pts.push(p),
+            _ => {
+                let mut pts: Vec<TrimPoint> = previous_end.into_iter().collect();
+                pts.push(p);
+                groups.push((tag, shifted, pts));
+            }
+        }
+    }
+    let cut = |tag: usize| groups.iter().filter(|g| g.0 == tag).count() > 1;
+    groups
+        .iter()
+        .map(|(tag, shifted, pts)| {
+            let source = &chain.segments[*tag];
+            let exact = source.exact.clone().filter(|_| !cut(*tag)).map(|mut e| {
+                if *shifted {
+                    e.offset += shift;
+                }
+                e
+            });
+            TrimSegment {
+                source: source.source,
+                exact,
+                points: pts.clone(),
+            }
+        })
+        .collect()
+}
+
+/// Moves segments by `by` in (u, v), exact curves with them.
+fn shift_segments(segments: &mut [TrimSegment], by: Vec2) {
+    for s in segments {
+        for p in &mut s.points {
+            p.uv += by;
+        }
+        if let Some(e) = &mut s.exact {
+            e.offset += by;
+        }
+    }
+}
+
+/// A straight (u, v) segment added to close a loop (seam or pole/domain line): `inner` (points
+/// strictly between, from [`Maker::line`] or [`way_back`]) with `first` before it and `last`
+/// after it; its exact curve is the (u, v) line from `first` (t = 0) to `last` (t = 1).
+fn straight(
+    source: SegmentSource,
+    first: TrimPoint,
+    inner: Vec<TrimPoint>,
+    last: TrimPoint,
+) -> TrimSegment {
+    let mut points = Vec::with_capacity(inner.len() + 2);
+    points.push(first);
+    points.extend(inner);
+    points.push(last);
+    TrimSegment {
+        source,
+        exact: Some(ExactTrim {
+            curve: Curve2::Line {
+                origin: first.uv,
+                direction: last.uv - first.uv,
+            },
+            t0: 0.0,
+            t1: 1.0,
+            offset: Vec2::ZERO,
+        }),
+        points,
+    }
 }
 
 /// The w value closing a face that goes around in `axis` on its `side` of w (±1): a pole

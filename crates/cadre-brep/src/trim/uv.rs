@@ -251,6 +251,8 @@ fn edge_segment(
             })
     });
     let mut points = Vec::with_capacity(n);
+    // The curve parameter of each point (inner samples that do not project are left out).
+    let mut ts = Vec::with_capacity(n);
     for i in 0..n {
         let s = at(i);
         let uv = match pcurve {
@@ -284,6 +286,7 @@ fn edge_segment(
             None => return Err(TrimError::Projection),
         };
         *hint = Some(uv);
+        ts.push(s.t);
         points.push(TrimPoint {
             uv,
             xyz: s.xyz,
@@ -301,7 +304,28 @@ fn edge_segment(
         })
     } else {
         edge.curve
-            .and_then(|c| exact::image(cx.surface, &cx.model.curves[c.index()]))
+            .and_then(|c| {
+                let curve = &cx.model.curves[c.index()];
+                exact::image(cx.surface, curve).or_else(|| {
+                    // Fit through inner points (an end at a pole has no u yet).
+                    let m = points.len();
+                    let (a, b) = if m >= 4 {
+                        (m / 3, 2 * m / 3)
+                    } else {
+                        (0, m.checked_sub(1)?)
+                    };
+                    let end = unwrapped_end(cx, &points[a..=b])?;
+                    let tol = (10.0 * cx.acc.distance).max(1e-3 * cx.agree);
+                    exact::linear_image(
+                        cx.surface,
+                        curve,
+                        (ts[a], points[a].uv),
+                        (ts[b], end),
+                        (at(0).t, at(n - 1).t),
+                        tol,
+                    )
+                })
+            })
             .map(|curve| ExactTrim {
                 curve,
                 t0: at(0).t,
@@ -317,6 +341,23 @@ fn edge_segment(
         exact,
         points,
     })
+}
+
+/// The last point's (u, v) continued from the first across the periods (each point nearest
+/// the one before), so the end of an edge going around a cylinder is a period on, not back at
+/// the seam. `None` for fewer than two points.
+fn unwrapped_end(cx: &Ctx, points: &[TrimPoint]) -> Option<Vec2> {
+    let mut prev = points.first()?.uv;
+    for p in &points[1..] {
+        let mut uv = p.uv;
+        for k in 0..2 {
+            if let Some(period) = cx.periods[k] {
+                uv[k] += ((prev[k] - uv[k]) / period).round() * period;
+            }
+        }
+        prev = uv;
+    }
+    (points.len() > 1).then_some(prev)
 }
 
 /// Puts points that lie on a side of a bounded domain exactly on it. Vertices sit a little
@@ -456,6 +497,8 @@ fn finish(
     for k in 0..2 {
         let mut i = 0;
         let mut out: Vec<Raw> = Vec::with_capacity(raw.len() + 4);
+        // A pole copy that ends the chain (see below), put back after the last point.
+        let mut tail: Option<Raw> = None;
         while i < raw.len() {
             if !raw[i].free[k] {
                 out.push(raw[i]);
@@ -487,7 +530,20 @@ fn finish(
             let mut run: Vec<Raw> = raw[start..i].to_vec();
             if run.len() == 1 && a != b {
                 run.push(run[0]);
+                // The lone point is where one edge ends and the next starts (an edge's last
+                // sample and the next one's first were merged): the first copy ends the
+                // previous segment, so each edge's points reach the pole.
+                if let Some(j) = before.filter(|&j| j + 1 == start)
+                    && raw[j].segment != run[0].segment
+                {
+                    run[0].segment = raw[j].segment;
+                }
             }
+            // A loop that starts at the pole (its closing copy was dropped): the first copy
+            // closes the last segment, at the end of the chain.
+            let to_tail = before
+                .filter(|&j| cyclic && start == 0 && j >= i && run.len() == 2 && a != b)
+                .map(|j| raw[j].segment);
             let m = run.len();
             for (j, r) in run.iter_mut().enumerate() {
                 let s = if m > 1 {
@@ -498,8 +554,14 @@ fn finish(
                 r.point.uv[k] = a + (b - a) * s;
                 r.free[k] = false;
             }
+            if let Some(segment) = to_tail {
+                let mut last = run.remove(0);
+                last.segment = segment;
+                tail = Some(last);
+            }
             out.extend(run);
         }
+        out.extend(tail);
         raw = out;
     }
     // Back into segments.
@@ -515,13 +577,15 @@ fn finish(
         segments[r.segment].points.push(r.point);
     }
     segments.retain(|s| !s.points.is_empty());
-    // The exact curve's period shift is the one its first point got.
+    // The exact curve's period shift is the one the segment's points got: compared at the
+    // middle (an end may be a pole, whose u is only the pole line's convention; between the
+    // middle sample and the curve's middle parameter there is much less than half a period).
     for s in &mut segments {
         if let Some(e) = &mut s.exact {
-            let p = e.curve.eval(e.t0);
-            let first = s.points[0].uv;
+            let p = e.curve.eval(0.5 * (e.t0 + e.t1));
+            let q = s.points[s.points.len() / 2].uv;
             if p.is_finite() {
-                let mut off = first - p;
+                let mut off = q - p;
                 for k in 0..2 {
                     off[k] = match cx.periods[k] {
                         Some(period) => (off[k] / period).round() * period,

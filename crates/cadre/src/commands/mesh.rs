@@ -153,7 +153,7 @@ fn dump_trim(model: &cadre_brep::Model, step_id: u64, params: &MeshParams) -> Re
         deflection: params.deflection,
         angle: params.angle,
         accuracy: acc,
-        keep_exact: false,
+        keep_exact: true,
     };
     let trim = cadre_brep::trim::face_trim(model, face, &edges, &tol)
         .map_err(|e| anyhow::anyhow!("face #{step_id}: {e}"))?;
@@ -175,6 +175,27 @@ fn dump_trim(model: &cadre_brep::Model, step_id: u64, params: &MeshParams) -> Re
                 .collect::<Vec<_>>()
         })
         .collect();
+    // Per loop, each segment's source and the kind of its exact (u, v) curve (null when only
+    // the polyline is known).
+    let segments: Vec<_> = trim
+        .loops
+        .iter()
+        .map(|l| {
+            l.segments
+                .iter()
+                .map(|s| {
+                    let exact = s.exact.as_ref().map(|e| {
+                        let kind = format!("{:?}", e.curve);
+                        kind.split(|c: char| !c.is_alphanumeric())
+                            .next()
+                            .unwrap_or_default()
+                            .to_string()
+                    });
+                    json!({"source": format!("{:?}", s.source), "exact": exact})
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
     let j = json!({
         "face": step_id,
         "surface": surface.type_name(),
@@ -183,6 +204,7 @@ fn dump_trim(model: &cadre_brep::Model, step_id: u64, params: &MeshParams) -> Re
         "reversed": trim.reversed,
         "notes": trim.notes,
         "loops": loops,
+        "segments": segments,
     });
     println!("{j}");
     Ok(())
