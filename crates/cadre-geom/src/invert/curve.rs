@@ -201,6 +201,13 @@ fn best_of_seeds<P: GeomPoint>(
     }
     let dist = |t: f64| (c.eval(t) - p).length_p();
     let mut starts: Vec<(f64, f64)> = Vec::new();
+    let mut all_samples: Vec<f64> = pieces
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|t| t.is_finite())
+        .collect();
+    all_samples.sort_by(f64::total_cmp);
     for piece in pieces {
         // (t, distance, slope of the squared distance / 2).
         let scored: Vec<(f64, f64, f64)> = piece
@@ -243,11 +250,48 @@ fn best_of_seeds<P: GeomPoint>(
     starts.truncate(MAX_STARTS);
     starts.extend(extra.iter().chain(hint.as_ref()).map(|&t| (t, 0.0)));
     let mut best: Option<(f64, f64)> = None;
-    for &(t, _) in &starts {
-        if let Some((t, d)) = curve_newton(c, p, t, bounds, acc)
+    for &(t0, d0) in &starts {
+        // Newton may leave a good start for another stationary point (two close minima
+        // around a tight loop); the start itself stays a candidate.
+        if d0 > 0.0 && better(d0, t0, best, hint, acc) {
+            best = Some((t0, d0));
+        }
+        if let Some((t, d)) = curve_newton(c, p, t0, bounds, acc)
             && better(d, t, best, hint, acc)
         {
             best = Some((t, d));
+        }
+    }
+    // Two minima closer than the sample spacing (a near-cusp) can hide the nearer one: look
+    // again, finely, two sample intervals either side of the best answer.
+    if let Some((tb, db)) = best
+        && db > acc.distance
+        && all_samples.len() > 1
+    {
+        let k = all_samples.partition_point(|&x| x < tb);
+        let lo = all_samples[k.saturating_sub(2)].max(bounds.lo);
+        let hi = all_samples[(k + 1).min(all_samples.len() - 1)].min(bounds.hi);
+        if hi > lo {
+            const FINE: usize = 48;
+            let fine: Vec<(f64, f64, ())> = (0..=FINE)
+                .map(|i| {
+                    let t = lo + (hi - lo) * i as f64 / FINE as f64;
+                    (t, dist(t), ())
+                })
+                .collect();
+            for m in local_minima(&fine) {
+                let (a, b) = (fine[m.saturating_sub(1)].0, fine[(m + 1).min(FINE)].0);
+                let t0 = golden_min(dist, a, b, 24);
+                let d0 = dist(t0);
+                if better(d0, t0, best, hint, acc) {
+                    best = Some((t0, d0));
+                }
+                if let Some((t, d)) = curve_newton(c, p, t0, bounds, acc)
+                    && better(d, t, best, hint, acc)
+                {
+                    best = Some((t, d));
+                }
+            }
         }
     }
     best.map(|b| b.0)
