@@ -202,6 +202,12 @@ fn corpus_meshes_match_occt_areas_and_volumes_and_close() {
             faces_checked += 1;
             if d <= params.deflection * 1.001 + 1e-9 {
                 faces_within += 1;
+            } else {
+                report.push(format!(
+                    "{name} face #{}: triangles {:.2} x the deflection from the surface",
+                    face.step_id,
+                    d / params.deflection
+                ));
             }
             let ratio = d / params.deflection;
             if ratio > worst_deviation.2 {
