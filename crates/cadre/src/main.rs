@@ -27,6 +27,7 @@ enum Command {
 }
 
 fn main() -> Result<()> {
+    quiet_on_broken_pipe();
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_env("CADRE_LOG")
@@ -40,4 +41,22 @@ fn main() -> Result<()> {
         Command::Mesh(args) => commands::mesh::run(&args),
         Command::Bench(args) => commands::bench::run(&args),
     }
+}
+
+/// `cadre info FILE | head` closes the pipe before the output ends, and `println!` then
+/// panics; end quietly instead, with the status a command stopped by SIGPIPE has (141).
+fn quiet_on_broken_pipe() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default(info);
+    }));
 }

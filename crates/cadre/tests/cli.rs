@@ -70,3 +70,32 @@ fn missing_and_non_step_files_fail_with_a_message() {
     assert!(!String::from_utf8_lossy(&out.stderr).trim().is_empty());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A reader that stops early (`cadre info … | head`) must not make cadre print a panic.
+#[test]
+fn closed_output_pipe_ends_quietly() {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/corpus/step/bug33398.step");
+    if !file.is_file() {
+        eprintln!("skipping: ../shared/corpus not found (needs a file with a long face list)");
+        return;
+    }
+    let mut child = cadre()
+        .args(["info", "--faces", "--edges"])
+        .arg(&file)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("cadre runs");
+    let mut first = [0u8; 16];
+    std::io::Read::read_exact(child.stdout.as_mut().expect("stdout"), &mut first).expect("output");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("cadre ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(
+        matches!(out.status.code(), Some(0 | 141)),
+        "{:?}",
+        out.status
+    );
+}
