@@ -3,28 +3,11 @@
 //! within the region the loops describe, with [`FaceMesh::repaired`] set when the strict
 //! triangulation could not be used.
 
-use cadre_geom::{Frame, Surface, Vec2, Vec3};
+use cadre_geom::{Surface, Vec2, Vec3};
 use proptest::prelude::*;
 
+use super::tests::{cylinder, plane};
 use super::*;
-
-fn plane() -> Surface {
-    Surface::Plane {
-        frame: Frame::from_axis(
-            Vec3::new(1.0, 2.0, 3.0),
-            Vec3::new(1.0, 1.0, 1.0),
-            Some(Vec3::X),
-        )
-        .unwrap(),
-    }
-}
-
-fn cylinder() -> Surface {
-    Surface::Cylinder {
-        frame: Frame::WORLD,
-        radius: 5.0,
-    }
-}
 
 fn params() -> MeshParams {
     MeshParams {

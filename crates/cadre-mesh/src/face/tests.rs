@@ -136,7 +136,8 @@ fn welded_edge_counts(m: &FaceMesh) -> HashMap<(u64, u64), usize> {
     counts
 }
 
-fn plane() -> Surface {
+/// A tilted plane (shared with `repair_tests`).
+pub(super) fn plane() -> Surface {
     Surface::Plane {
         frame: Frame::from_axis(
             Vec3::new(1.0, 2.0, 3.0),
@@ -192,7 +193,8 @@ fn plane_square_with_hole() {
     }
 }
 
-fn cylinder() -> Surface {
+/// Cylinder of radius 5 about z (shared with `repair_tests`).
+pub(super) fn cylinder() -> Surface {
     Surface::Cylinder {
         frame: Frame::WORLD,
         radius: 5.0,
