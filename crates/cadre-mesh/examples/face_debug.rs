@@ -93,31 +93,11 @@ fn main() {
             println!(
                 "triangles facing against their normals: {folded}; (u, v) range {lo:?} .. {hi:?}"
             );
-            // Sampled deviation: facet points against the surface at the same barycentric
-            // (u, v), measured along the facet normal.
-            const K: usize = 12;
-            let mut dev = (0.0f64, [0u32; 3]);
-            for t in &m.triangles {
-                let q = t.map(|i| m.points[i as usize]);
-                let n = (q[1].xyz - q[0].xyz)
-                    .cross(q[2].xyz - q[0].xyz)
-                    .normalize_or_zero();
-                for a in 0..=K {
-                    for b in 0..=K - a {
-                        let w = [a as f64, b as f64, (K - a - b) as f64].map(|x| x / K as f64);
-                        let uv = q[0].uv * w[0] + q[1].uv * w[1] + q[2].uv * w[2];
-                        let flat = q[0].xyz * w[0] + q[1].xyz * w[1] + q[2].xyz * w[2];
-                        let d = (surface.eval(uv.x, uv.y) - flat).dot(n).abs();
-                        if d > dev.0 {
-                            dev = (d, *t);
-                        }
-                    }
-                }
-            }
-            let worst_uv = dev.1.map(|i| m.points[i as usize].uv);
+            let dev = cadre_mesh::deviation::sampled_deviation(surface, &m);
+            let worst_uv = dev.triangle.map(|t| t.map(|i| m.points[i as usize].uv));
             println!(
                 "largest sampled deviation {:.6} (deflection {deflection}) in triangle {worst_uv:?}",
-                dev.0
+                dev.distance
             );
             println!(
                 "face #{id}: {} points, {} triangles, area {area:.4}, truncated {}, {:.3} s",

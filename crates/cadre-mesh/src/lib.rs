@@ -7,6 +7,7 @@
 
 pub mod assemble;
 pub mod bbox;
+pub mod deviation;
 pub mod edges;
 pub mod export;
 pub mod face;

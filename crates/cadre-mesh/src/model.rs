@@ -2,9 +2,9 @@
 
 use cadre_brep::trim::{FaceTrim, TrimTolerance, face_trim};
 use cadre_brep::{FaceId, Model};
-use cadre_geom::{Accuracy, Vec2};
+use cadre_geom::Accuracy;
 
-use crate::periodic::unwrapped_surface;
+use crate::periodic::{unwrapped_surface, uv_bounds};
 use rayon::prelude::*;
 
 use crate::MeshParams;
@@ -140,11 +140,7 @@ pub fn mesh_face(
     let surface = &model.surfaces[face.surface.index()];
     let trim = face_trim(model, id, edges, tol).map_err(|e| format!("trim: {e}"))?;
     let domain = face_domain(&trim);
-    let (mut lo, mut hi) = (Vec2::splat(f64::INFINITY), Vec2::splat(f64::NEG_INFINITY));
-    for p in domain.loops.iter().flatten() {
-        lo = lo.min(p.uv);
-        hi = hi.max(p.uv);
-    }
+    let (lo, hi) = uv_bounds(domain.loops.iter().flatten().map(|p| p.uv));
     let extended = unwrapped_surface(surface, lo, hi);
     let surface = extended.as_ref().unwrap_or(surface);
     triangulate_face(surface, trim.reversed, &domain, params)

@@ -6,6 +6,14 @@
 use cadre_brep::trim::periods;
 use cadre_geom::{BSplineSurface, Surface, Vec2};
 
+/// The (u, v) box of `points`: (lower corner, upper corner); infinite and inverted when empty.
+pub fn uv_bounds(points: impl IntoIterator<Item = Vec2>) -> (Vec2, Vec2) {
+    points.into_iter().fold(
+        (Vec2::splat(f64::INFINITY), Vec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    )
+}
+
 /// Most copies added on one side (trims span at most one period past the domain).
 const MAX_COPIES: usize = 2;
 

@@ -29,66 +29,6 @@ const CLOSED_FLOOR: f64 = 0.97;
 const DEVIATION_FLOOR: f64 = DEVIATION_MEASURED - 0.002;
 const DEVIATION_MEASURED: f64 = 0.992;
 
-/// Largest distance, along each triangle's normal, between the triangle and the exact surface
-/// at the same barycentric (u, v), over the centroid and the edge midpoints of every triangle
-/// (on the surface the mesher used: closed B-splines repeated across their seam).
-fn sampled_deviation(surface: &cadre_geom::Surface, m: &cadre_mesh::face::FaceMesh) -> f64 {
-    let (mut lo, mut hi) = (
-        cadre_geom::Vec2::splat(f64::INFINITY),
-        cadre_geom::Vec2::splat(f64::NEG_INFINITY),
-    );
-    for p in &m.points {
-        lo = lo.min(p.uv);
-        hi = hi.max(p.uv);
-    }
-    let extended = cadre_mesh::periodic::unwrapped_surface(surface, lo, hi);
-    let surface = extended.as_ref().unwrap_or(surface);
-    // At a pole or an apex the (u, v) of a vertex is a convention, so a triangle touching one
-    // is measured by projecting its samples onto the surface instead.
-    let singular = |uv: cadre_geom::Vec2| {
-        let d = surface.derivs(uv.x, uv.y);
-        let (a, b) = (d.du.length(), d.dv.length());
-        a.min(b) <= 1e-9 * a.max(b)
-    };
-    let mut worst = 0.0f64;
-    for t in &m.triangles {
-        let q = t.map(|i| m.points[i as usize]);
-        let n = (q[1].xyz - q[0].xyz).cross(q[2].xyz - q[0].xyz);
-        let Some(n) = n.try_normalize() else { continue };
-        if q.iter().any(|p| singular(p.uv)) {
-            for w in [
-                [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0],
-                [0.0, 0.5, 0.5],
-                [0.5, 0.0, 0.5],
-                [0.5, 0.5, 0.0],
-            ] {
-                let flat = q[0].xyz * w[0] + q[1].xyz * w[1] + q[2].xyz * w[2];
-                let hint = q[0].uv * w[0] + q[1].uv * w[1] + q[2].uv * w[2];
-                if let Some((u, v)) =
-                    surface.project(flat, Some((hint.x, hint.y)), Default::default())
-                {
-                    worst = worst.max((surface.eval(u, v) - flat).length());
-                }
-            }
-            continue;
-        }
-        for w in [
-            [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0],
-            [0.5, 0.5, 0.0],
-            [0.0, 0.5, 0.5],
-            [0.5, 0.0, 0.5],
-        ] {
-            let uv = q[0].uv * w[0] + q[1].uv * w[1] + q[2].uv * w[2];
-            let flat = q[0].xyz * w[0] + q[1].xyz * w[1] + q[2].xyz * w[2];
-            let d = (surface.eval(uv.x, uv.y) - flat).dot(n).abs();
-            if d.is_finite() {
-                worst = worst.max(d);
-            }
-        }
-    }
-    worst
-}
-
 /// Corrections to the reference: file → (area, volume, OCCT misreads the shape).
 type Corrections = std::collections::HashMap<String, (Option<f64>, Option<f64>, bool)>;
 
@@ -198,7 +138,7 @@ fn corpus_meshes_match_occt_areas_and_volumes_and_close() {
         for (face, m) in model.faces.iter().zip(&mesh.faces) {
             let Some(m) = m else { continue };
             let surface = &model.surfaces[face.surface.index()];
-            let d = sampled_deviation(surface, m);
+            let d = cadre_mesh::deviation::sampled_deviation(surface, m).distance;
             faces_checked += 1;
             if d <= params.deflection * 1.001 + 1e-9 {
                 faces_within += 1;

@@ -1,0 +1,117 @@
+//! How far a face mesh lies from its exact surface, sampled: the quality bar's "deviation of
+//! triangles from the exact surface ≤ the deflection", measured by the corpus test and
+//! `examples/face_debug`.
+
+use cadre_geom::{Accuracy, Surface, Vec2};
+
+use crate::face::FaceMesh;
+use crate::periodic::{unwrapped_surface, uv_bounds};
+
+/// Barycentric weights sampled in each triangle: the centroid and the edge midpoints.
+const SAMPLES: [[f64; 3]; 4] = [
+    [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0],
+    [0.5, 0.5, 0.0],
+    [0.0, 0.5, 0.5],
+    [0.5, 0.0, 0.5],
+];
+
+/// The largest sampled distance of a face mesh from its surface, and the triangle it is in.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Deviation {
+    /// Model units.
+    pub distance: f64,
+    /// The triangle (indices into the mesh's points); `None` for a mesh with no triangle.
+    pub triangle: Option<[u32; 3]>,
+}
+
+/// The distance, along each triangle's normal, between the triangle and `surface` at the same
+/// barycentric (u, v), over [`SAMPLES`] of every triangle, on the surface the mesher used
+/// (closed B-splines repeated across their seam). At a pole or an apex the (u, v) of a vertex
+/// is a convention, so a triangle touching one is measured by projecting its samples onto the
+/// surface instead.
+pub fn sampled_deviation(surface: &Surface, mesh: &FaceMesh) -> Deviation {
+    let (lo, hi) = uv_bounds(mesh.points.iter().map(|p| p.uv));
+    let extended = unwrapped_surface(surface, lo, hi);
+    let surface = extended.as_ref().unwrap_or(surface);
+    let singular = |uv: Vec2| {
+        let d = surface.derivs(uv.x, uv.y);
+        let (a, b) = (d.du.length(), d.dv.length());
+        a.min(b) <= 1e-9 * a.max(b)
+    };
+    let mut worst = Deviation::default();
+    for t in &mesh.triangles {
+        let q = t.map(|i| mesh.points[i as usize]);
+        let Some(n) = (q[1].xyz - q[0].xyz)
+            .cross(q[2].xyz - q[0].xyz)
+            .try_normalize()
+        else {
+            continue;
+        };
+        let at_pole = q.iter().any(|p| singular(p.uv));
+        for w in SAMPLES {
+            let uv = q[0].uv * w[0] + q[1].uv * w[1] + q[2].uv * w[2];
+            let flat = q[0].xyz * w[0] + q[1].xyz * w[1] + q[2].xyz * w[2];
+            let d = if at_pole {
+                surface
+                    .project(flat, Some((uv.x, uv.y)), Accuracy::default())
+                    .map_or(0.0, |(u, v)| (surface.eval(u, v) - flat).length())
+            } else {
+                (surface.eval(uv.x, uv.y) - flat).dot(n).abs()
+            };
+            if d.is_finite() && d > worst.distance {
+                worst = Deviation {
+                    distance: d,
+                    triangle: Some(*t),
+                };
+            }
+        }
+    }
+    worst
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::MeshParams;
+    use crate::face::{BoundaryPoint, FaceDomain, triangulate_face};
+    use cadre_geom::Frame;
+
+    #[test]
+    fn a_meshed_sphere_cap_is_within_its_deflection_and_one_flat_triangle_is_not() {
+        let sphere = Surface::Sphere {
+            frame: Frame::WORLD,
+            radius: 5.0,
+        };
+        let corner = |u: f64, v: f64, key: u64| BoundaryPoint {
+            uv: Vec2::new(u, v),
+            xyz: sphere.eval(u, v),
+            key,
+        };
+        let domain = FaceDomain {
+            loops: vec![vec![
+                corner(0.0, 0.0, 0),
+                corner(1.0, 0.0, 1),
+                corner(1.0, 1.0, 2),
+                corner(0.0, 1.0, 3),
+            ]],
+        };
+        let params = MeshParams {
+            deflection: 0.01,
+            angle: 0.5,
+            ..MeshParams::default()
+        };
+        // The boundary is coarse (straight chords of 5 mm), so only the inside is refined:
+        // a bare triangle of the corners is far off, the refined mesh much closer.
+        let refined = triangulate_face(&sphere, false, &domain, &params).unwrap();
+        let coarse = FaceMesh {
+            points: refined.points[..4].to_vec(),
+            triangles: vec![[0, 1, 2]],
+            ..FaceMesh::default()
+        };
+        let far = sampled_deviation(&sphere, &coarse);
+        assert!(far.distance > 0.5, "{far:?}");
+        assert_eq!(far.triangle, Some([0, 1, 2]));
+        let near = sampled_deviation(&sphere, &refined);
+        assert!(near.distance < far.distance, "{near:?} vs {far:?}");
+    }
+}
