@@ -470,25 +470,14 @@ fn seam_point(pts: &[(TrimPoint, usize)], holes: &[(f64, f64)], period: f64, axi
 /// consecutive segments share appears once, with the first. The last point is the first one a
 /// period on (the chain wraps).
 fn tagged_points(chain: &Chain) -> Vec<(TrimPoint, usize)> {
-    let flat: Vec<TrimPoint> = chain
-        .segments
-        .iter()
-        .flat_map(|s| s.points.iter().copied())
-        .collect();
-    let tol = super::repeat_distance(&flat);
-    let mut out: Vec<(TrimPoint, usize)> = Vec::with_capacity(flat.len());
-    for (i, s) in chain.segments.iter().enumerate() {
-        for &p in &s.points {
-            if out
-                .last()
-                .is_some_and(|(q, _)| q.key == p.key && (q.uv - p.uv).length() <= tol)
-            {
-                continue;
-            }
-            out.push((p, i));
-        }
-    }
-    out
+    super::merge_repeats_tagged(
+        chain
+            .segments
+            .iter()
+            .enumerate()
+            .flat_map(|(i, s)| s.points.iter().map(move |&p| (p, i)))
+            .collect(),
+    )
 }
 
 /// A wrapping chain (`tagged` from [`tagged_points`]) restarted at point `at`, as segments:

@@ -146,10 +146,15 @@ impl TrimLoop {
 /// which left a point lying on its neighbour's segment; pole lines and seam copies share a
 /// key too but are far apart.
 fn repeat_distance(points: &[TrimPoint]) -> f64 {
+    repeat_distance_of(points.iter().map(|p| p.uv))
+}
+
+/// [`repeat_distance`] of bare (u, v) positions.
+fn repeat_distance_of(points: impl Iterator<Item = Vec2>) -> f64 {
     let (mut lo, mut hi) = (Vec2::splat(f64::INFINITY), Vec2::splat(f64::NEG_INFINITY));
     for p in points {
-        lo = lo.min(p.uv);
-        hi = hi.max(p.uv);
+        lo = lo.min(p);
+        hi = hi.max(p);
     }
     let size = (hi - lo).length();
     if size.is_finite() { 1e-6 * size } else { 0.0 }
@@ -157,17 +162,25 @@ fn repeat_distance(points: &[TrimPoint]) -> f64 {
 
 /// The points in order with consecutive repeats (same key, within [`repeat_distance`]) merged.
 pub(crate) fn merge_repeats(points: impl Iterator<Item = TrimPoint>) -> Vec<TrimPoint> {
-    let all: Vec<TrimPoint> = points.collect();
-    let tol = repeat_distance(&all);
-    let mut out: Vec<TrimPoint> = Vec::with_capacity(all.len());
-    for p in all {
+    merge_repeats_tagged(points.map(|p| (p, ())).collect())
+        .into_iter()
+        .map(|(p, ())| p)
+        .collect()
+}
+
+/// [`merge_repeats`] on points carrying a tag (the segment they come from): of two repeats
+/// the first is kept, with its tag.
+pub(crate) fn merge_repeats_tagged<T>(all: Vec<(TrimPoint, T)>) -> Vec<(TrimPoint, T)> {
+    let tol = repeat_distance_of(all.iter().map(|(p, _)| p.uv));
+    let mut out: Vec<(TrimPoint, T)> = Vec::with_capacity(all.len());
+    for (p, tag) in all {
         if out
             .last()
-            .is_some_and(|q| q.key == p.key && (q.uv - p.uv).length() <= tol)
+            .is_some_and(|(q, _)| q.key == p.key && (q.uv - p.uv).length() <= tol)
         {
             continue;
         }
-        out.push(p);
+        out.push((p, tag));
     }
     out
 }
