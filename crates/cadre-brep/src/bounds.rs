@@ -772,8 +772,14 @@ mod tests {
         .unwrap();
         let mut model = Model::default();
         model.curves.push(cadre_geom::Curve::BSpline(curve));
-        model.vertices.push(crate::Vertex { point: square[0] });
-        model.vertices.push(crate::Vertex { point: square[2] });
+        model.vertices.push(crate::Vertex {
+            point: square[0],
+            step_id: 0,
+        });
+        model.vertices.push(crate::Vertex {
+            point: square[2],
+            step_id: 0,
+        });
         let edge = |start: u32, end: u32| crate::Edge {
             curve: Some(crate::CurveId(0)),
             start: crate::VertexId(start),

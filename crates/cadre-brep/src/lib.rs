@@ -16,6 +16,7 @@ pub mod closure;
 pub mod ids;
 pub mod mesh;
 pub mod model;
+pub mod repair;
 pub mod stats;
 pub mod style;
 pub mod topology;

@@ -9,6 +9,8 @@ use cadre_geom::Vec3;
 pub struct Vertex {
     /// Position.
     pub point: Vec3,
+    /// STEP instance id of the `VERTEX_POINT`, for messages (0 for vertices made by the reader).
+    pub step_id: u64,
 }
 
 /// An edge: a bounded piece of a curve between two vertices.

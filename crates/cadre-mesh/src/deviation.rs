@@ -2,7 +2,7 @@
 //! triangles from the exact surface ≤ the deflection", measured by the corpus test and
 //! `examples/face_debug`.
 
-use cadre_geom::{Accuracy, Surface, Vec2};
+use cadre_geom::{Accuracy, Surface, Vec2, Vec3};
 
 use crate::face::FaceMesh;
 use crate::periodic::{unwrapped_surface, uv_bounds};
@@ -18,10 +18,18 @@ const SAMPLES: [[f64; 3]; 4] = [
 /// The largest sampled distance of a face mesh from its surface, and the triangle it is in.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Deviation {
-    /// Model units.
+    /// Largest distance of the triangles from the surface, model units.
     pub distance: f64,
-    /// The triangle (indices into the mesh's points); `None` for a mesh with no triangle.
+    /// The triangle (indices into the mesh's points) where `distance` is; `None` for a mesh
+    /// with no triangle.
     pub triangle: Option<[u32; 3]>,
+    /// Largest distance with every corner first moved onto the surface at its (u, v): the
+    /// error of the flat triangles themselves, which refinement answers for. It differs from
+    /// `distance` only where the file's edges lie off the face's surface.
+    pub interpolation: f64,
+    /// Largest distance of a mesh point from the surface at its (u, v): how far the file's
+    /// edges (the shared boundary points) stray from this face's surface.
+    pub boundary_gap: f64,
 }
 
 /// The distance, along each triangle's normal, between the triangle and `surface` at the same
@@ -38,7 +46,28 @@ pub fn sampled_deviation(surface: &Surface, mesh: &FaceMesh) -> Deviation {
         let (a, b) = (d.du.length(), d.dv.length());
         a.min(b) <= 1e-9 * a.max(b)
     };
-    let mut worst = Deviation::default();
+    let gaps: Vec<Vec3> = mesh
+        .points
+        .iter()
+        .map(|p| p.xyz - surface.eval(p.uv.x, p.uv.y))
+        .collect();
+    let mut worst = Deviation {
+        boundary_gap: gaps
+            .iter()
+            .map(|g| g.length())
+            .filter(|d| d.is_finite())
+            .fold(0.0, f64::max),
+        ..Deviation::default()
+    };
+    let distance = |uv: Vec2, flat: Vec3, n: Vec3, at_pole: bool| {
+        if at_pole {
+            surface
+                .project(flat, Some((uv.x, uv.y)), Accuracy::default())
+                .map_or(0.0, |(u, v)| (surface.eval(u, v) - flat).length())
+        } else {
+            (surface.eval(uv.x, uv.y) - flat).dot(n).abs()
+        }
+    };
     for t in &mesh.triangles {
         let q = t.map(|i| mesh.points[i as usize]);
         let Some(n) = (q[1].xyz - q[0].xyz)
@@ -47,22 +76,20 @@ pub fn sampled_deviation(surface: &Surface, mesh: &FaceMesh) -> Deviation {
         else {
             continue;
         };
+        let gap = t.map(|i| gaps[i as usize]);
         let at_pole = q.iter().any(|p| singular(p.uv));
         for w in SAMPLES {
             let uv = q[0].uv * w[0] + q[1].uv * w[1] + q[2].uv * w[2];
             let flat = q[0].xyz * w[0] + q[1].xyz * w[1] + q[2].xyz * w[2];
-            let d = if at_pole {
-                surface
-                    .project(flat, Some((uv.x, uv.y)), Accuracy::default())
-                    .map_or(0.0, |(u, v)| (surface.eval(u, v) - flat).length())
-            } else {
-                (surface.eval(uv.x, uv.y) - flat).dot(n).abs()
-            };
+            let d = distance(uv, flat, n, at_pole);
             if d.is_finite() && d > worst.distance {
-                worst = Deviation {
-                    distance: d,
-                    triangle: Some(*t),
-                };
+                worst.distance = d;
+                worst.triangle = Some(*t);
+            }
+            let own_gap = gap[0] * w[0] + gap[1] * w[1] + gap[2] * w[2];
+            let d = distance(uv, flat - own_gap, n, at_pole);
+            if d.is_finite() && d > worst.interpolation {
+                worst.interpolation = d;
             }
         }
     }

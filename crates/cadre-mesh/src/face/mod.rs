@@ -196,11 +196,12 @@ fn mesh_in_plane(
         surface.normal(c.x, c.y)
     });
     for p in &prep.points {
-        let n = match plane_normal {
-            Some(n) => n,
-            None => surface.normal(p.uv.x, p.uv.y),
+        let (on_surface, n) = match plane_normal {
+            Some(n) => (surface.eval(p.uv.x, p.uv.y), n),
+            None => refine::sample(surface, p.uv),
         };
         pts.push(p.uv, p.xyz, n, Some(p.key));
+        pts.off_surface.push(p.xyz - on_surface);
     }
     // Boundary segments whose ends weld together lie on a line the surface collapses to one
     // point (a pole, an apex). The (u, v) → 3D map folds there, so refinement leaves the
@@ -369,6 +370,11 @@ pub(crate) struct Points {
     /// Whether a boundary point lies on a collapsed segment (pole line); shorter than the
     /// other arrays (interior points are never collapsed).
     pub collapsed: Vec<bool>,
+    /// How far each boundary point (the shared edge sample) lies from the surface at its
+    /// (u, v): files whose edges stray from their faces' surfaces (bug29478.stp: 16× the
+    /// deflection) give boundary corners refinement cannot move. Shorter than the other
+    /// arrays: interior points lie on the surface.
+    pub off_surface: Vec<Vec3>,
 }
 
 impl Points {
@@ -379,6 +385,7 @@ impl Points {
             normal: Vec::with_capacity(n),
             key: Vec::with_capacity(n),
             collapsed: Vec::new(),
+            off_surface: Vec::new(),
         }
     }
 
@@ -388,6 +395,14 @@ impl Points {
         self.xyz.push(xyz);
         self.normal.push(normal);
         self.key.push(key);
+    }
+
+    /// The surface point at point `id`'s (u, v): its position less its distance from the
+    /// surface. Refinement measures triangles built on these, so it chases only the error it
+    /// can fix (the flat triangles' distance from the surface), not the file's own gaps.
+    pub fn on_surface(&self, id: u32) -> Vec3 {
+        let i = id as usize;
+        self.xyz[i] - self.off_surface.get(i).copied().unwrap_or(Vec3::ZERO)
     }
 
     /// Whether point `id` lies on a collapsed boundary line (a pole, an apex).

@@ -98,7 +98,7 @@ pub(crate) fn refine(
             if face.data().0 == sig {
                 continue;
             }
-            let x = ids.map(|i| pts.xyz[i as usize]);
+            let x = ids.map(|i| pts.on_surface(i));
             let uv = ids.map(|i| pts.uv[i as usize]);
             let constraint = edges.map(|e| e.is_constraint_edge());
             let len3 = [0, 1, 2].map(|i| x[i].distance(x[(i + 1) % 3]));

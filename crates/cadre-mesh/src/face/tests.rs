@@ -238,6 +238,34 @@ fn cylinder_patch_within_deflection() {
     }
 }
 
+/// bug29478.stp: edges written 16× the deflection off their face's surface. Refinement cannot
+/// move boundary points, so it must measure triangles from the surface points of their
+/// corners; measuring from the stray corners it chased the gap with thousands of slivers and
+/// the area grew 0.27 %.
+#[test]
+fn boundary_off_the_surface_is_not_chased_by_refinement() {
+    let s = cylinder();
+    let defl = 0.01;
+    let mut d = cylinder_patch(defl);
+    let on_surface = d.loops[0].len();
+    // Push the arcs' inner points 10 deflections outwards, as a sloppy edge curve would.
+    for p in &mut d.loops[0] {
+        if p.uv.x > 1e-9 && p.uv.x < PI - 1e-9 {
+            p.xyz += Vec3::new(p.xyz.x, p.xyz.y, 0.0).normalize() * 10.0 * defl;
+        }
+    }
+    let m = triangulate_face(&s, false, &d, &params(defl)).unwrap();
+    assert!(
+        m.points.len() <= on_surface + on_surface / 10,
+        "{} points for {on_surface} boundary points",
+        m.points.len()
+    );
+    let dev = crate::deviation::sampled_deviation(&s, &m);
+    assert!(dev.boundary_gap > 9.0 * defl, "{dev:?}");
+    assert!(dev.distance > 5.0 * defl, "{dev:?}");
+    assert!(dev.interpolation <= defl * 1.001, "{dev:?}");
+}
+
 #[test]
 fn reversed_face_flips_triangles_and_normals() {
     let s = cylinder();

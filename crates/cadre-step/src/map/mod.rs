@@ -32,5 +32,29 @@ pub fn map_file(file: &StepFile) -> Model {
     mapper.model.schemas = file.header().schemas.clone();
     product::map_products(&mut mapper);
     style::map_styles(&mut mapper);
-    mapper.finish()
+    let mut model = mapper.finish();
+    report_vertex_repairs(&mut model, file);
+    model
+}
+
+/// Moves vertices written off their edges' curves onto the curves' meeting point
+/// ([`Model::snap_vertices_to_curves`]) and warns about each, naming the vertex.
+fn report_vertex_repairs(model: &mut Model, file: &StepFile) {
+    for m in model.snap_vertices_to_curves(cadre_geom::Accuracy::default()) {
+        let id = model.vertices[m.vertex.index()].step_id;
+        let (id, line) = if id == 0 {
+            (None, None)
+        } else {
+            (Some(id), file.line(id))
+        };
+        model.warn(
+            id,
+            line,
+            format!(
+                "vertex lies {:.3e} mm off its edges' curves; moved {:.3e} mm to where they meet",
+                m.off_curve,
+                (m.to - m.from).length()
+            ),
+        );
+    }
 }

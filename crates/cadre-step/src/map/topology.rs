@@ -396,7 +396,7 @@ impl Mapper<'_> {
             return Err(a.err("vertex geometry is not a cartesian point"));
         };
         let vid = VertexId(self.model.vertices.len() as u32);
-        self.model.vertices.push(Vertex { point });
+        self.model.vertices.push(Vertex { point, step_id: id });
         self.vertices.insert(self.key(id), vid);
         Ok(vid)
     }
@@ -535,7 +535,7 @@ impl Mapper<'_> {
 
     fn new_vertex(&mut self, point: Vec3) -> VertexId {
         let vid = VertexId(self.model.vertices.len() as u32);
-        self.model.vertices.push(Vertex { point });
+        self.model.vertices.push(Vertex { point, step_id: 0 });
         vid
     }
 }
