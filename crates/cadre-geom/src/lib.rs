@@ -11,6 +11,7 @@
 pub mod bbox;
 mod bounds;
 pub mod bspline;
+mod crease;
 pub mod curve;
 pub mod eval;
 pub mod frame;

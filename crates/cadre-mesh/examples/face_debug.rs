@@ -99,6 +99,14 @@ fn main() {
                 "largest sampled deviation {:.6} (deflection {deflection}) in triangle {worst_uv:?}",
                 dev.distance
             );
+            let own_uv = dev
+                .interpolation_triangle
+                .map(|t| t.map(|i| (m.points[i as usize].uv, m.points[i as usize].key.is_some())));
+            println!(
+                "from the surface points of the corners {:.6} in triangle {own_uv:?}; boundary \
+                 points lie up to {:.6} off the surface",
+                dev.interpolation, dev.boundary_gap
+            );
             println!(
                 "face #{id}: {} points, {} triangles, area {area:.4}, truncated {}, {:.3} s",
                 m.points.len(),

@@ -27,6 +27,8 @@ pub struct Deviation {
     /// error of the flat triangles themselves, which refinement answers for. It differs from
     /// `distance` only where the file's edges lie off the face's surface.
     pub interpolation: f64,
+    /// The triangle where `interpolation` is.
+    pub interpolation_triangle: Option<[u32; 3]>,
     /// Largest distance of a mesh point from the surface at its (u, v): how far the file's
     /// edges (the shared boundary points) stray from this face's surface.
     pub boundary_gap: f64,
@@ -59,41 +61,90 @@ pub fn sampled_deviation(surface: &Surface, mesh: &FaceMesh) -> Deviation {
             .fold(0.0, f64::max),
         ..Deviation::default()
     };
-    let distance = |uv: Vec2, flat: Vec3, n: Vec3, at_pole: bool| {
+    let distance = |uv: Vec2, flat: Vec3, at_pole: bool, beat: f64| {
         if at_pole {
             surface
                 .project(flat, Some((uv.x, uv.y)), Accuracy::default())
                 .map_or(0.0, |(u, v)| (surface.eval(u, v) - flat).length())
         } else {
-            (surface.eval(uv.x, uv.y) - flat).dot(n).abs()
+            local_distance(surface, uv, flat, beat)
         }
     };
     for t in &mesh.triangles {
         let q = t.map(|i| mesh.points[i as usize]);
-        let Some(n) = (q[1].xyz - q[0].xyz)
+        if (q[1].xyz - q[0].xyz)
             .cross(q[2].xyz - q[0].xyz)
             .try_normalize()
-        else {
+            .is_none()
+        {
             continue;
-        };
+        }
         let gap = t.map(|i| gaps[i as usize]);
         let at_pole = q.iter().any(|p| singular(p.uv));
         for w in SAMPLES {
             let uv = q[0].uv * w[0] + q[1].uv * w[1] + q[2].uv * w[2];
             let flat = q[0].xyz * w[0] + q[1].xyz * w[1] + q[2].xyz * w[2];
-            let d = distance(uv, flat, n, at_pole);
+            let d = distance(uv, flat, at_pole, worst.distance);
             if d.is_finite() && d > worst.distance {
                 worst.distance = d;
                 worst.triangle = Some(*t);
             }
             let own_gap = gap[0] * w[0] + gap[1] * w[1] + gap[2] * w[2];
-            let d = distance(uv, flat - own_gap, n, at_pole);
+            let d = distance(uv, flat - own_gap, at_pole, worst.interpolation);
             if d.is_finite() && d > worst.interpolation {
                 worst.interpolation = d;
+                worst.interpolation_triangle = Some(*t);
             }
         }
     }
     worst
+}
+
+/// Distance from `q` to the surface point nearest it around `uv` (damped Gauss–Newton on the
+/// squared distance, from `uv`, the sample's own parameters): the true distance where the
+/// directional measures disagree (across a crease the surface normal and the triangle's are
+/// far apart, and either direction overstates the gap). Only worked out when the plain
+/// distance to `S(uv)`, an upper bound, exceeds `beat` (the worst found so far).
+fn local_distance(surface: &Surface, uv: Vec2, q: Vec3, beat: f64) -> f64 {
+    let mut uv = uv;
+    let mut d = surface.derivs(uv.x, uv.y);
+    let mut best = (d.point - q).length();
+    if best.is_nan() || best <= beat {
+        return best;
+    }
+    for _ in 0..12 {
+        let r = d.point - q;
+        let (a, b, c) = (d.du.dot(d.du), d.du.dot(d.dv), d.dv.dot(d.dv));
+        let det = a * c - b * b;
+        if det.is_nan() || det <= 1e-300 || best == 0.0 {
+            break;
+        }
+        let (gu, gv) = (d.du.dot(r), d.dv.dot(r));
+        let step = Vec2::new((c * gu - b * gv) / det, (a * gv - b * gu) / det);
+        // Halve the step until the distance drops (the full step overshoots on strongly
+        // curved or rational patches).
+        let mut scale = 1.0;
+        let mut improved = None;
+        for _ in 0..12 {
+            let next = uv - step * scale;
+            let dn = surface.derivs(next.x, next.y);
+            let dist = (dn.point - q).length();
+            if dist < best {
+                improved = Some((next, dn, dist));
+                break;
+            }
+            scale *= 0.5;
+        }
+        let Some((next, dn, dist)) = improved else {
+            break;
+        };
+        let converged = best - dist <= 1e-12 * (1.0 + best);
+        (uv, d, best) = (next, dn, dist);
+        if converged {
+            break;
+        }
+    }
+    best
 }
 
 #[cfg(test)]

@@ -405,6 +405,13 @@ impl Points {
         self.xyz[i] - self.off_surface.get(i).copied().unwrap_or(Vec3::ZERO)
     }
 
+    /// How far point `id` lies from the surface at its (u, v) (zero inside the face).
+    pub fn gap(&self, id: u32) -> f64 {
+        self.off_surface
+            .get(id as usize)
+            .map_or(0.0, |g| g.length())
+    }
+
     /// Whether point `id` lies on a collapsed boundary line (a pole, an apex).
     pub fn is_collapsed(&self, id: u32) -> bool {
         self.collapsed.get(id as usize).is_some_and(|&c| c)

@@ -37,6 +37,59 @@ fn normal_gap(p: Vec3, n: Option<Vec3>, q: Vec3) -> f64 {
     }
 }
 
+/// The surface's crease lines ([`Surface::creases`]), sorted, for range queries.
+struct Creases {
+    u: Vec<f64>,
+    v: Vec<f64>,
+}
+
+impl Creases {
+    fn of(surface: &Surface) -> Creases {
+        let (mut u, mut v) = surface.creases();
+        u.sort_by(f64::total_cmp);
+        v.sort_by(f64::total_cmp);
+        Creases { u, v }
+    }
+
+    /// Whether the segment `a`–`b` crosses or touches a crease line.
+    fn between(&self, a: Vec2, b: Vec2) -> bool {
+        fn hits(lines: &[f64], x0: f64, x1: f64) -> bool {
+            if lines.is_empty() {
+                return false;
+            }
+            let (lo, hi) = (x0.min(x1), x0.max(x1));
+            let eps = 1e-9 * (1.0 + lo.abs().max(hi.abs()));
+            let first = lines.partition_point(|&l| l < lo - eps);
+            lines.get(first).is_some_and(|&l| l <= hi + eps)
+        }
+        hits(&self.u, a.x, b.x) || hits(&self.v, a.y, b.y)
+    }
+
+    /// Where along `a`–`b` (0..1, strictly inside) it crosses a crease line, the crossing
+    /// nearest the middle; `None` when it crosses none. A chord across a crease is farthest
+    /// from the surface there, not at its midpoint.
+    fn crossing(&self, a: Vec2, b: Vec2) -> Option<f64> {
+        fn best(lines: &[f64], x0: f64, x1: f64, out: &mut Option<f64>) {
+            let (lo, hi) = (x0.min(x1), x0.max(x1));
+            let eps = 1e-9 * (1.0 + lo.abs().max(hi.abs()));
+            if hi - lo <= 2.0 * eps {
+                return;
+            }
+            let first = lines.partition_point(|&l| l <= lo + eps);
+            for &l in lines[first..].iter().take_while(|&&l| l < hi - eps) {
+                let t = (l - x0) / (x1 - x0);
+                if out.is_none_or(|o| (t - 0.5).abs() < (o - 0.5).abs()) {
+                    *out = Some(t);
+                }
+            }
+        }
+        let mut out = None;
+        best(&self.u, a.x, b.x, &mut out);
+        best(&self.v, a.y, b.y, &mut out);
+        out
+    }
+}
+
 /// A point to insert: (u, v), position and normal (already evaluated by the check), and
 /// whether it repairs a folded triangle (inserted first when the budget is short).
 type Candidate = (Vec2, Vec3, Option<Vec3>, bool);
@@ -72,6 +125,21 @@ pub(crate) fn refine(
     // Below this size a triangle is left alone: a chord shorter than twice the deflection
     // cannot deviate more than it, and it stops the angle test chasing creases forever.
     let min_len = 0.1 * deflection;
+    // Triangles are measured from the surface points of their corners. Where a boundary
+    // corner lies a little off the surface (the file's edge strays from it), the triangle
+    // gets what is left of the deflection (bug27693 face #141: gaps of 0.07 × the deflection
+    // put its triangles 1.005 × away); a gap of half the deflection or more is the file's
+    // and no refinement can absorb it, so the triangle gets the whole deflection.
+    let within = |corner_gap: f64| {
+        if corner_gap < 0.5 * deflection {
+            deflection - corner_gap
+        } else {
+            deflection
+        }
+    };
+    // Normals on either side of a crease differ at any distance: the angle test skips edges
+    // touching one (the deflection tests still apply there).
+    let creases = Creases::of(surface);
 
     let mut marked: Vec<bool> = Vec::new();
     let mut cands: Vec<Candidate> = Vec::new();
@@ -122,10 +190,21 @@ pub(crate) fn refine(
                 if pts.is_collapsed(a) || pts.is_collapsed(b) {
                     continue;
                 }
-                let m = 0.5 * (uv[i] + uv[(i + 1) % 3]);
-                let (p, n) = sample(surface, m);
-                let gap = normal_gap(p, n, 0.5 * (x[i] + x[(i + 1) % 3]));
-                if gap > deflection && len3[i] >= min_len {
+                let j = (i + 1) % 3;
+                let at = |t: f64| {
+                    let m = uv[i].lerp(uv[j], t);
+                    let (p, n) = sample(surface, m);
+                    (normal_gap(p, n, x[i].lerp(x[j], t)), m, p, n)
+                };
+                let mut worst = at(0.5);
+                if let Some(t) = creases.crossing(uv[i], uv[j]) {
+                    let c = at(t);
+                    if c.0 >= worst.0 {
+                        worst = c;
+                    }
+                }
+                let (gap, m, p, n) = worst;
+                if gap > within(pts.gap(a).max(pts.gap(b))) && len3[i] >= min_len {
                     marked[ue.index()] = true;
                     cands.push((m, p, n, false));
                     split_here = true;
@@ -158,12 +237,15 @@ pub(crate) fn refine(
             };
             // A facet facing against the surface (folded over a pole) is bad at any size.
             let folded = n.is_some_and(|n| nt.dot(n) <= 0.0);
-            let mut bad = dev > deflection || folded;
+            let corner_gap = ids.iter().map(|&i| pts.gap(i)).fold(0.0, f64::max);
+            let mut bad = dev > within(corner_gap) || folded;
             if !bad {
                 let nrm = ids.map(|i| pts.normal[i as usize]);
                 bad = (0..3).any(|i| {
+                    let j = (i + 1) % 3;
                     !constraint[i]
-                        && matches!((nrm[i], nrm[(i + 1) % 3]), (Some(a), Some(b)) if a.dot(b) < cos_angle)
+                        && !creases.between(uv[i], uv[j])
+                        && matches!((nrm[i], nrm[j]), (Some(a), Some(b)) if a.dot(b) < cos_angle)
                 });
             }
             if !bad {

@@ -266,6 +266,40 @@ fn boundary_off_the_surface_is_not_chased_by_refinement() {
     assert!(dev.interpolation <= defl * 1.001, "{dev:?}");
 }
 
+/// trj5_k1-al-214.stp: a degree-1 B-spline strip folds at every knot. Normals across a fold
+/// differ at any distance, so the angle test must not chase it (it gave one face 17,142
+/// triangles); the folds' chords are tested where they cross them.
+#[test]
+fn creases_of_a_folded_strip_are_not_refined_away() {
+    let spans = 8;
+    let net = vec![
+        (0..=spans)
+            .map(|j| Vec3::new(0.0, j as f64, (j % 2) as f64))
+            .collect(),
+        (0..=spans)
+            .map(|j| Vec3::new(2.0, j as f64, (j % 2) as f64))
+            .collect(),
+    ];
+    let mut v_knots = vec![0.0];
+    v_knots.extend((0..=spans).map(f64::from));
+    v_knots.push(spans as f64);
+    let s = Surface::BSpline(Box::new(
+        BSplineSurface::try_new(1, 1, vec![0.0, 0.0, 1.0, 1.0], v_knots, net, None).unwrap(),
+    ));
+    let c = [v2(0.0, 0.0), v2(1.0, 0.0), v2(1.0, 8.0), v2(0.0, 8.0)];
+    let d = FaceDomain {
+        loops: vec![polygon(&c, &[1, 8, 1, 8], |uv| s.eval(uv.x, uv.y))],
+    };
+    let m = triangulate_face(&s, false, &d, &params(0.01)).unwrap();
+    check_common(&m, &d);
+    assert!(m.points.len() <= 40, "{} points", m.points.len());
+    let dev = crate::deviation::sampled_deviation(&s, &m);
+    assert!(dev.distance <= 0.01, "{dev:?}");
+    // Each span is a flat 2 × √2 parallelogram.
+    let exact = 8.0 * 2.0 * 2f64.sqrt();
+    assert!((area(&m) - exact).abs() < 1e-9 * exact, "{}", area(&m));
+}
+
 #[test]
 fn reversed_face_flips_triangles_and_normals() {
     let s = cylinder();
