@@ -101,7 +101,7 @@ fn edge_bounds(model: &Model, id: EdgeId, acc: Accuracy, samples: &mut Vec<Vec3>
         model.vertices[edge.start.index()].point,
         model.vertices[edge.end.index()].point,
     ]);
-    if let (Some(curve), Some(range)) = (edge.curve, edge_range(model, edge, acc)) {
+    if let (Some(curve), Some(range)) = (edge.curve, model.edge_range(id, acc)) {
         let curve = &model.curves[curve.index()];
         b = b.union(&curve.bbox_between(range.0, range.1));
         samples.extend(curve_samples(curve, range, EDGE_SAMPLES));
@@ -306,7 +306,7 @@ pub fn face_uv_region(
                     }
                     let edge = &model.edges[oe.edge.index()];
                     let mut pts = Vec::new();
-                    if let (Some(c), Some(r)) = (edge.curve, edge_range(model, edge, acc)) {
+                    if let (Some(c), Some(r)) = (edge.curve, model.edge_range(oe.edge, acc)) {
                         pts.extend(curve_samples(&model.curves[c.index()], r, EDGE_SAMPLES));
                         // Samples run along the curve; the loop runs along the edge as used.
                         if oe.forward != edge.same_sense {
@@ -393,7 +393,7 @@ pub fn face_uv_region(
     // the seam does not run in (an iso-u seam closes the face in u).
     for seam in seams {
         let edge = &model.edges[seam.index()];
-        let (Some(c), Some(r)) = (edge.curve, edge_range(model, edge, acc)) else {
+        let (Some(c), Some(r)) = (edge.curve, model.edge_range(seam, acc)) else {
             continue;
         };
         let pts: Vec<(f64, f64)> = curve_samples(&model.curves[c.index()], r, 4)

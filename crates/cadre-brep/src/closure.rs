@@ -3,7 +3,6 @@
 
 use std::collections::HashMap;
 
-use crate::bounds::edge_range;
 use crate::topology::LoopKind;
 use crate::{EdgeId, FaceId, Model, ShellId};
 use cadre_geom::Accuracy;
@@ -19,7 +18,7 @@ impl Model {
         let p = self.vertices[edge.start.index()].point;
         let tol = acc.distance.max(1e-9 * (1.0 + p.abs().max_element())) * 100.0;
         let curve = &self.curves[curve.index()];
-        match edge_range(self, edge, acc) {
+        match self.edge_range(id, acc) {
             Some((t0, t1)) => (0..=4).all(|i| {
                 let t = t0 + (t1 - t0) * f64::from(i) / 4.0;
                 (curve.eval(t) - p).length() <= tol

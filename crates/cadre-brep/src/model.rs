@@ -4,7 +4,7 @@ use std::collections::HashMap;
 
 use crate::topology::{Edge, Face, Shell, Solid, Vertex};
 use crate::{EdgeId, FaceId, MeshId, Part, PartId, ShellId, SolidId, Style, TriangleMesh, Units};
-use cadre_geom::{Curve2, Curve3, Surface};
+use cadre_geom::{Accuracy, Curve2, Curve3, Surface};
 
 /// A problem met while building the model; the model is still usable.
 #[derive(Clone, Debug, PartialEq)]
@@ -78,6 +78,61 @@ pub struct Model {
     pub schemas: Vec<String>,
     /// Problems met while reading; each names the instance and line where known.
     pub warnings: Vec<Warning>,
+    /// Every edge's parameter range at the default accuracy, worked out on first use of
+    /// [`Model::edge_range`] (bounds, edge sampling and closure checks all need them, and
+    /// each costs two curve projections). Code that edits vertices, edges or curves after
+    /// that calls [`Model::forget_edge_ranges`].
+    pub edge_ranges: EdgeRanges,
+}
+
+/// The cache behind [`Model::edge_range`].
+#[derive(Clone, Debug, Default)]
+pub struct EdgeRanges(std::sync::OnceLock<Vec<Option<(f64, f64)>>>);
+
+impl Model {
+    /// The parameter interval of edge `id` on its curve ([`crate::bounds::edge_range`]),
+    /// cached for the default accuracy: the first call works out every edge's, in parallel.
+    pub fn edge_range(&self, id: EdgeId, acc: Accuracy) -> Option<(f64, f64)> {
+        if acc != Accuracy::default() {
+            return crate::bounds::edge_range(self, self.edges.get(id.index())?, acc);
+        }
+        let all = self.edge_ranges.0.get_or_init(|| {
+            use rayon::prelude::*;
+            self.edges
+                .par_iter()
+                .map(|e| crate::bounds::edge_range(self, e, acc))
+                .collect()
+        });
+        match all.get(id.index()) {
+            Some(&range) => range,
+            // An edge added after the cache was filled (readers look at bounds while
+            // building; they forget the cache when done).
+            None => crate::bounds::edge_range(self, self.edges.get(id.index())?, acc),
+        }
+    }
+
+    /// Drops the cached edge ranges (after vertices, edges or curves changed).
+    pub fn forget_edge_ranges(&mut self) {
+        self.edge_ranges = EdgeRanges::default();
+    }
+
+    /// Works out the cached range of edge `id` again, keeping the others (after one of its
+    /// vertices moved).
+    pub fn refresh_edge_range(&mut self, id: EdgeId) {
+        let acc = Accuracy::default();
+        let range = self
+            .edges
+            .get(id.index())
+            .and_then(|e| crate::bounds::edge_range(self, e, acc));
+        if let Some(slot) = self
+            .edge_ranges
+            .0
+            .get_mut()
+            .and_then(|all| all.get_mut(id.index()))
+        {
+            *slot = range;
+        }
+    }
 }
 
 impl Model {

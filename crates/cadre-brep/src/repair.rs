@@ -12,7 +12,7 @@
 
 use rayon::prelude::*;
 
-use crate::{CurveId, Model, VertexId};
+use crate::{CurveId, EdgeId, Model, VertexId};
 use cadre_geom::{Accuracy, Vec3};
 
 /// A vertex farther than this many times the accuracy from one of its curves is repaired.
@@ -41,10 +41,25 @@ impl Model {
     /// `acc.distance`) to the point where those curves meet, when they meet within three times
     /// that distance of it. Returns the moves made, for reporting.
     pub fn snap_vertices_to_curves(&mut self, acc: Accuracy) -> Vec<VertexMove> {
+        // How far each vertex lies from the ends of its edges' ranges: the ranges are the
+        // vertices' projections, worked out (and cached) anyway, so sound files cost one
+        // curve evaluation per edge end here.
+        let mut off = vec![0.0f64; self.vertices.len()];
         let mut curves: Vec<Vec<CurveId>> = vec![Vec::new(); self.vertices.len()];
-        for edge in &self.edges {
+        for (i, edge) in self.edges.iter().enumerate() {
             let Some(c) = edge.curve else { continue };
+            let range = self.edge_range(EdgeId(i as u32), acc);
+            let curve = &self.curves[c.index()];
             for v in [edge.start, edge.end] {
+                let p = self.vertices[v.index()].point;
+                let d = range.map_or(0.0, |(t0, t1)| {
+                    (curve.eval(t0) - p)
+                        .length()
+                        .min((curve.eval(t1) - p).length())
+                });
+                if d.is_finite() {
+                    off[v.index()] = off[v.index()].max(d);
+                }
                 let list = &mut curves[v.index()];
                 if !list.contains(&c) {
                     list.push(c);
@@ -55,23 +70,39 @@ impl Model {
         let moves: Vec<VertexMove> = curves
             .par_iter()
             .enumerate()
+            .filter(|&(i, _)| off[i] > threshold(model.vertices[i].point, acc))
             .filter_map(|(i, cs)| {
-                let vertex = VertexId(i as u32);
                 let from = model.vertices[i].point;
-                let to = meeting_point(model, cs, from, acc)?;
+                let (to, off_curve) = meeting_point(model, cs, from, acc)?;
                 Some(VertexMove {
-                    vertex,
+                    vertex: VertexId(i as u32),
                     from,
-                    to: to.0,
-                    off_curve: to.1,
+                    to,
+                    off_curve,
                 })
             })
             .collect();
+        if moves.is_empty() {
+            return moves;
+        }
         for m in &moves {
             self.vertices[m.vertex.index()].point = m.to;
         }
+        let moved: std::collections::HashSet<VertexId> = moves.iter().map(|m| m.vertex).collect();
+        for i in 0..self.edges.len() {
+            let e = &self.edges[i];
+            if moved.contains(&e.start) || moved.contains(&e.end) {
+                self.refresh_edge_range(EdgeId(i as u32));
+            }
+        }
         moves
     }
+}
+
+/// Distance from its curves beyond which a vertex at `p` is repaired.
+fn threshold(p: Vec3, acc: Accuracy) -> f64 {
+    let scale = 1.0 + p.abs().max_element();
+    OFF_CURVE_FACTOR * acc.distance.max(1e-12 * scale)
 }
 
 /// The point nearest `p` on the curve `c`, or `None` where projection fails.
@@ -96,13 +127,12 @@ fn meeting_point(model: &Model, cs: &[CurveId], p: Vec3, acc: Accuracy) -> Optio
         return None;
     }
     let scale = 1.0 + p.abs().max_element();
-    let threshold = OFF_CURVE_FACTOR * acc.distance.max(1e-12 * scale);
     let mut feet: Vec<(f64, Vec3)> = cs
         .iter()
         .map(|&c| foot(model, c, p, None, acc))
         .collect::<Option<_>>()?;
     let off = feet.iter().map(|f| (f.1 - p).length()).fold(0.0, f64::max);
-    if off <= threshold {
+    if off <= threshold(p, acc) {
         return None;
     }
     // Alternating projection: the mean of the feet moves towards the curves' common point
@@ -177,6 +207,21 @@ mod tests {
         assert!((moves[0].off_curve - 0.1).abs() < 1e-12);
         // The end vertices lie on their single curve: untouched.
         assert_eq!(model.vertices[0].point, Vec3::new(-1.0, 0.0, 0.0));
+    }
+
+    #[test]
+    fn cached_edge_ranges_follow_a_moved_vertex() {
+        let acc = Accuracy::default();
+        let mut model = corner(Vec3::new(0.05, 0.1, 0.0));
+        let e0 = crate::EdgeId(0);
+        assert_eq!(model.edge_range(e0, acc), Some((-1.0, 0.05)));
+        model.snap_vertices_to_curves(acc);
+        let (t0, t1) = model.edge_range(e0, acc).unwrap();
+        assert_eq!(t0, -1.0);
+        assert!(t1.abs() < 1e-6, "{t1}");
+        // An edge added after the cache was filled is still answered.
+        model.edges.push(model.edges[0].clone());
+        assert_eq!(model.edge_range(crate::EdgeId(2), acc), Some((t0, t1)));
     }
 
     #[test]

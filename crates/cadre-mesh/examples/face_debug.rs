@@ -93,6 +93,25 @@ fn main() {
             println!(
                 "triangles facing against their normals: {folded}; (u, v) range {lo:?} .. {hi:?}"
             );
+            if let Ok(path) = std::env::var("FACE_DEBUG_POINTS") {
+                // (u, v, x, y, z, boundary) per point, for plotting where refinement went.
+                let rows: Vec<String> = m
+                    .points
+                    .iter()
+                    .map(|p| {
+                        format!(
+                            "{} {} {} {} {} {}",
+                            p.uv.x,
+                            p.uv.y,
+                            p.xyz.x,
+                            p.xyz.y,
+                            p.xyz.z,
+                            u8::from(p.key.is_some())
+                        )
+                    })
+                    .collect();
+                std::fs::write(path, rows.join("\n")).expect("write FACE_DEBUG_POINTS");
+            }
             let dev = cadre_mesh::deviation::sampled_deviation(surface, &m);
             let worst_uv = dev.triangle.map(|t| t.map(|i| m.points[i as usize].uv));
             println!(

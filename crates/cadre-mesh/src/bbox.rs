@@ -2,22 +2,23 @@
 //! over every occurrence. Faces bulging beyond their edges are not looked at; for choosing a
 //! tolerance the edges' box is what OCCT's relative mode effectively uses too.
 
-use cadre_brep::bounds::edge_range;
-use cadre_brep::{Body, Model};
+use cadre_brep::{Body, EdgeId, Model};
 use cadre_geom::{Accuracy, BoundingBox};
+use rayon::prelude::*;
 
 /// The box of the model's edges, vertices and meshes over all occurrences.
 pub fn quick_bbox(model: &Model) -> BoundingBox {
     let acc = Accuracy::default();
     let edge_boxes: Vec<BoundingBox> = model
         .edges
-        .iter()
-        .map(|e| {
+        .par_iter()
+        .enumerate()
+        .map(|(i, e)| {
             let mut b = BoundingBox::from_points([
                 model.vertices[e.start.index()].point,
                 model.vertices[e.end.index()].point,
             ]);
-            if let (Some(c), Some((t0, t1))) = (e.curve, edge_range(model, e, acc)) {
+            if let (Some(c), Some((t0, t1))) = (e.curve, model.edge_range(EdgeId(i as u32), acc)) {
                 b = b.union(&model.curves[c.index()].bbox_between(t0, t1));
             }
             b

@@ -2,7 +2,6 @@
 //! angular deflection (like OCCT's `GCPnts_TangentialDeflection`). Every face using an edge
 //! builds its trim polygon from these samples, which is what makes meshes watertight.
 
-use cadre_brep::bounds::edge_range;
 use cadre_brep::trim::{EdgeSample, EdgeSamples, TrimKey};
 use cadre_brep::{EdgeId, Model};
 use cadre_geom::{Accuracy, Curve3, Vec3};
@@ -68,7 +67,7 @@ pub fn discretise_edge(
         xyz: model.vertices[edge.end.index()].point,
         key: TrimKey::vertex(edge.end),
     };
-    let (Some(curve_id), Some((t0, t1))) = (edge.curve, edge_range(model, edge, acc)) else {
+    let (Some(curve_id), Some((t0, t1))) = (edge.curve, model.edge_range(id, acc)) else {
         return vec![start, end];
     };
     let curve = &model.curves[curve_id.index()];

@@ -156,7 +156,9 @@ impl<'f> Mapper<'f> {
     }
 
     /// The finished model.
-    pub fn finish(self) -> Model {
+    pub fn finish(mut self) -> Model {
+        // Bounds looked at while mapping cached the edge ranges of a partial model.
+        self.model.forget_edge_ranges();
         self.model
     }
 }

@@ -148,7 +148,7 @@ fn print_faces(model: &Model, with_edges: bool) {
                 if let cadre_brep::LoopKind::Edges(es) = &lp.kind {
                     for oe in es {
                         let e = &model.edges[oe.edge.index()];
-                        let r = cadre_brep::bounds::edge_range(model, e, acc);
+                        let r = model.edge_range(oe.edge, acc);
                         let d = e.curve.and_then(|c| model.curves[c.index()].domain());
                         println!("      edge #{} range {r:?} domain {d:?}", e.step_id);
                     }
