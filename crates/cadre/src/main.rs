@@ -22,6 +22,9 @@ enum Command {
     /// Tessellate a STEP file into a watertight mesh: .glb/.gltf (assembly tree, shared
     /// instances, materials), .stl or .obj.
     Mesh(commands::mesh::MeshArgs),
+    /// Render a STEP file (or a folder of them) to PNG, headless (GPU or Mesa's software
+    /// drivers).
+    Render(commands::render::RenderArgs),
     /// Time cadre's stages over a folder of files (used by the scripts in `scripts/`).
     Bench(commands::bench::BenchArgs),
 }
@@ -39,6 +42,7 @@ fn main() -> Result<()> {
     match cli.command {
         Command::Info(args) => commands::info::run(&args),
         Command::Mesh(args) => commands::mesh::run(&args),
+        Command::Render(args) => commands::render::run(&args),
         Command::Bench(args) => commands::bench::run(&args),
     }
 }

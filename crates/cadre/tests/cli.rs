@@ -99,3 +99,66 @@ fn closed_output_pipe_ends_quietly() {
         out.status
     );
 }
+
+#[test]
+fn render_writes_a_png_of_the_asked_size_and_refuses_bad_options() {
+    let dir = std::env::temp_dir().join(format!("cadre-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("pin.png");
+    let run = cadre()
+        .args(["render", EXAMPLE, "-o"])
+        .arg(&out)
+        .args([
+            "--size",
+            "64x48",
+            "--view",
+            "top",
+            "--ortho",
+            "--background",
+            "#102030",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let image = std::fs::read(&out).unwrap();
+    // PNG signature, then the IHDR chunk's width and height.
+    assert_eq!(&image[..8], b"\x89PNG\r\n\x1a\n");
+    let be = |i: usize| u32::from_be_bytes([image[i], image[i + 1], image[i + 2], image[i + 3]]);
+    assert_eq!((be(16), be(20)), (64, 48));
+    for bad in [
+        ["--size", "0x10"],
+        ["--view", "sideways"],
+        ["--background", "#12"],
+    ] {
+        let run = cadre()
+            .args(["render", EXAMPLE, "-o"])
+            .arg(&out)
+            .args(bad)
+            .output()
+            .unwrap();
+        assert!(!run.status.success(), "{bad:?} accepted");
+    }
+    // A folder in, a folder out.
+    let folder = dir.join("in");
+    std::fs::create_dir_all(&folder).unwrap();
+    std::fs::copy(EXAMPLE, folder.join("a.step")).unwrap();
+    let run = cadre()
+        .args(["render"])
+        .arg(&folder)
+        .arg("-o")
+        .arg(dir.join("out"))
+        .args(["--size", "32x32"])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(dir.join("out/a.png").is_file());
+    std::fs::remove_dir_all(&dir).ok();
+}

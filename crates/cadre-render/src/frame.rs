@@ -1,0 +1,323 @@
+//! A frame: the passes in order, into offscreen targets, read back as an image.
+
+use cadre_mesh::export::Scene;
+use image::RgbaImage;
+use wgpu::util::DeviceExt;
+
+use crate::gpu_scene::GpuScene;
+use crate::layout::Frame;
+use crate::passes::shade::{COLOUR, ShadePass};
+use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
+use crate::{Camera, Gpu, RenderError};
+
+/// What to render: image size, anti-aliasing, background.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameOptions {
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Supersampling factor per side (1 = none; 2 renders 4 samples per pixel and averages
+    /// them in linear light).
+    pub supersample: u32,
+    /// Background colour, sRGB components in [0, 1] and alpha.
+    pub background: [f32; 4],
+}
+
+impl Default for FrameOptions {
+    /// 800 × 600, 2× supersampling, white background.
+    fn default() -> Self {
+        FrameOptions {
+            width: 800,
+            height: 600,
+            supersample: 2,
+            background: [1.0, 1.0, 1.0, 1.0],
+        }
+    }
+}
+
+/// The renderer: pipelines built once, frames rendered on demand.
+pub struct Renderer {
+    visibility: VisibilityPass,
+    shade: ShadePass,
+}
+
+impl Renderer {
+    /// Builds the passes' pipelines on `gpu`; an adapter that cannot run them gives an error,
+    /// not a panic.
+    pub fn new(gpu: &Gpu) -> Result<Renderer, RenderError> {
+        let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let renderer = Renderer {
+            visibility: VisibilityPass::new(&gpu.device),
+            shade: ShadePass::new(&gpu.device),
+        };
+        match pollster::block_on(scope.pop()) {
+            Some(e) => Err(RenderError::Gpu(e.to_string())),
+            None => Ok(renderer),
+        }
+    }
+
+    /// Renders `scene` seen by `camera` into an sRGB image.
+    pub fn render(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<RgbaImage, RenderError> {
+        let ss = options.supersample.clamp(1, 4);
+        let (w, h) = (options.width * ss, options.height * ss);
+        let pixels = self.run(gpu, scene, camera, options, (w, h), Readback::Colour)?;
+        let full = RgbaImage::from_raw(w, h, pixels)
+            .ok_or_else(|| RenderError::Readback("image size mismatch".into()))?;
+        Ok(downsample(&full, ss))
+    }
+
+    /// The visibility buffer's ids at every pixel (no supersampling), row by row: STEP face
+    /// id, instance + 1 (0 = background), material index, 0.
+    pub fn render_ids(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<Vec<[u32; 4]>, RenderError> {
+        let size = (options.width, options.height);
+        let bytes = self.run(gpu, scene, camera, options, size, Readback::Ids)?;
+        let word = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        Ok(bytes
+            .chunks_exact(16)
+            .map(|p| {
+                [
+                    word(&p[0..4]),
+                    word(&p[4..8]),
+                    word(&p[8..12]),
+                    word(&p[12..16]),
+                ]
+            })
+            .collect())
+    }
+
+    /// Records and runs the passes at `w` × `h` and reads back the asked target.
+    fn run(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        camera: &Camera,
+        options: &FrameOptions,
+        (w, h): (u32, u32),
+        readback: Readback,
+    ) -> Result<Vec<u8>, RenderError> {
+        let max = gpu.max_side();
+        if options.width == 0 || options.height == 0 || w > max || h > max {
+            return Err(RenderError::Size {
+                width: options.width,
+                height: options.height,
+                max: max * options.width.max(1) / w.max(1),
+            });
+        }
+        let device = &gpu.device;
+        // Validation errors become a RenderError instead of wgpu's default panic.
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let aspect = f64::from(w) / f64::from(h);
+        let bg = options.background;
+        let frame = Frame {
+            view_proj: camera.view_projection_f32(aspect).to_cols_array_2d(),
+            inv_proj: camera
+                .projection_matrix(aspect)
+                .inverse()
+                .as_mat4()
+                .to_cols_array_2d(),
+            background: [
+                srgb_to_linear(bg[0]),
+                srgb_to_linear(bg[1]),
+                srgb_to_linear(bg[2]),
+                bg[3],
+            ],
+            viewport: [
+                w as f32,
+                h as f32,
+                if camera.is_orthographic() { 1.0 } else { 0.0 },
+                0.0,
+            ],
+        };
+        let frame_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("frame"),
+            contents: bytemuck::bytes_of(&frame),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let gpu_scene = GpuScene::upload(device, scene, camera);
+        let targets = VisibilityTargets::new(device, w, h);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        self.visibility
+            .record(device, &mut encoder, &targets, &frame_buffer, &gpu_scene);
+        let bytes = match readback {
+            Readback::Ids => read_texture(gpu, encoder, &targets.ids_texture, w, h, 16)?,
+            Readback::Colour => {
+                let colour = device.create_texture(&wgpu::TextureDescriptor {
+                    label: Some("colour"),
+                    size: wgpu::Extent3d {
+                        width: w,
+                        height: h,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: COLOUR,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                    view_formats: &[],
+                });
+                let colour_view = colour.create_view(&Default::default());
+                self.shade.record(
+                    device,
+                    &mut encoder,
+                    &targets,
+                    &frame_buffer,
+                    &gpu_scene.materials,
+                    &colour_view,
+                );
+                read_texture(gpu, encoder, &colour, w, h, 4)?
+            }
+        };
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(RenderError::Gpu(e.to_string()));
+        }
+        Ok(bytes)
+    }
+}
+
+/// Which target a frame reads back.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Readback {
+    Colour,
+    Ids,
+}
+
+/// Copies `texture` (`bytes_per_pixel` wide texels) to the CPU, rows unpadded.
+fn read_texture(
+    gpu: &Gpu,
+    mut encoder: wgpu::CommandEncoder,
+    texture: &wgpu::Texture,
+    w: u32,
+    h: u32,
+    bytes_per_pixel: u32,
+) -> Result<Vec<u8>, RenderError> {
+    let row = w * bytes_per_pixel;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: u64::from(padded) * u64::from(h),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(h),
+            },
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+    gpu.queue.submit([encoder.finish()]);
+    let (tx, rx) = std::sync::mpsc::channel();
+    buffer
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, move |r| drop(tx.send(r)));
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| RenderError::Readback(e.to_string()))?
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    let mapped = buffer
+        .slice(..)
+        .get_mapped_range()
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    let mut out = Vec::with_capacity((row * h) as usize);
+    for y in 0..h as usize {
+        let start = y * padded as usize;
+        out.extend_from_slice(&mapped[start..start + row as usize]);
+    }
+    Ok(out)
+}
+
+/// sRGB component → linear.
+fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Linear component → sRGB.
+fn linear_to_srgb(c: f32) -> f32 {
+    if c <= 0.003_130_8 {
+        c * 12.92
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Averages `factor` × `factor` blocks in linear light (colour) and linearly (alpha).
+fn downsample(full: &RgbaImage, factor: u32) -> RgbaImage {
+    if factor <= 1 {
+        return full.clone();
+    }
+    let (w, h) = (full.width() / factor, full.height() / factor);
+    let n = (factor * factor) as f32;
+    RgbaImage::from_fn(w, h, |x, y| {
+        let mut sum = [0.0f32; 4];
+        for dy in 0..factor {
+            for dx in 0..factor {
+                let p = full.get_pixel(x * factor + dx, y * factor + dy).0;
+                for c in 0..3 {
+                    sum[c] += srgb_to_linear(f32::from(p[c]) / 255.0);
+                }
+                sum[3] += f32::from(p[3]) / 255.0;
+            }
+        }
+        let px = |c: f32| (c * 255.0).round().clamp(0.0, 255.0) as u8;
+        image::Rgba([
+            px(linear_to_srgb(sum[0] / n)),
+            px(linear_to_srgb(sum[1] / n)),
+            px(linear_to_srgb(sum[2] / n)),
+            px(sum[3] / n),
+        ])
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn downsampling_averages_in_linear_light() {
+        let full = RgbaImage::from_fn(2, 2, |x, _| {
+            if x == 0 {
+                image::Rgba([0, 0, 0, 255])
+            } else {
+                image::Rgba([255, 255, 255, 255])
+            }
+        });
+        let small = downsample(&full, 2);
+        // Half black, half white is 0.5 linear = 188 in sRGB, not 128.
+        assert_eq!(small.get_pixel(0, 0).0, [188, 188, 188, 255]);
+        assert!((srgb_to_linear(linear_to_srgb(0.3)) - 0.3).abs() < 1e-6);
+    }
+}

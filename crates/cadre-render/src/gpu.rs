@@ -1,0 +1,67 @@
+//! Device setup: a wgpu device and queue on whatever adapter the machine has.
+
+use crate::RenderError;
+
+/// A wgpu device and queue, and what adapter they run on.
+pub struct Gpu {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// The adapter's description (name, backend, whether it is a software renderer).
+    pub info: wgpu::AdapterInfo,
+}
+
+impl Gpu {
+    /// A device for offscreen rendering: the high-performance adapter of the backends named
+    /// by `WGPU_BACKEND` when set, else of Vulkan/Metal/DX12 and, failing those, GL. On a
+    /// machine without a GPU that is Mesa's lavapipe (Vulkan) or llvmpipe (GL through EGL,
+    /// no X server needed).
+    pub fn headless() -> Result<Gpu, RenderError> {
+        let from_env = std::env::var_os("WGPU_BACKEND").is_some();
+        // GL is asked last: probing it prints EGL noise where Vulkan would do.
+        let tries: &[wgpu::Backends] = if from_env {
+            &[wgpu::Backends::all()]
+        } else {
+            &[wgpu::Backends::PRIMARY, wgpu::Backends::GL]
+        };
+        let mut last = String::from("no backend tried");
+        let mut found = None;
+        for &backends in tries {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+            if !from_env {
+                desc.backends = backends;
+            }
+            let instance = wgpu::Instance::new(desc);
+            match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                ..Default::default()
+            })) {
+                Ok(a) => {
+                    found = Some(a);
+                    break;
+                }
+                Err(e) => last = e.to_string(),
+            }
+        }
+        let adapter = found.ok_or(RenderError::NoAdapter(last))?;
+        let info = adapter.get_info();
+        tracing::info!(adapter = %info.name, backend = ?info.backend, "GPU adapter");
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("cadre"),
+            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            ..Default::default()
+        }))
+        .map_err(|e| RenderError::Device(e.to_string()))?;
+        Ok(Gpu {
+            device,
+            queue,
+            info,
+        })
+    }
+
+    /// Largest texture side the device allows.
+    pub fn max_side(&self) -> u32 {
+        self.device.limits().max_texture_dimension_2d
+    }
+}

@@ -1,0 +1,27 @@
+//! The GPU renderer of cadre, on wgpu.
+//!
+//! One renderer, several surface back-ends (see `docs/architecture.md`): every back-end writes
+//! the same visibility buffer (reverse-Z depth, normal, face id, instance id, material), and
+//! later passes (shading now; edges, picking and crack detection next) read only that buffer.
+//! This first back-end draws tessellated meshes ([`cadre_mesh::export::Scene`]).
+//!
+//! Rendering is headless first: [`Gpu::headless`] finds a native GPU or Mesa's software
+//! drivers (Vulkan lavapipe, GL llvmpipe through EGL) and [`Renderer::render`] returns an
+//! image. Geometry is placed relative to the camera in `f64` before it is sent to the GPU as
+//! `f32`, so a part 10⁶ mm from the origin renders like one at the origin.
+
+mod bounds;
+mod camera;
+pub mod compare;
+mod error;
+mod frame;
+mod gpu;
+mod gpu_scene;
+pub mod layout;
+mod passes;
+
+pub use bounds::scene_bounds;
+pub use camera::{Camera, Projection, ViewPreset};
+pub use error::RenderError;
+pub use frame::{FrameOptions, Renderer};
+pub use gpu::Gpu;

@@ -1,0 +1,61 @@
+// Visibility pass, mesh back-end: writes reverse-Z depth, the view-space normal and the ids
+// (face id, instance + 1, material, depth bits) of the nearest surface at every pixel. The
+// depth is repeated in the ids so later passes need not read a depth texture (GLSL cannot).
+
+struct Frame {
+    view_proj: mat4x4<f32>,
+    inv_proj: mat4x4<f32>,
+    background: vec4<f32>,
+    viewport: vec4<f32>,
+}
+
+struct Draw {
+    model: mat4x4<f32>,
+    normal0: vec4<f32>,
+    normal1: vec4<f32>,
+    normal2: vec4<f32>,
+    material: u32,
+    instance: u32,
+    pad: vec2<u32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> draws: array<Draw>;
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) @interpolate(flat) face: u32,
+    @location(2) @interpolate(flat) draw: u32,
+}
+
+@vertex
+fn vs_main(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) face: u32,
+    @builtin(instance_index) draw_index: u32,
+) -> VertexOut {
+    let d = draws[draw_index];
+    var out: VertexOut;
+    out.clip = frame.view_proj * (d.model * vec4<f32>(position, 1.0));
+    out.normal = mat3x3<f32>(d.normal0.xyz, d.normal1.xyz, d.normal2.xyz) * normal;
+    out.face = face;
+    out.draw = draw_index;
+    return out;
+}
+
+struct VisibilityOut {
+    @location(0) normal: vec4<f32>,
+    @location(1) ids: vec4<u32>,
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> VisibilityOut {
+    let d = draws[in.draw];
+    var out: VisibilityOut;
+    let len = length(in.normal);
+    out.normal = vec4<f32>(select(vec3<f32>(0.0, 0.0, 1.0), in.normal / len, len > 0.0), 1.0);
+    out.ids = vec4<u32>(in.face, d.instance + 1u, d.material, bitcast<u32>(in.clip.z));
+    return out;
+}

@@ -1,0 +1,48 @@
+//! Every pass's WGSL parses and validates with naga (the compiler wgpu uses), and the structs
+//! shared with Rust have the sizes of their `cadre_render::layout` twins.
+
+use std::path::Path;
+
+use cadre_render::layout::{Draw, Frame, Material};
+
+/// Parses and validates one shader; returns the module.
+fn module(pass: &str) -> naga::Module {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("src/passes")
+        .join(pass)
+        .join(format!("{pass}.wgsl"));
+    let source = std::fs::read_to_string(&path).expect("shader source");
+    let module = naga::front::wgsl::parse_str(&source)
+        .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&source)));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+    module
+}
+
+/// Size naga gives the struct `name` of `module`.
+fn struct_size(module: &naga::Module, name: &str) -> Option<usize> {
+    module.types.iter().find_map(|(_, ty)| match &ty.inner {
+        naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => {
+            Some(*span as usize)
+        }
+        _ => None,
+    })
+}
+
+#[test]
+fn shaders_validate_and_share_the_rust_layouts() {
+    let visibility = module("visibility");
+    let shade = module("shade");
+    for (m, name, size) in [
+        (&visibility, "Frame", size_of::<Frame>()),
+        (&visibility, "Draw", size_of::<Draw>()),
+        (&shade, "Frame", size_of::<Frame>()),
+        (&shade, "Material", size_of::<Material>()),
+    ] {
+        assert_eq!(struct_size(m, name), Some(size), "{name}");
+    }
+}

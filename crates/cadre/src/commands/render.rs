@@ -1,0 +1,162 @@
+//! `cadre render`: STEP file (or folder) to PNG, headless, on the GPU or Mesa's software
+//! drivers.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, bail};
+use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
+use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
+
+use crate::load::load_step;
+
+/// Arguments of `cadre render`.
+#[derive(clap::Args)]
+pub struct RenderArgs {
+    /// A STEP file, or a folder of them (then -o is a folder).
+    input: PathBuf,
+    /// Output PNG file, or folder for a folder input.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    size: (u32, u32),
+    /// View: iso, front, back, top, bottom, left or right.
+    #[arg(long, default_value = "iso", value_parser = parse_view)]
+    view: ViewPreset,
+    /// Orthographic projection (default perspective).
+    #[arg(long)]
+    ortho: bool,
+    /// Background: a name (white, black, grey, transparent) or #rrggbb.
+    #[arg(long, default_value = "white", value_parser = parse_colour)]
+    background: [f32; 4],
+    /// Supersampling per side (1 to 4; 2 = four samples per pixel).
+    #[arg(long, default_value_t = 2)]
+    supersample: u32,
+    /// Tessellation deflection relative to the model's bounding-box diagonal.
+    #[arg(long, default_value_t = 0.0005)]
+    deflection_rel: f64,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {s:?}"))?;
+    let n = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&v| (1..=16384).contains(&v))
+            .ok_or_else(|| format!("expected a size from 1 to 16384, got {t:?}"))
+    };
+    Ok((n(w)?, n(h)?))
+}
+
+fn parse_view(s: &str) -> Result<ViewPreset, String> {
+    ViewPreset::from_name(s)
+        .ok_or_else(|| format!("unknown view {s:?} (iso, front, back, top, bottom, left, right)"))
+}
+
+fn parse_colour(s: &str) -> Result<[f32; 4], String> {
+    Ok(match s.to_ascii_lowercase().as_str() {
+        "white" => [1.0, 1.0, 1.0, 1.0],
+        "black" => [0.0, 0.0, 0.0, 1.0],
+        "grey" | "gray" => [0.5, 0.5, 0.5, 1.0],
+        "transparent" => [1.0, 1.0, 1.0, 0.0],
+        hex if hex.len() == 7 && hex.starts_with('#') => {
+            let c = |i: usize| {
+                u8::from_str_radix(&hex[i..i + 2], 16)
+                    .map(|v| f32::from(v) / 255.0)
+                    .map_err(|_| format!("bad colour {s:?}"))
+            };
+            [c(1)?, c(3)?, c(5)?, 1.0]
+        }
+        _ => {
+            return Err(format!(
+                "unknown colour {s:?} (white, black, grey, transparent or #rrggbb)"
+            ));
+        }
+    })
+}
+
+/// Runs `cadre render`.
+pub fn run(args: &RenderArgs) -> Result<()> {
+    if !(args.deflection_rel.is_finite() && args.deflection_rel > 0.0) {
+        bail!("--deflection-rel must be a positive number");
+    }
+    let gpu = Gpu::headless()?;
+    let renderer = Renderer::new(&gpu)?;
+    if args.input.is_dir() {
+        std::fs::create_dir_all(&args.output)
+            .with_context(|| format!("creating {}", args.output.display()))?;
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&args.input)
+            .with_context(|| format!("reading {}", args.input.display()))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| {
+                p.extension()
+                    .and_then(|e| e.to_str())
+                    .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "stp" | "step"))
+            })
+            .collect();
+        files.sort();
+        let bar = crate::progress::bar(files.len() as u64, "rendering", true);
+        let mut failed = 0;
+        for f in &files {
+            let stem = f
+                .file_stem()
+                .map_or("model".into(), |s| s.to_string_lossy().into_owned());
+            let out = args.output.join(format!("{stem}.png"));
+            if let Err(e) = render_file(&gpu, &renderer, f, &out, args) {
+                bar.suspend(|| eprintln!("error: {}: {e:#}", f.display()));
+                failed += 1;
+            }
+            bar.inc(1);
+        }
+        bar.finish_and_clear();
+        println!(
+            "rendered {} of {} files into {}",
+            files.len() - failed,
+            files.len(),
+            args.output.display()
+        );
+        if failed > 0 {
+            bail!("{failed} files could not be rendered");
+        }
+        return Ok(());
+    }
+    render_file(&gpu, &renderer, &args.input, &args.output, args)?;
+    println!("wrote {} ({})", args.output.display(), gpu.info.name);
+    Ok(())
+}
+
+/// Loads, meshes and renders one file to one PNG.
+fn render_file(
+    gpu: &Gpu,
+    renderer: &Renderer,
+    input: &Path,
+    output: &Path,
+    args: &RenderArgs,
+) -> Result<()> {
+    let loaded = load_step(input)?;
+    let model = &loaded.model;
+    let params = MeshParams {
+        deflection: Deflection::Relative(args.deflection_rel).resolve(deflection_diagonal(model)),
+        angle: 0.35,
+        ..MeshParams::default()
+    };
+    let mesh = mesh_model(model, &params, None);
+    let scene = cadre_mesh::assemble::build_scene(model, &mesh);
+    let (w, h) = args.size;
+    let (lo, hi) = scene_bounds(&scene).context("the model has no geometry to render")?;
+    let camera = Camera::fit(lo, hi, args.view, args.ortho, f64::from(w) / f64::from(h));
+    let options = FrameOptions {
+        width: w,
+        height: h,
+        supersample: args.supersample,
+        background: args.background,
+    };
+    let image = renderer.render(gpu, &scene, &camera, &options)?;
+    image
+        .save(output)
+        .with_context(|| format!("writing {}", output.display()))?;
+    Ok(())
+}
