@@ -151,7 +151,8 @@ fn render_writes_a_png_of_the_asked_size_and_refuses_bad_options() {
         .arg(&folder)
         .arg("-o")
         .arg(dir.join("out"))
-        .args(["--size", "32x32"])
+        .args(["--size", "32x32", "--sheet"])
+        .arg(dir.join("sheet.png"))
         .output()
         .unwrap();
     assert!(
@@ -160,5 +161,11 @@ fn render_writes_a_png_of_the_asked_size_and_refuses_bad_options() {
         String::from_utf8_lossy(&run.stderr)
     );
     assert!(dir.join("out/a.png").is_file());
+    assert!(dir.join("sheet.png").is_file());
+    let index = std::fs::read_to_string(dir.join("sheet.txt")).unwrap();
+    assert!(
+        index.starts_with("row 1 column 1: ") && index.contains("a.step"),
+        "{index}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -2,10 +2,12 @@
 //! drivers.
 
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
 use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
+use image::RgbaImage;
 
 use crate::load::load_step;
 
@@ -35,9 +37,14 @@ pub struct RenderArgs {
     /// Tessellation deflection relative to the model's bounding-box diagonal.
     #[arg(long, default_value_t = 0.0005)]
     deflection_rel: f64,
+    /// With a folder: also write every image into one contact sheet (a grid of tiles, row by
+    /// row in file-name order; SHEET.txt lists which file each tile is).
+    #[arg(long, value_name = "SHEET.png")]
+    sheet: Option<PathBuf>,
 }
 
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
+/// Parses WIDTHxHEIGHT.
+pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WIDTHxHEIGHT, got {s:?}"))?;
@@ -86,56 +93,129 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let gpu = Gpu::headless()?;
     let renderer = Renderer::new(&gpu)?;
     if args.input.is_dir() {
-        std::fs::create_dir_all(&args.output)
-            .with_context(|| format!("creating {}", args.output.display()))?;
-        let mut files: Vec<PathBuf> = std::fs::read_dir(&args.input)
-            .with_context(|| format!("reading {}", args.input.display()))?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| {
-                p.extension()
-                    .and_then(|e| e.to_str())
-                    .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "stp" | "step"))
-            })
-            .collect();
-        files.sort();
-        let bar = crate::progress::bar(files.len() as u64, "rendering", true);
-        let mut failed = 0;
-        for f in &files {
-            let stem = f
-                .file_stem()
-                .map_or("model".into(), |s| s.to_string_lossy().into_owned());
-            let out = args.output.join(format!("{stem}.png"));
-            if let Err(e) = render_file(&gpu, &renderer, f, &out, args) {
-                bar.suspend(|| eprintln!("error: {}: {e:#}", f.display()));
-                failed += 1;
-            }
-            bar.inc(1);
-        }
-        bar.finish_and_clear();
-        println!(
-            "rendered {} of {} files into {}",
-            files.len() - failed,
-            files.len(),
-            args.output.display()
-        );
-        if failed > 0 {
-            bail!("{failed} files could not be rendered");
-        }
-        return Ok(());
+        return render_folder(&gpu, &renderer, args);
     }
-    render_file(&gpu, &renderer, &args.input, &args.output, args)?;
+    let image = render_file(&gpu, &renderer, &args.input, args)?;
+    save(&image, &args.output)?;
     println!("wrote {} ({})", args.output.display(), gpu.info.name);
     Ok(())
 }
 
-/// Loads, meshes and renders one file to one PNG.
+fn save(image: &RgbaImage, path: &Path) -> Result<()> {
+    image
+        .save(path)
+        .with_context(|| format!("writing {}", path.display()))
+}
+
+/// Renders every STEP file of a folder into PNGs of the same names, and the contact sheet.
+fn render_folder(gpu: &Gpu, renderer: &Renderer, args: &RenderArgs) -> Result<()> {
+    std::fs::create_dir_all(&args.output)
+        .with_context(|| format!("creating {}", args.output.display()))?;
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&args.input)
+        .with_context(|| format!("reading {}", args.input.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "stp" | "step"))
+        })
+        .collect();
+    files.sort();
+    let bar = crate::progress::bar(files.len() as u64, "rendering", true);
+    let mut tiles: Vec<Option<RgbaImage>> = Vec::with_capacity(files.len());
+    let mut seconds: Vec<(f64, &Path)> = Vec::new();
+    for f in &files {
+        let stem = f
+            .file_stem()
+            .map_or("model".into(), |s| s.to_string_lossy().into_owned());
+        let t0 = Instant::now();
+        let result = render_file(gpu, renderer, f, args).and_then(|image| {
+            save(&image, &args.output.join(format!("{stem}.png"))).map(|()| image)
+        });
+        match result {
+            Ok(image) => {
+                seconds.push((t0.elapsed().as_secs_f64(), f));
+                tiles.push(args.sheet.is_some().then_some(image));
+            }
+            Err(e) => {
+                bar.suspend(|| eprintln!("error: {}: {e:#}", f.display()));
+                tiles.push(None);
+            }
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let done = seconds.len();
+    seconds.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: f64 = seconds.iter().map(|s| s.0).sum();
+    println!(
+        "rendered {done} of {} files into {} ({}): {total:.2} s in all, median {:.3} s, slowest {:.3} s ({})",
+        files.len(),
+        args.output.display(),
+        gpu.info.name,
+        seconds.get(done / 2).map_or(0.0, |s| s.0),
+        seconds.last().map_or(0.0, |s| s.0),
+        seconds
+            .last()
+            .map_or(String::new(), |s| s.1.display().to_string()),
+    );
+    if let Some(sheet) = &args.sheet {
+        write_sheet(sheet, &files, &tiles, args.size)?;
+        println!("wrote {}", sheet.display());
+    }
+    if done < files.len() {
+        bail!("{} files could not be rendered", files.len() - done);
+    }
+    Ok(())
+}
+
+/// A grid of the tiles (failed files as pale red tiles) and a text index beside it.
+fn write_sheet(
+    sheet: &Path,
+    files: &[PathBuf],
+    tiles: &[Option<RgbaImage>],
+    (w, h): (u32, u32),
+) -> Result<()> {
+    let n = tiles.len().max(1) as u32;
+    let cols = (f64::from(n).sqrt().ceil() as u32).max(1);
+    let rows = n.div_ceil(cols);
+    let gap = 2;
+    let mut out = RgbaImage::from_pixel(
+        cols * (w + gap) + gap,
+        rows * (h + gap) + gap,
+        image::Rgba([200, 200, 200, 255]),
+    );
+    let mut index = String::new();
+    for (i, (tile, file)) in tiles.iter().zip(files).enumerate() {
+        let (c, r) = (i as u32 % cols, i as u32 / cols);
+        let (x, y) = (gap + c * (w + gap), gap + r * (h + gap));
+        let failed = RgbaImage::from_pixel(w, h, image::Rgba([255, 200, 200, 255]));
+        image::imageops::overlay(
+            &mut out,
+            tile.as_ref().unwrap_or(&failed),
+            i64::from(x),
+            i64::from(y),
+        );
+        index.push_str(&format!(
+            "row {} column {}: {}{}\n",
+            r + 1,
+            c + 1,
+            file.display(),
+            if tile.is_some() { "" } else { " (failed)" }
+        ));
+    }
+    save(&out, sheet)?;
+    std::fs::write(sheet.with_extension("txt"), index)
+        .with_context(|| format!("writing the index beside {}", sheet.display()))
+}
+
+/// Loads, meshes and renders one file.
 fn render_file(
     gpu: &Gpu,
     renderer: &Renderer,
     input: &Path,
-    output: &Path,
     args: &RenderArgs,
-) -> Result<()> {
+) -> Result<RgbaImage> {
     let loaded = load_step(input)?;
     let model = &loaded.model;
     let params = MeshParams {
@@ -154,9 +234,5 @@ fn render_file(
         supersample: args.supersample,
         background: args.background,
     };
-    let image = renderer.render(gpu, &scene, &camera, &options)?;
-    image
-        .save(output)
-        .with_context(|| format!("writing {}", output.display()))?;
-    Ok(())
+    Ok(renderer.render(gpu, &scene, &camera, &options)?)
 }
