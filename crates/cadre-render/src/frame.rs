@@ -6,11 +6,49 @@ use wgpu::util::DeviceExt;
 
 use crate::gpu_scene::GpuScene;
 use crate::layout::Frame;
+use crate::passes::edges::EdgesPass;
 use crate::passes::shade::{COLOUR, ShadePass};
 use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
 use crate::{Camera, Gpu, RenderError};
 
-/// What to render: image size, anti-aliasing, background.
+/// How faces and edges are drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DisplayMode {
+    /// Shaded faces.
+    Shaded,
+    /// Shaded faces and their visible B-Rep edges.
+    ShadedEdges,
+    /// Every B-Rep edge, no faces.
+    Wireframe,
+    /// Visible edges solid, hidden edges dashed, faces filled with the background.
+    HiddenLine,
+}
+
+impl DisplayMode {
+    /// Parses `shaded`, `shaded-edges`, `wireframe` or `hidden-line`.
+    pub fn from_name(name: &str) -> Option<DisplayMode> {
+        Some(match name.to_ascii_lowercase().as_str() {
+            "shaded" => DisplayMode::Shaded,
+            "shaded-edges" | "shaded_edges" => DisplayMode::ShadedEdges,
+            "wireframe" => DisplayMode::Wireframe,
+            "hidden-line" | "hidden_line" | "hlr" => DisplayMode::HiddenLine,
+            _ => return None,
+        })
+    }
+
+    /// Face fill (see `Frame::viewport.w`), edge mode (see `Frame::edges.y`), or `None` for
+    /// no edges.
+    fn fill_and_edges(self) -> (f32, Option<f32>) {
+        match self {
+            DisplayMode::Shaded => (0.0, None),
+            DisplayMode::ShadedEdges => (0.0, Some(0.0)),
+            DisplayMode::Wireframe => (2.0, Some(1.0)),
+            DisplayMode::HiddenLine => (1.0, Some(2.0)),
+        }
+    }
+}
+
+/// What to render: image size, anti-aliasing, background, display mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrameOptions {
     /// Image width, pixels.
@@ -22,6 +60,10 @@ pub struct FrameOptions {
     pub supersample: u32,
     /// Background colour, sRGB components in [0, 1] and alpha.
     pub background: [f32; 4],
+    /// Display mode.
+    pub mode: DisplayMode,
+    /// Edge width in output pixels.
+    pub edge_width: f32,
 }
 
 impl Default for FrameOptions {
@@ -32,6 +74,8 @@ impl Default for FrameOptions {
             height: 600,
             supersample: 2,
             background: [1.0, 1.0, 1.0, 1.0],
+            mode: DisplayMode::Shaded,
+            edge_width: 1.5,
         }
     }
 }
@@ -40,6 +84,7 @@ impl Default for FrameOptions {
 pub struct Renderer {
     visibility: VisibilityPass,
     shade: ShadePass,
+    edges: EdgesPass,
 }
 
 impl Renderer {
@@ -50,6 +95,7 @@ impl Renderer {
         let renderer = Renderer {
             visibility: VisibilityPass::new(&gpu.device),
             shade: ShadePass::new(&gpu.device),
+            edges: EdgesPass::new(&gpu.device),
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e.to_string())),
@@ -121,6 +167,7 @@ impl Renderer {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let aspect = f64::from(w) / f64::from(h);
         let bg = options.background;
+        let (fill, edge_mode) = options.mode.fill_and_edges();
         let frame = Frame {
             view_proj: camera.view_projection_f32(aspect).to_cols_array_2d(),
             inv_proj: camera
@@ -138,6 +185,25 @@ impl Renderer {
                 w as f32,
                 h as f32,
                 if camera.is_orthographic() { 1.0 } else { 0.0 },
+                fill,
+            ],
+            edges: [
+                options.edge_width.max(0.1) * (w as f32 / options.width.max(1) as f32),
+                edge_mode.unwrap_or(0.0),
+                8.0 * (w as f32 / options.width.max(1) as f32),
+                2e-3,
+            ],
+            edge_colour: [0.02, 0.02, 0.025, 1.0],
+            hidden_colour: [0.25, 0.25, 0.27, 1.0],
+            // Outlines with the visible edges (not in wireframe, which shows edges only).
+            outline: [
+                if matches!(edge_mode, Some(m) if m != 1.0) {
+                    1.0
+                } else {
+                    0.0
+                },
+                0.02,
+                0.0,
                 0.0,
             ],
         };
@@ -146,7 +212,8 @@ impl Renderer {
             contents: bytemuck::bytes_of(&frame),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let gpu_scene = GpuScene::upload(device, scene, camera);
+        let with_edges = edge_mode.is_some() && readback == Readback::Colour;
+        let gpu_scene = GpuScene::upload(device, scene, camera, with_edges);
         let targets = VisibilityTargets::new(device, w, h);
         let mut encoder = device.create_command_encoder(&Default::default());
         self.visibility
@@ -177,6 +244,16 @@ impl Renderer {
                     &gpu_scene.materials,
                     &colour_view,
                 );
+                if with_edges {
+                    self.edges.record(
+                        device,
+                        &mut encoder,
+                        &targets,
+                        &frame_buffer,
+                        &gpu_scene,
+                        &colour_view,
+                    );
+                }
                 read_texture(gpu, encoder, &colour, w, h, 4)?
             }
         };

@@ -5,7 +5,8 @@ use glam::{DMat3, DVec3};
 use wgpu::util::DeviceExt;
 
 use crate::Camera;
-use crate::layout::{Draw, Material, Vertex};
+use crate::edges::feature_edges;
+use crate::layout::{Draw, Material, Segment, Vertex};
 
 /// Default CAD material (light grey, dielectric, fairly rough) for primitives without one.
 const DEFAULT_MATERIAL: Material = Material {
@@ -21,6 +22,14 @@ pub(crate) struct DrawCall {
     pub draw: u32,
 }
 
+/// One edge draw: `count` segments from `first` of the segment buffer, placed by draw record
+/// `draw` (any of the instance's records: they share its model matrix).
+pub(crate) struct EdgeCall {
+    pub first: u32,
+    pub count: u32,
+    pub draw: u32,
+}
+
 /// GPU buffers of a scene.
 pub(crate) struct GpuScene {
     pub vertices: Vec<wgpu::Buffer>,
@@ -28,11 +37,33 @@ pub(crate) struct GpuScene {
     pub draws: wgpu::Buffer,
     pub materials: wgpu::Buffer,
     pub calls: Vec<DrawCall>,
+    pub segments: wgpu::Buffer,
+    pub edge_calls: Vec<EdgeCall>,
 }
 
 impl GpuScene {
-    /// Uploads `scene` with every instance placed relative to `camera.eye` (in `f64`).
-    pub fn upload(device: &wgpu::Device, scene: &Scene, camera: &Camera) -> GpuScene {
+    /// Uploads `scene` with every instance placed relative to `camera.eye` (in `f64`); the
+    /// B-Rep edges too when `with_edges`.
+    pub fn upload(
+        device: &wgpu::Device,
+        scene: &Scene,
+        camera: &Camera,
+        with_edges: bool,
+    ) -> GpuScene {
+        // Per mesh: its range in the segment buffer.
+        let mut segments: Vec<Segment> = Vec::new();
+        let mut mesh_segments: Vec<(u32, u32)> = Vec::with_capacity(scene.meshes.len());
+        for mesh in &scene.meshes {
+            let first = segments.len() as u32;
+            if with_edges {
+                segments.extend(feature_edges(mesh).into_iter().map(|[a, b]| Segment {
+                    a: [a[0], a[1], a[2], 1.0],
+                    b: [b[0], b[1], b[2], 1.0],
+                }));
+            }
+            mesh_segments.push((first, segments.len() as u32 - first));
+        }
+        let mut edge_calls = Vec::new();
         let mut vertices = Vec::with_capacity(scene.meshes.len());
         let mut indices = Vec::with_capacity(scene.meshes.len());
         // Per mesh: where each primitive starts in the mesh's index buffer.
@@ -116,6 +147,26 @@ impl GpuScene {
             )
             .as_mat4();
             let n = normal.as_mat3();
+            let (seg_first, seg_count) = mesh_segments[mesh];
+            if seg_count > 0 {
+                edge_calls.push(EdgeCall {
+                    first: seg_first,
+                    count: seg_count,
+                    draw: draws.len() as u32,
+                });
+                // The instance's own record, whatever its primitives.
+                draws.push(Draw {
+                    model: model.to_cols_array_2d(),
+                    normal: [
+                        n.x_axis.extend(0.0).to_array(),
+                        n.y_axis.extend(0.0).to_array(),
+                        n.z_axis.extend(0.0).to_array(),
+                    ],
+                    material: default_material,
+                    instance: instance as u32,
+                    pad: [0; 2],
+                });
+            }
             for &(first, count, material) in &starts[mesh] {
                 if count == 0 {
                     continue;
@@ -162,6 +213,13 @@ impl GpuScene {
                 wgpu::BufferUsages::STORAGE,
             ),
             calls,
+            segments: buffer(
+                device,
+                "segments",
+                bytemuck::cast_slice(&segments),
+                wgpu::BufferUsages::STORAGE,
+            ),
+            edge_calls,
         }
     }
 }

@@ -26,8 +26,28 @@ pub struct Frame {
     pub inv_proj: [[f32; 4]; 4],
     /// Background colour, linear RGBA.
     pub background: [f32; 4],
-    /// Width, height, 1 when orthographic, unused.
+    /// Width, height, 1 when orthographic, face fill (0 shaded, 1 background colour as in
+    /// hidden-line drawings, 2 none: wireframe).
     pub viewport: [f32; 4],
+    /// Edge width in pixels, edge mode (0 visible edges only, 1 all edges solid, 2 hidden
+    /// edges dashed), dash length in pixels, depth tolerance (relative).
+    pub edges: [f32; 4],
+    /// Visible edge colour, linear RGBA.
+    pub edge_colour: [f32; 4],
+    /// Hidden edge colour, linear RGBA.
+    pub hidden_colour: [f32; 4],
+    /// Silhouette outlines: 1 to draw them, relative depth jump that makes one, unused, unused.
+    pub outline: [f32; 4],
+}
+
+/// A segment of a B-Rep edge, mesh-local (w unused).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct Segment {
+    /// First end.
+    pub a: [f32; 4],
+    /// Second end.
+    pub b: [f32; 4],
 }
 
 /// One draw: a primitive of a mesh placed by one instance.

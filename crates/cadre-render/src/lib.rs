@@ -13,6 +13,7 @@
 mod bounds;
 mod camera;
 pub mod compare;
+pub mod edges;
 mod error;
 mod frame;
 mod gpu;
@@ -23,5 +24,5 @@ mod passes;
 pub use bounds::scene_bounds;
 pub use camera::{Camera, Projection, ViewPreset};
 pub use error::RenderError;
-pub use frame::{FrameOptions, Renderer};
+pub use frame::{DisplayMode, FrameOptions, Renderer};
 pub use gpu::Gpu;

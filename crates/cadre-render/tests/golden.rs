@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use cadre_mesh::export::Scene;
 use cadre_mesh::{MeshParams, mesh_model};
 use cadre_render::compare::compare;
-use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
+use cadre_render::{Camera, DisplayMode, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
 use glam::{DAffine3, DVec3};
 use image::RgbaImage;
 
@@ -48,6 +48,7 @@ fn options(width: u32, height: u32) -> FrameOptions {
         height,
         supersample: 2,
         background: [1.0, 1.0, 1.0, 1.0],
+        ..FrameOptions::default()
     }
 }
 
@@ -91,10 +92,25 @@ fn render(
     view: ViewPreset,
     ortho: bool,
 ) -> RgbaImage {
+    render_mode(gpu, renderer, scene, view, ortho, DisplayMode::Shaded)
+}
+
+fn render_mode(
+    gpu: &Gpu,
+    renderer: &Renderer,
+    scene: &Scene,
+    view: ViewPreset,
+    ortho: bool,
+    mode: DisplayMode,
+) -> RgbaImage {
     let (lo, hi) = scene_bounds(scene).expect("fixture has geometry");
     let camera = Camera::fit(lo, hi, view, ortho, 4.0 / 3.0);
+    let options = FrameOptions {
+        mode,
+        ..options(128, 96)
+    };
     renderer
-        .render(gpu, scene, &camera, &options(128, 96))
+        .render(gpu, scene, &camera, &options)
         .expect("render")
 }
 
@@ -111,6 +127,16 @@ fn pin_assembly_matches_its_golden_images() {
         "pin-assembly-front-ortho.png",
         &render(&gpu, &renderer, &scene, ViewPreset::Front, true),
     );
+    for (mode, name) in [
+        (DisplayMode::ShadedEdges, "shaded-edges"),
+        (DisplayMode::Wireframe, "wireframe"),
+        (DisplayMode::HiddenLine, "hidden-line"),
+    ] {
+        check_golden(
+            &format!("pin-assembly-iso-{name}.png"),
+            &render_mode(&gpu, &renderer, &scene, ViewPreset::Iso, false, mode),
+        );
+    }
 }
 
 #[test]

@@ -145,6 +145,7 @@ fn bench_render(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32
         height,
         supersample: 1,
         background: [1.0; 4],
+        ..FrameOptions::default()
     };
     renderer.render(&gpu, &scene, &camera, &options)?;
     let mut ms: Vec<f64> = Vec::new();

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
-use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
+use cadre_render::{Camera, DisplayMode, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
 use image::RgbaImage;
 
 use crate::load::load_step;
@@ -25,6 +25,12 @@ pub struct RenderArgs {
     /// View: iso, front, back, top, bottom, left or right.
     #[arg(long, default_value = "iso", value_parser = parse_view)]
     view: ViewPreset,
+    /// Display mode: shaded, shaded-edges, wireframe or hidden-line.
+    #[arg(long, default_value = "shaded", value_parser = parse_mode)]
+    mode: DisplayMode,
+    /// Edge width in pixels (modes with edges).
+    #[arg(long, default_value_t = 1.5)]
+    edge_width: f32,
     /// Orthographic projection (default perspective).
     #[arg(long)]
     ortho: bool,
@@ -56,6 +62,11 @@ pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
             .ok_or_else(|| format!("expected a size from 1 to 16384, got {t:?}"))
     };
     Ok((n(w)?, n(h)?))
+}
+
+fn parse_mode(s: &str) -> Result<DisplayMode, String> {
+    DisplayMode::from_name(s)
+        .ok_or_else(|| format!("unknown mode {s:?} (shaded, shaded-edges, wireframe, hidden-line)"))
 }
 
 fn parse_view(s: &str) -> Result<ViewPreset, String> {
@@ -233,6 +244,8 @@ fn render_file(
         height: h,
         supersample: args.supersample,
         background: args.background,
+        mode: args.mode,
+        edge_width: args.edge_width,
     };
     Ok(renderer.render(gpu, &scene, &camera, &options)?)
 }

@@ -8,6 +8,10 @@ struct Frame {
     inv_proj: mat4x4<f32>,
     background: vec4<f32>,
     viewport: vec4<f32>,
+    edges: vec4<f32>,
+    edge_colour: vec4<f32>,
+    hidden_colour: vec4<f32>,
+    outline: vec4<f32>,
 }
 
 struct Material {
@@ -73,11 +77,40 @@ fn aces(x: vec3<f32>) -> vec3<f32> {
     return clamp((x * (a * x + b)) / (x * (c * x + d) + e), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
+// Reverse-Z depth of the visibility buffer at `p` (0 for background or outside the image).
+fn depth_at(p: vec2<i32>) -> f32 {
+    let size = vec2<i32>(frame.viewport.xy);
+    if any(p < vec2<i32>(0)) || any(p >= size) {
+        return 0.0;
+    }
+    let ids = textureLoad(ids_tex, p, 0);
+    return select(0.0, bitcast<f32>(ids.w), ids.y != 0u);
+}
+
+// Whether `p` lies on a silhouette: a neighbour farther away by more than the relative jump
+// (another part, the background, or the same part behind a fold). Only the nearer side of a
+// jump is marked, so outlines stay one pixel wide and on the object.
+fn on_silhouette(p: vec2<i32>, depth: f32) -> bool {
+    let offsets = array<vec2<i32>, 4>(vec2<i32>(1, 0), vec2<i32>(-1, 0), vec2<i32>(0, 1), vec2<i32>(0, -1));
+    for (var k = 0; k < 4; k++) {
+        let d = depth_at(p + offsets[k]);
+        // Reverse Z: depth ∝ 1/distance, so a relative gap in depth is one in distance.
+        if d < depth * (1.0 - frame.outline.y) {
+            return true;
+        }
+    }
+    return false;
+}
+
 @fragment
 fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(pos.xy);
     let ids = textureLoad(ids_tex, p, 0);
-    if ids.y == 0u {
+    if ids.y != 0u && frame.outline.x > 0.5 && on_silhouette(p, bitcast<f32>(ids.w)) {
+        return frame.edge_colour;
+    }
+    // No face (background), or faces drawn as the background (hidden-line, wireframe).
+    if ids.y == 0u || frame.viewport.w > 0.5 {
         return frame.background;
     }
     let m = materials[ids.z];

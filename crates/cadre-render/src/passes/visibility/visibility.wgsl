@@ -7,6 +7,10 @@ struct Frame {
     inv_proj: mat4x4<f32>,
     background: vec4<f32>,
     viewport: vec4<f32>,
+    edges: vec4<f32>,
+    edge_colour: vec4<f32>,
+    hidden_colour: vec4<f32>,
+    outline: vec4<f32>,
 }
 
 struct Draw {
