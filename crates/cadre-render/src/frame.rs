@@ -9,6 +9,7 @@ use crate::layout::Frame;
 use crate::passes::edges::EdgesPass;
 use crate::passes::shade::{COLOUR, ShadePass};
 use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
+use crate::passes::xray::XrayPass;
 use crate::{Camera, Gpu, RenderError};
 
 /// How faces and edges are drawn.
@@ -22,16 +23,19 @@ pub enum DisplayMode {
     Wireframe,
     /// Visible edges solid, hidden edges dashed, faces filled with the background.
     HiddenLine,
+    /// See-through faces (more opaque seen edge-on) and every edge.
+    XRay,
 }
 
 impl DisplayMode {
-    /// Parses `shaded`, `shaded-edges`, `wireframe` or `hidden-line`.
+    /// Parses `shaded`, `shaded-edges`, `wireframe`, `hidden-line` or `xray`.
     pub fn from_name(name: &str) -> Option<DisplayMode> {
         Some(match name.to_ascii_lowercase().as_str() {
             "shaded" => DisplayMode::Shaded,
             "shaded-edges" | "shaded_edges" => DisplayMode::ShadedEdges,
             "wireframe" => DisplayMode::Wireframe,
             "hidden-line" | "hidden_line" | "hlr" => DisplayMode::HiddenLine,
+            "xray" | "x-ray" => DisplayMode::XRay,
             _ => return None,
         })
     }
@@ -44,6 +48,7 @@ impl DisplayMode {
             DisplayMode::ShadedEdges => (0.0, Some(0.0)),
             DisplayMode::Wireframe => (2.0, Some(1.0)),
             DisplayMode::HiddenLine => (1.0, Some(2.0)),
+            DisplayMode::XRay => (2.0, Some(1.0)),
         }
     }
 }
@@ -85,6 +90,7 @@ pub struct Renderer {
     visibility: VisibilityPass,
     shade: ShadePass,
     edges: EdgesPass,
+    xray: XrayPass,
 }
 
 impl Renderer {
@@ -96,6 +102,7 @@ impl Renderer {
             visibility: VisibilityPass::new(&gpu.device),
             shade: ShadePass::new(&gpu.device),
             edges: EdgesPass::new(&gpu.device),
+            xray: XrayPass::new(&gpu.device),
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e.to_string())),
@@ -193,7 +200,11 @@ impl Renderer {
                 8.0 * (w as f32 / options.width.max(1) as f32),
                 2e-3,
             ],
-            edge_colour: [0.02, 0.02, 0.025, 1.0],
+            edge_colour: if options.mode == DisplayMode::XRay {
+                [0.05, 0.07, 0.10, 0.6]
+            } else {
+                [0.02, 0.02, 0.025, 1.0]
+            },
             hidden_colour: [0.25, 0.25, 0.27, 1.0],
             // Outlines with the visible edges (not in wireframe, which shows edges only).
             outline: [
@@ -244,6 +255,15 @@ impl Renderer {
                     &gpu_scene.materials,
                     &colour_view,
                 );
+                if options.mode == DisplayMode::XRay {
+                    self.xray.record(
+                        device,
+                        &mut encoder,
+                        &frame_buffer,
+                        &gpu_scene,
+                        &colour_view,
+                    );
+                }
                 if with_edges {
                     self.edges.record(
                         device,

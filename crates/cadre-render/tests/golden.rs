@@ -131,6 +131,7 @@ fn pin_assembly_matches_its_golden_images() {
         (DisplayMode::ShadedEdges, "shaded-edges"),
         (DisplayMode::Wireframe, "wireframe"),
         (DisplayMode::HiddenLine, "hidden-line"),
+        (DisplayMode::XRay, "xray"),
     ] {
         check_golden(
             &format!("pin-assembly-iso-{name}.png"),

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use cadre_render::layout::{Draw, Frame, Material};
+use cadre_render::layout::{Draw, Frame, Material, Segment};
 
 /// Parses and validates one shader; returns the module.
 fn module(pass: &str) -> naga::Module {
@@ -37,11 +37,19 @@ fn struct_size(module: &naga::Module, name: &str) -> Option<usize> {
 fn shaders_validate_and_share_the_rust_layouts() {
     let visibility = module("visibility");
     let shade = module("shade");
+    let edges = module("edges");
+    let xray = module("xray");
     for (m, name, size) in [
         (&visibility, "Frame", size_of::<Frame>()),
         (&visibility, "Draw", size_of::<Draw>()),
         (&shade, "Frame", size_of::<Frame>()),
         (&shade, "Material", size_of::<Material>()),
+        (&edges, "Frame", size_of::<Frame>()),
+        (&edges, "Draw", size_of::<Draw>()),
+        (&edges, "Segment", size_of::<Segment>()),
+        (&xray, "Frame", size_of::<Frame>()),
+        (&xray, "Draw", size_of::<Draw>()),
+        (&xray, "Material", size_of::<Material>()),
     ] {
         assert_eq!(struct_size(m, name), Some(size), "{name}");
     }

@@ -1,7 +1,9 @@
 //! The frame's passes, in order, each in its own folder with its WGSL:
 //! [`visibility`] (every surface back-end writes depth, normal and ids), [`shade`]
-//! (lighting from the visibility buffer alone), then [`edges`] (B-Rep edges as lines).
+//! (lighting from the visibility buffer alone), [`xray`] (see-through faces, x-ray mode only),
+//! then [`edges`] (B-Rep edges as lines).
 
 pub(crate) mod edges;
 pub(crate) mod shade;
 pub(crate) mod visibility;
+pub(crate) mod xray;

@@ -25,7 +25,7 @@ pub struct RenderArgs {
     /// View: iso, front, back, top, bottom, left or right.
     #[arg(long, default_value = "iso", value_parser = parse_view)]
     view: ViewPreset,
-    /// Display mode: shaded, shaded-edges, wireframe or hidden-line.
+    /// Display mode: shaded, shaded-edges, wireframe, hidden-line or xray.
     #[arg(long, default_value = "shaded", value_parser = parse_mode)]
     mode: DisplayMode,
     /// Edge width in pixels (modes with edges).
@@ -65,8 +65,9 @@ pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 fn parse_mode(s: &str) -> Result<DisplayMode, String> {
-    DisplayMode::from_name(s)
-        .ok_or_else(|| format!("unknown mode {s:?} (shaded, shaded-edges, wireframe, hidden-line)"))
+    DisplayMode::from_name(s).ok_or_else(|| {
+        format!("unknown mode {s:?} (shaded, shaded-edges, wireframe, hidden-line, xray)")
+    })
 }
 
 fn parse_view(s: &str) -> Result<ViewPreset, String> {

@@ -1,0 +1,63 @@
+// X-ray pass: every triangle drawn see-through, without depth test, more opaque where it is
+// seen edge-on (a Fresnel-like rim), so the inside of an assembly shows through its shell.
+
+struct Frame {
+    view_proj: mat4x4<f32>,
+    inv_proj: mat4x4<f32>,
+    background: vec4<f32>,
+    viewport: vec4<f32>,
+    edges: vec4<f32>,
+    edge_colour: vec4<f32>,
+    hidden_colour: vec4<f32>,
+    outline: vec4<f32>,
+}
+
+struct Draw {
+    model: mat4x4<f32>,
+    normal0: vec4<f32>,
+    normal1: vec4<f32>,
+    normal2: vec4<f32>,
+    material: u32,
+    instance: u32,
+    pad: vec2<u32>,
+}
+
+struct Material {
+    base_color: vec4<f32>,
+    params: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> draws: array<Draw>;
+@group(0) @binding(2) var<storage, read> materials: array<Material>;
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) @interpolate(flat) draw: u32,
+}
+
+@vertex
+fn vs_main(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) face: u32,
+    @builtin(instance_index) draw_index: u32,
+) -> VertexOut {
+    let d = draws[draw_index];
+    var out: VertexOut;
+    out.clip = frame.view_proj * (d.model * vec4<f32>(position, 1.0));
+    out.normal = mat3x3<f32>(d.normal0.xyz, d.normal1.xyz, d.normal2.xyz) * normal;
+    out.draw = draw_index;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    let m = materials[draws[in.draw].material];
+    let len = length(in.normal);
+    let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
+    let rim = (1.0 - facing) * (1.0 - facing);
+    let alpha = mix(0.06, 0.45, rim);
+    return vec4<f32>(m.base_color.rgb * (0.55 + 0.45 * facing), alpha);
+}
