@@ -20,6 +20,7 @@ mod gpu;
 mod gpu_scene;
 pub mod layout;
 mod passes;
+pub mod raycast;
 
 pub use bounds::scene_bounds;
 pub use camera::{Camera, Projection, ViewPreset};

@@ -28,10 +28,19 @@ fn gpu() -> Gpu {
     })
 }
 
+/// A fixture: the bundled example, or a test model under `tests/data`.
+fn fixture(name: &str) -> PathBuf {
+    let example = root().join("examples").join(name);
+    if example.is_file() {
+        example
+    } else {
+        root().join("crates/cadre-render/tests/data").join(name)
+    }
+}
+
 /// The fixture's tessellated scene.
 fn scene(name: &str) -> Scene {
-    let file = cadre_step::syntax::StepFile::read(&root().join("examples").join(name))
-        .expect("fixture reads");
+    let file = cadre_step::syntax::StepFile::read(&fixture(name)).expect("fixture reads");
     let model = cadre_step::map_file(&file);
     let params = MeshParams {
         deflection: 0.01,
@@ -115,7 +124,7 @@ fn render_mode(
 }
 
 #[test]
-fn pin_assembly_matches_its_golden_images() {
+fn fixtures_match_their_golden_images() {
     let gpu = gpu();
     let renderer = Renderer::new(&gpu).expect("pipelines");
     let scene = scene("pin-assembly.step");
@@ -126,6 +135,11 @@ fn pin_assembly_matches_its_golden_images() {
     check_golden(
         "pin-assembly-front-ortho.png",
         &render(&gpu, &renderer, &scene, ViewPreset::Front, true),
+    );
+    let dome_and_cone = self::scene("dome-and-cone.step");
+    check_golden(
+        "dome-and-cone-iso.png",
+        &render(&gpu, &renderer, &dome_and_cone, ViewPreset::Iso, false),
     );
     for (mode, name) in [
         (DisplayMode::ShadedEdges, "shaded-edges"),
@@ -196,4 +210,93 @@ fn a_model_a_million_millimetres_away_renders_the_same() {
             "offset {offset}"
         );
     }
+}
+
+/// The GPU's face-id buffer (tessellation rasterised) against the CPU ray caster of the exact
+/// B-Rep, pixel by pixel.
+fn agreement(
+    gpu: &Gpu,
+    renderer: &Renderer,
+    name: &str,
+    view: ViewPreset,
+    oracle_view: ViewPreset,
+) -> f64 {
+    let file = cadre_step::syntax::StepFile::read(&fixture(name)).expect("fixture reads");
+    let model = cadre_step::map_file(&file);
+    let mesh = mesh_model(
+        &model,
+        &MeshParams {
+            deflection: 0.01,
+            angle: 0.3,
+            ..MeshParams::default()
+        },
+        None,
+    );
+    let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
+    let (lo, hi) = scene_bounds(&scene).expect("geometry");
+    let (w, h) = (128, 96);
+    let camera = Camera::fit(lo, hi, view, false, f64::from(w) / f64::from(h));
+    let oracle_camera = Camera::fit(lo, hi, oracle_view, false, f64::from(w) / f64::from(h));
+    let gpu_ids = renderer
+        .render_ids(gpu, &scene, &camera, &options(w, h))
+        .expect("ids");
+    let caster = cadre_render::raycast::RayCaster::new(&model, 0.001);
+    assert!(
+        caster.skipped.is_empty(),
+        "faces the oracle cannot cast: {:?}",
+        caster.skipped
+    );
+    let exact = caster.face_ids(&oracle_camera, w, h);
+    let same = gpu_ids
+        .iter()
+        .zip(&exact)
+        .filter(|(g, e)| u64::from(g[0]) == **e)
+        .count();
+    let covered = exact.iter().filter(|&&e| e != 0).count();
+    assert!(covered > 300, "the fixture covers {covered} pixels");
+    // Also over the pixels either image covers, where all disagreement lives.
+    let either: Vec<bool> = gpu_ids
+        .iter()
+        .zip(&exact)
+        .filter(|(g, e)| g[0] != 0 || **e != 0)
+        .map(|(g, e)| u64::from(g[0]) == *e)
+        .collect();
+    let on_model = either.iter().filter(|&&b| b).count() as f64 / either.len().max(1) as f64;
+    let all = same as f64 / exact.len() as f64;
+    eprintln!(
+        "{name} {view:?} vs oracle {oracle_view:?}: {:.2} % of pixels agree, {:.2} % of the {} covered",
+        100.0 * all,
+        100.0 * on_model,
+        either.len()
+    );
+    all
+}
+
+#[test]
+fn gpu_face_ids_agree_with_the_exact_ray_caster() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    for name in ["pin-assembly.step", "dome-and-cone.step"] {
+        for view in [ViewPreset::Iso, ViewPreset::Top, ViewPreset::Front] {
+            let a = agreement(&gpu, &renderer, name, view, view);
+            assert!(
+                a >= 0.99,
+                "{name} {view:?}: {:.2} % of pixels agree",
+                100.0 * a
+            );
+        }
+    }
+    // Negative control: the oracle seen from another view must not pass.
+    let wrong = agreement(
+        &gpu,
+        &renderer,
+        "pin-assembly.step",
+        ViewPreset::Iso,
+        ViewPreset::Right,
+    );
+    assert!(
+        wrong < 0.99,
+        "a wrong image agreed on {:.2} %",
+        100.0 * wrong
+    );
 }
