@@ -5,12 +5,12 @@ use image::RgbaImage;
 use wgpu::util::DeviceExt;
 
 use crate::gpu_scene::GpuScene;
-use crate::layout::Frame;
+use crate::layout::{Frame, LightGpu};
 use crate::passes::edges::EdgesPass;
-use crate::passes::shade::{COLOUR, ShadePass};
+use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass};
 use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
 use crate::passes::xray::XrayPass;
-use crate::{Camera, Gpu, RenderError};
+use crate::{Camera, Gpu, Light, RenderError};
 
 /// How faces and edges are drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,8 +53,8 @@ impl DisplayMode {
     }
 }
 
-/// What to render: image size, anti-aliasing, background, display mode.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// What to render: image size, anti-aliasing, background, display mode, lights.
+#[derive(Clone, Debug, PartialEq)]
 pub struct FrameOptions {
     /// Image width, pixels.
     pub width: u32,
@@ -69,6 +69,8 @@ pub struct FrameOptions {
     pub mode: DisplayMode,
     /// Edge width in output pixels.
     pub edge_width: f32,
+    /// Lights (ambient light from the environment comes on top).
+    pub lights: Vec<Light>,
 }
 
 impl Default for FrameOptions {
@@ -81,6 +83,7 @@ impl Default for FrameOptions {
             background: [1.0, 1.0, 1.0, 1.0],
             mode: DisplayMode::Shaded,
             edge_width: 1.5,
+            lights: Light::cad_rig(),
         }
     }
 }
@@ -206,6 +209,11 @@ impl Renderer {
                 [0.02, 0.02, 0.025, 1.0]
             },
             hidden_colour: [0.25, 0.25, 0.27, 1.0],
+            sky_up: (glam::DMat3::from_mat4(camera.view_rotation()) * glam::DVec3::Z)
+                .as_vec3()
+                .extend(0.0)
+                .to_array(),
+            counts: [options.lights.len() as u32, 0, 0, 0],
             // Outlines with the visible edges (not in wireframe, which shows edges only).
             outline: [
                 if matches!(edge_mode, Some(m) if m != 1.0) {
@@ -247,14 +255,24 @@ impl Renderer {
                     view_formats: &[],
                 });
                 let colour_view = colour.create_view(&Default::default());
-                self.shade.record(
-                    device,
-                    &mut encoder,
-                    &targets,
-                    &frame_buffer,
-                    &gpu_scene.materials,
-                    &colour_view,
-                );
+                let mut lights: Vec<LightGpu> =
+                    options.lights.iter().map(|l| l.to_gpu(camera)).collect();
+                if lights.is_empty() {
+                    // Storage bindings may not be empty; the count stays 0.
+                    lights.push(LightGpu::default());
+                }
+                let light_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("lights"),
+                    contents: bytemuck::cast_slice(&lights),
+                    usage: wgpu::BufferUsages::STORAGE,
+                });
+                let inputs = ShadeInputs {
+                    frame: &frame_buffer,
+                    materials: &gpu_scene.materials,
+                    lights: &light_buffer,
+                };
+                self.shade
+                    .record(device, &mut encoder, &targets, &inputs, &colour_view);
                 if options.mode == DisplayMode::XRay {
                     self.xray.record(
                         device,

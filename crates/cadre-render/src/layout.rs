@@ -38,6 +38,24 @@ pub struct Frame {
     pub hidden_colour: [f32; 4],
     /// Silhouette outlines: 1 to draw them, relative depth jump that makes one, unused, unused.
     pub outline: [f32; 4],
+    /// World up in view space (the environment's zenith), w unused.
+    pub sky_up: [f32; 4],
+    /// Number of lights, unused ×3.
+    pub counts: [u32; 4],
+}
+
+/// A light in view space, as the shade pass reads it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct LightGpu {
+    /// Position relative to the eye (xyz); kind (w: 0 directional, 1 point, 2 spot).
+    pub position: [f32; 4],
+    /// Towards the light (directional) or the spot's axis (xyz); range (w, 0 = none).
+    pub direction: [f32; 4],
+    /// Radiance or intensity (rgb); cosine of the spot's outer half-angle (w).
+    pub colour: [f32; 4],
+    /// Cosine of the spot's inner half-angle (x), unused.
+    pub params: [f32; 4],
 }
 
 /// A segment of a B-Rep edge, mesh-local (w unused).

@@ -19,6 +19,7 @@ mod frame;
 mod gpu;
 mod gpu_scene;
 pub mod layout;
+mod lights;
 mod passes;
 pub mod raycast;
 
@@ -27,3 +28,4 @@ pub use camera::{Camera, Projection, ViewPreset};
 pub use error::RenderError;
 pub use frame::{DisplayMode, FrameOptions, Renderer};
 pub use gpu::Gpu;
+pub use lights::Light;

@@ -300,3 +300,72 @@ fn gpu_face_ids_agree_with_the_exact_ray_caster() {
         100.0 * wrong
     );
 }
+
+/// Mean of the red, green and blue channels over the pixels that are not background white.
+fn mean_of_model(image: &RgbaImage) -> f64 {
+    let px: Vec<f64> = image
+        .pixels()
+        .filter(|p| p.0 != [255, 255, 255, 255])
+        .map(|p| (f64::from(p.0[0]) + f64::from(p.0[1]) + f64::from(p.0[2])) / 3.0)
+        .collect();
+    px.iter().sum::<f64>() / px.len().max(1) as f64
+}
+
+#[test]
+fn point_and_spot_lights_light_what_they_face() {
+    use cadre_render::Light;
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let scene = self::scene("dome-and-cone.step");
+    let (lo, hi) = scene_bounds(&scene).expect("geometry");
+    let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, 4.0 / 3.0);
+    let with = |lights: Vec<Light>| {
+        let options = FrameOptions {
+            lights,
+            ..options(128, 96)
+        };
+        mean_of_model(
+            &renderer
+                .render(&gpu, &scene, &camera, &options)
+                .expect("render"),
+        )
+    };
+    let ambient_only = with(vec![]);
+    // A point light 10 mm above the dome's top, towards the camera.
+    let above = DVec3::new(3.0, -3.0, 15.0);
+    let point = with(vec![Light::Point {
+        position: above,
+        intensity: [300.0; 3],
+        range: 0.0,
+    }]);
+    assert!(
+        point > ambient_only + 10.0,
+        "point {point} vs ambient {ambient_only}"
+    );
+    // The same light as a spot aimed away from the models adds nothing.
+    let away = with(vec![Light::Spot {
+        position: above,
+        axis: DVec3::Z,
+        intensity: [300.0; 3],
+        range: 0.0,
+        inner: 0.3,
+        outer: 0.4,
+    }]);
+    assert!(
+        (away - ambient_only).abs() < 0.5,
+        "spot away {away} vs {ambient_only}"
+    );
+    // Aimed down at them, it lights them.
+    let down = with(vec![Light::Spot {
+        position: above,
+        axis: DVec3::NEG_Z,
+        intensity: [300.0; 3],
+        range: 0.0,
+        inner: 0.6,
+        outer: 0.9,
+    }]);
+    assert!(
+        down > ambient_only + 5.0,
+        "spot down {down} vs {ambient_only}"
+    );
+}

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use cadre_render::layout::{Draw, Frame, Material, Segment};
+use cadre_render::layout::{Draw, Frame, LightGpu, Material, Segment};
 
 /// Parses and validates one shader; returns the module.
 fn module(pass: &str) -> naga::Module {
@@ -44,6 +44,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         (&visibility, "Draw", size_of::<Draw>()),
         (&shade, "Frame", size_of::<Frame>()),
         (&shade, "Material", size_of::<Material>()),
+        (&shade, "Light", size_of::<LightGpu>()),
         (&edges, "Frame", size_of::<Frame>()),
         (&edges, "Draw", size_of::<Draw>()),
         (&edges, "Segment", size_of::<Segment>()),

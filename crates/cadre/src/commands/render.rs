@@ -247,6 +247,7 @@ fn render_file(
         background: args.background,
         mode: args.mode,
         edge_width: args.edge_width,
+        ..FrameOptions::default()
     };
     Ok(renderer.render(gpu, &scene, &camera, &options)?)
 }

@@ -5,6 +5,13 @@ use super::visibility::VisibilityTargets;
 /// Format of the colour target (linear output, sRGB encoding on write).
 pub(crate) const COLOUR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 
+/// The buffers the pass reads besides the visibility buffer.
+pub(crate) struct ShadeInputs<'a> {
+    pub frame: &'a wgpu::Buffer,
+    pub materials: &'a wgpu::Buffer,
+    pub lights: &'a wgpu::Buffer,
+}
+
 /// The pass's pipeline and bind group layout.
 pub(crate) struct ShadePass {
     pipeline: wgpu::RenderPipeline,
@@ -42,6 +49,7 @@ impl ShadePass {
                 buffer(1, wgpu::BufferBindingType::Storage { read_only: true }),
                 texture(2, wgpu::TextureSampleType::Float { filterable: false }),
                 texture(3, wgpu::TextureSampleType::Uint),
+                buffer(4, wgpu::BufferBindingType::Storage { read_only: true }),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -79,10 +87,14 @@ impl ShadePass {
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         visibility: &VisibilityTargets,
-        frame: &wgpu::Buffer,
-        materials: &wgpu::Buffer,
+        inputs: &ShadeInputs<'_>,
         target: &wgpu::TextureView,
     ) {
+        let ShadeInputs {
+            frame,
+            materials,
+            lights,
+        } = inputs;
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("shade"),
             layout: &self.layout,
@@ -102,6 +114,10 @@ impl ShadePass {
                 wgpu::BindGroupEntry {
                     binding: 3,
                     resource: wgpu::BindingResource::TextureView(&visibility.ids),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: lights.as_entire_binding(),
                 },
             ],
         });

@@ -1,7 +1,9 @@
 // Shading pass: Cook–Torrance lighting (GGX distribution, Smith Schlick-GGX geometry,
-// Fresnel–Schlick) of the visibility buffer under a CAD key/fill/rim rig of directional
-// lights fixed to the camera plus a sky/ground ambient, then ACES tone mapping. The target is
-// an sRGB texture, so the output here is linear.
+// Fresnel–Schlick) of the visibility buffer under the frame's lights (directional, point,
+// spot; by default a CAD key/fill/rim rig fixed to the camera) and image-based ambient light
+// from a procedural sky/ground environment, prefiltered analytically (its irradiance is exact;
+// the specular lobe blurs the horizon by the roughness; Karis' analytic split-sum BRDF), then
+// ACES tone mapping. The target is an sRGB texture, so the output here is linear.
 
 struct Frame {
     view_proj: mat4x4<f32>,
@@ -12,6 +14,8 @@ struct Frame {
     edge_colour: vec4<f32>,
     hidden_colour: vec4<f32>,
     outline: vec4<f32>,
+    sky_up: vec4<f32>,
+    counts: vec4<u32>,
 }
 
 struct Material {
@@ -23,6 +27,19 @@ struct Material {
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
 @group(0) @binding(2) var normal_tex: texture_2d<f32>;
 @group(0) @binding(3) var ids_tex: texture_2d<u32>;
+
+struct Light {
+    position: vec4<f32>,
+    direction: vec4<f32>,
+    colour: vec4<f32>,
+    params: vec4<f32>,
+}
+
+@group(0) @binding(4) var<storage, read> lights: array<Light>;
+
+const SKY: vec3<f32> = vec3<f32>(0.46, 0.50, 0.56);
+const HORIZON: vec3<f32> = vec3<f32>(0.34, 0.34, 0.34);
+const GROUND: vec3<f32> = vec3<f32>(0.15, 0.14, 0.13);
 
 const PI: f32 = 3.14159265;
 
@@ -66,6 +83,35 @@ fn light(n: vec3<f32>, v: vec3<f32>, l: vec3<f32>, radiance: vec3<f32>, base: ve
         * f / (4.0 * nv * nl + 1e-4);
     let diffuse = (vec3<f32>(1.0) - f) * (1.0 - metallic) * base / PI;
     return (diffuse + spec) * radiance * nl;
+}
+
+// The environment's radiance seen along `dir` (view space): ground below the horizon, sky
+// above, blurred over an angular width `w` around the horizon.
+fn environment(dir: vec3<f32>, w: f32) -> vec3<f32> {
+    let t = dot(dir, normalize(frame.sky_up.xyz));
+    let above = mix(HORIZON, SKY, clamp(t, 0.0, 1.0));
+    return mix(GROUND, above, smoothstep(-w, w, t));
+}
+
+// Image-based ambient light from the procedural environment.
+fn ambient(n: vec3<f32>, v: vec3<f32>, base: vec3<f32>, metallic: f32, roughness: f32) -> vec3<f32> {
+    let nv = max(dot(n, v), 1e-4);
+    let f0 = mix(vec3<f32>(0.04), base, metallic);
+    // Irradiance of a uniform sky (its mean) over a uniform ground: the cosine-weighted mix.
+    let up = dot(n, normalize(frame.sky_up.xyz));
+    let irradiance = mix(GROUND, 0.5 * (SKY + HORIZON), 0.5 + 0.5 * up);
+    // Split-sum: prefiltered radiance along the reflection × Karis' analytic BRDF term.
+    let r = reflect(-v, n);
+    let prefiltered = environment(r, 0.02 + roughness * roughness);
+    let c0 = vec4<f32>(-1.0, -0.0275, -0.572, 0.022);
+    let c1 = vec4<f32>(1.0, 0.0425, 1.04, -0.04);
+    let q = roughness * c0 + c1;
+    let a004 = min(q.x * q.x, exp2(-9.28 * nv)) * q.x + q.y;
+    let ab = vec2<f32>(-1.04, 1.04) * a004 + q.zw;
+    let specular = prefiltered * (f0 * ab.x + ab.y);
+    let f = fresnel_schlick(f0, nv);
+    let diffuse = (vec3<f32>(1.0) - f) * (1.0 - metallic) * base * irradiance;
+    return diffuse + specular;
 }
 
 fn aces(x: vec3<f32>) -> vec3<f32> {
@@ -132,15 +178,29 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
         n = -n;
     }
     var colour = vec3<f32>(0.0);
-    colour += light(n, v, normalize(vec3<f32>(-0.45, 0.55, 0.70)), vec3<f32>(2.6), base, metallic, roughness);
-    colour += light(n, v, normalize(vec3<f32>(0.70, 0.10, 0.50)), vec3<f32>(0.9), base, metallic, roughness);
-    colour += light(n, v, normalize(vec3<f32>(0.05, 0.60, -0.80)), vec3<f32>(1.1), base, metallic, roughness);
-    // Ambient: a sky above (view up) and a darker ground below.
-    let sky = vec3<f32>(0.42, 0.45, 0.50);
-    let ground = vec3<f32>(0.16, 0.15, 0.14);
-    let hemi = mix(ground, sky, 0.5 + 0.5 * n.y);
-    let f0 = mix(vec3<f32>(0.04), base, metallic);
-    let f_amb = fresnel_schlick(f0, max(dot(n, v), 0.0)) * (1.0 - 0.5 * roughness);
-    colour += hemi * ((1.0 - metallic) * base * (vec3<f32>(1.0) - f_amb) + f_amb);
+    for (var i = 0u; i < frame.counts.x; i++) {
+        let li = lights[i];
+        let kind = u32(li.position.w + 0.5);
+        var l = normalize(li.direction.xyz);
+        var radiance = li.colour.rgb;
+        if kind != 0u {
+            let to_light = li.position.xyz - view_pos;
+            let d = max(length(to_light), 1e-6);
+            l = to_light / d;
+            var falloff = 1.0 / (d * d);
+            let range = li.direction.w;
+            if range > 0.0 {
+                let x = d / range;
+                let w = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+                falloff *= w * w;
+            }
+            radiance *= falloff;
+            if kind == 2u {
+                radiance *= smoothstep(li.colour.w, li.params.x, dot(-l, normalize(li.direction.xyz)));
+            }
+        }
+        colour += light(n, v, l, radiance, base, metallic, roughness);
+    }
+    colour += ambient(n, v, base, metallic, roughness);
     return vec4<f32>(aces(colour), 1.0);
 }

@@ -10,6 +10,8 @@ struct Frame {
     edge_colour: vec4<f32>,
     hidden_colour: vec4<f32>,
     outline: vec4<f32>,
+    sky_up: vec4<f32>,
+    counts: vec4<u32>,
 }
 
 struct Draw {
