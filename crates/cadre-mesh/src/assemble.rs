@@ -86,14 +86,25 @@ impl Builder<'_> {
         });
         let base = out.positions.len() as u32;
         let sign = if forward { 1.0 } else { -1.0 };
+        // Meshes from the file have no (u, v): pad so every vertex of a part keeps its own.
+        out.surface_uv.resize(out.positions.len(), [0.0; 2]);
         for p in &fm.points {
             out.positions.push(p.xyz.as_vec3().to_array());
             out.normals.push((p.normal * sign).as_vec3().to_array());
+            out.surface_uv.push(p.uv.as_vec2().to_array());
         }
         let step_id = u32::try_from(self.model.faces[face.index()].step_id).unwrap_or(0);
-        let prim = &mut out.primitives[slot];
+        let surface = &self.model.surfaces[self.model.faces[face.index()].surface.index()];
+        // Which parameter each point leaves undefined (a pole, an apex): there its (u, v) is a
+        // convention, and every triangle needs its own copy with the value that continues its
+        // other corners (or (u, v) interpolated across the triangle points the wrong way).
+        let degenerate: Vec<Option<bool>> = fm
+            .points
+            .iter()
+            .map(|p| singular_parameter(surface, p.uv))
+            .collect();
+        let mut triangles = Vec::with_capacity(fm.triangles.len());
         for t in &fm.triangles {
-            let [a, b, c] = t.map(|i| base + i);
             // Triangles that weld to a segment (two corners with one key) are degenerate.
             let keys = t.map(|i| fm.points[i as usize].key);
             if keys[0].is_some() && (keys[0] == keys[1] || keys[0] == keys[2])
@@ -101,6 +112,28 @@ impl Builder<'_> {
             {
                 continue;
             }
+            let mut corners = t.map(|i| base + i);
+            for k in 0..3 {
+                let i = t[k] as usize;
+                let Some(u_degenerate) = degenerate[i] else {
+                    continue;
+                };
+                let others = [t[(k + 1) % 3], t[(k + 2) % 3]].map(|j| fm.points[j as usize].uv);
+                let mut uv = fm.points[i].uv;
+                if u_degenerate {
+                    uv.x = 0.5 * (others[0].x + others[1].x);
+                } else {
+                    uv.y = 0.5 * (others[0].y + others[1].y);
+                }
+                corners[k] = out.positions.len() as u32;
+                out.positions.push(out.positions[base as usize + i]);
+                out.normals.push(out.normals[base as usize + i]);
+                out.surface_uv.push(uv.as_vec2().to_array());
+            }
+            triangles.push(corners);
+        }
+        let prim = &mut out.primitives[slot];
+        for [a, b, c] in triangles {
             prim.indices
                 .extend(if forward { [a, b, c] } else { [a, c, b] });
             prim.face_ids.push(step_id);
@@ -175,6 +208,24 @@ impl Builder<'_> {
         }
         out.primitives.retain(|p| !p.indices.is_empty());
         (!out.primitives.is_empty()).then_some(out)
+    }
+}
+
+/// `Some(true)` where `u` is undefined at `uv` (|∂S/∂u| vanishes: a sphere's pole, a cone's
+/// apex), `Some(false)` where `v` is, `None` at a regular point.
+fn singular_parameter(surface: &cadre_geom::Surface, uv: cadre_geom::Vec2) -> Option<bool> {
+    let d = surface.derivs(uv.x, uv.y);
+    let (su, sv) = (d.du.length(), d.dv.length());
+    let scale = su.max(sv);
+    if !(scale > 0.0 && scale.is_finite()) {
+        return None;
+    }
+    if su <= 1e-9 * scale {
+        Some(true)
+    } else if sv <= 1e-9 * scale {
+        Some(false)
+    } else {
+        None
     }
 }
 

@@ -305,3 +305,60 @@ fn trims_keep_exact_curves() {
         }
     }
 }
+
+/// The exported scene keeps every vertex's (u, v) on its surface, and a triangle touching the
+/// apex of a cone gets its own apex copy whose u continues its other corners (the apex's own u
+/// is a convention).
+#[test]
+fn scene_surface_uv_continue_across_an_apex() {
+    let data = "
+#10=CONICAL_SURFACE('',#8,5.,0.463647609000806);#11=PLANE('',#4);
+#20=CIRCLE('',#8,5.);
+#30=CARTESIAN_POINT('',(5.,0.,0.));#31=VERTEX_POINT('',#30);
+#34=CARTESIAN_POINT('',(0.,0.,10.));#35=VERTEX_POINT('',#34);
+#40=EDGE_CURVE('',#31,#31,#20,.T.);
+#50=ORIENTED_EDGE('',*,*,#40,.F.);#51=EDGE_LOOP('',(#50));#52=FACE_OUTER_BOUND('',#51,.T.);
+#53=VERTEX_LOOP('',#35);#54=FACE_BOUND('',#53,.T.);
+#56=ADVANCED_FACE('side',(#52,#54),#10,.T.);
+#60=ORIENTED_EDGE('',*,*,#40,.T.);#61=EDGE_LOOP('',(#60));#62=FACE_OUTER_BOUND('',#61,.T.);
+#63=ADVANCED_FACE('base',(#62),#11,.F.);
+#90=CLOSED_SHELL('',(#56,#63));#100=MANIFOLD_SOLID_BREP('',#90);
+";
+    let model = model(data);
+    let params = MeshParams {
+        deflection: 0.05,
+        angle: 0.5,
+        ..MeshParams::default()
+    };
+    let scene = cadre_mesh::assemble::build_scene(&model, &mesh_model(&model, &params, None));
+    let mesh = &scene.meshes[0];
+    assert_eq!(mesh.surface_uv.len(), mesh.positions.len());
+    let side = model.faces.iter().position(|f| f.step_id == 56).unwrap();
+    let surface = &model.surfaces[model.faces[side].surface.index()];
+    let mut apex_corners = 0;
+    for prim in &mesh.primitives {
+        for (t, tri) in prim.indices.chunks_exact(3).enumerate() {
+            if prim.face_ids[t] != 56 {
+                continue;
+            }
+            let uv: Vec<[f32; 2]> = tri.iter().map(|&i| mesh.surface_uv[i as usize]).collect();
+            for k in 0..3 {
+                let p = mesh.positions[tri[k] as usize];
+                if (p[2] - 10.0).abs() > 1e-6 {
+                    continue;
+                }
+                apex_corners += 1;
+                // The apex copy's u lies between its neighbours' (no wrap within a triangle).
+                let (a, b) = (uv[(k + 1) % 3][0], uv[(k + 2) % 3][0]);
+                assert!((uv[k][0] - 0.5 * (a + b)).abs() < 1e-5, "{uv:?}");
+                // And (u, v) evaluates to the apex.
+                let s = surface.eval(f64::from(uv[k][0]), f64::from(uv[k][1]));
+                assert!(
+                    (s - cadre_geom::Vec3::new(0.0, 0.0, 10.0)).length() < 1e-4,
+                    "{s}"
+                );
+            }
+        }
+    }
+    assert!(apex_corners > 8, "{apex_corners} triangles reach the apex");
+}

@@ -74,6 +74,7 @@ mod tests {
                 p(1.0, 1.0, 0.0),
             ],
             normals: Vec::new(),
+            surface_uv: Vec::new(),
             primitives: vec![Primitive {
                 indices: vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7],
                 material: None,
@@ -105,6 +106,7 @@ mod tests {
                 p(0.0, 1.0),
             ],
             normals: Vec::new(),
+            surface_uv: Vec::new(),
             primitives: vec![Primitive {
                 // (0,1,2),(0,2,3) one side; (1,4,5),(1,5,2) the other, back to the seam copies.
                 indices: vec![0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2],

@@ -154,6 +154,24 @@ impl Renderer {
             .collect())
     }
 
+    /// The visibility buffer's (u, v) on the exact surface at every pixel (no supersampling),
+    /// row by row; meaningful where [`Renderer::render_ids`] has a face.
+    pub fn render_uv(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<Vec<[f32; 2]>, RenderError> {
+        let size = (options.width, options.height);
+        let bytes = self.run(gpu, scene, camera, options, size, Readback::Uv)?;
+        let float = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        Ok(bytes
+            .chunks_exact(8)
+            .map(|p| [float(&p[0..4]), float(&p[4..8])])
+            .collect())
+    }
+
     /// Records and runs the passes at `w` × `h` and reads back the asked target.
     fn run(
         &self,
@@ -239,6 +257,7 @@ impl Renderer {
             .record(device, &mut encoder, &targets, &frame_buffer, &gpu_scene);
         let bytes = match readback {
             Readback::Ids => read_texture(gpu, encoder, &targets.ids_texture, w, h, 16)?,
+            Readback::Uv => read_texture(gpu, encoder, &targets.uv_texture, w, h, 8)?,
             Readback::Colour => {
                 let colour = device.create_texture(&wgpu::TextureDescriptor {
                     label: Some("colour"),
@@ -307,6 +326,7 @@ impl Renderer {
 enum Readback {
     Colour,
     Ids,
+    Uv,
 }
 
 /// Copies `texture` (`bytes_per_pixel` wide texels) to the CPU, rows unpadded.

@@ -96,6 +96,7 @@ impl GpuScene {
                     position,
                     normal: mesh.normals.get(i).copied().unwrap_or([0.0, 0.0, 1.0]),
                     face_id: face_of_vertex[i],
+                    uv: mesh.surface_uv.get(i).copied().unwrap_or([0.0; 2]),
                 })
                 .collect();
             vertices.push(buffer(

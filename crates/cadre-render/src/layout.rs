@@ -14,6 +14,8 @@ pub struct Vertex {
     pub normal: [f32; 3],
     /// STEP id of the face (0 = none).
     pub face_id: u32,
+    /// Parameters on the face's exact surface (0, 0 for meshes from the file).
+    pub uv: [f32; 2],
 }
 
 /// Per-frame constants.

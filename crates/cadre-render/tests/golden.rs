@@ -369,3 +369,66 @@ fn point_and_spot_lights_light_what_they_face() {
         "spot down {down} vs {ambient_only}"
     );
 }
+
+#[test]
+fn surface_uv_in_the_visibility_buffer_lands_on_its_pixel() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    for name in ["pin-assembly.step", "dome-and-cone.step"] {
+        let file = cadre_step::syntax::StepFile::read(&fixture(name)).expect("fixture reads");
+        let model = cadre_step::map_file(&file);
+        let params = MeshParams {
+            deflection: 0.01,
+            angle: 0.3,
+            ..MeshParams::default()
+        };
+        let scene = cadre_mesh::assemble::build_scene(&model, &mesh_model(&model, &params, None));
+        let (lo, hi) = scene_bounds(&scene).expect("geometry");
+        let (w, h) = (128u32, 96u32);
+        let aspect = f64::from(w) / f64::from(h);
+        let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, aspect);
+        let ids = renderer
+            .render_ids(&gpu, &scene, &camera, &options(w, h))
+            .expect("ids");
+        let uvs = renderer
+            .render_uv(&gpu, &scene, &camera, &options(w, h))
+            .expect("uv");
+        let surfaces: std::collections::HashMap<u32, &cadre_geom::Surface> = model
+            .faces
+            .iter()
+            .map(|f| (f.step_id as u32, &model.surfaces[f.surface.index()]))
+            .collect();
+        let placements: Vec<DAffine3> = scene.instances().map(|(_, world)| world).collect();
+        let to_ndc = camera.projection_matrix(aspect) * camera.view_rotation();
+        let (mut near, mut checked) = (0usize, 0usize);
+        for (i, (id, uv)) in ids.iter().zip(&uvs).enumerate() {
+            if id[1] == 0 {
+                continue;
+            }
+            let surface = surfaces[&id[0]];
+            let local = surface.eval(f64::from(uv[0]), f64::from(uv[1]));
+            let world = placements[id[1] as usize - 1].transform_point3(local);
+            let ndc = to_ndc.project_point3(world - camera.eye);
+            let px = DVec3::new(
+                (ndc.x + 1.0) * 0.5 * f64::from(w),
+                (1.0 - ndc.y) * 0.5 * f64::from(h),
+                0.0,
+            );
+            let centre = DVec3::new(
+                (i as u32 % w) as f64 + 0.5,
+                (i as u32 / w) as f64 + 0.5,
+                0.0,
+            );
+            checked += 1;
+            near += usize::from((px - centre).length() <= 1.0);
+            if std::env::var_os("UV_DEBUG").is_some() && (px - centre).length() > 1.0 {
+                eprintln!("face {} uv {uv:?} off {:.1}", id[0], (px - centre).length());
+            }
+        }
+        assert!(checked > 300, "{name}: {checked} pixels");
+        assert!(
+            near as f64 >= 0.99 * checked as f64,
+            "{name}: {near} of {checked} pixels' (u, v) land within a pixel of it"
+        );
+    }
+}

@@ -50,6 +50,10 @@ pub struct SceneMesh {
     /// Unit vertex normals, one per position, or empty when the mesh has no normals (the
     /// flattening writers then use face normals; glTF omits the attribute).
     pub normals: Vec<[f32; 3]>,
+    /// Parameters (u, v) of each vertex on its B-Rep face's exact surface (unwrapped across
+    /// seams), one per position, or empty (meshes from the file). The renderer keeps them in
+    /// its visibility buffer; the file writers do not write them.
+    pub surface_uv: Vec<[f32; 2]>,
     /// Triangle sets sharing [`SceneMesh::positions`].
     pub primitives: Vec<Primitive>,
 }

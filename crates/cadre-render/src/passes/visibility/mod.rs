@@ -9,6 +9,8 @@ pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub(crate) const NORMAL: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Face id, instance + 1 (0 = background), material, depth (f32 bits).
 pub(crate) const IDS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
+/// (u, v) on the face's exact surface.
+pub(crate) const UV: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
 /// The pass's pipeline and bind group layout.
 pub(crate) struct VisibilityPass {
@@ -22,6 +24,8 @@ pub(crate) struct VisibilityTargets {
     pub normal: wgpu::TextureView,
     pub ids: wgpu::TextureView,
     pub ids_texture: wgpu::Texture,
+    pub uv: wgpu::TextureView,
+    pub uv_texture: wgpu::Texture,
 }
 
 impl VisibilityTargets {
@@ -48,11 +52,14 @@ impl VisibilityTargets {
         let depth = make("depth", DEPTH, wgpu::TextureUsages::empty());
         let normal = make("normal", NORMAL, wgpu::TextureUsages::empty());
         let ids = make("ids", IDS, wgpu::TextureUsages::COPY_SRC);
+        let uv = make("uv", UV, wgpu::TextureUsages::COPY_SRC);
         VisibilityTargets {
             depth: depth.create_view(&Default::default()),
             normal: normal.create_view(&Default::default()),
             ids: ids.create_view(&Default::default()),
             ids_texture: ids,
+            uv: uv.create_view(&Default::default()),
+            uv_texture: uv,
         }
     }
 }
@@ -101,7 +108,7 @@ impl VisibilityPass {
                 buffers: &[Some(wgpu::VertexBufferLayout {
                     array_stride: std::mem::size_of::<Vertex>() as u64,
                     step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32],
+                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32, 3 => Float32x2],
                 })],
             },
             // No culling: open shells and mirrored instances show both sides.
@@ -119,7 +126,7 @@ impl VisibilityPass {
                 module: &shader,
                 entry_point: Some("fs_main"),
                 compilation_options: Default::default(),
-                targets: &[Some(NORMAL.into()), Some(IDS.into())],
+                targets: &[Some(NORMAL.into()), Some(IDS.into()), Some(UV.into())],
             }),
             multiview_mask: None,
             cache: None,
@@ -163,7 +170,11 @@ impl VisibilityPass {
         };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("visibility"),
-            color_attachments: &[clear(&targets.normal), clear(&targets.ids)],
+            color_attachments: &[
+                clear(&targets.normal),
+                clear(&targets.ids),
+                clear(&targets.uv),
+            ],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth,
                 depth_ops: Some(wgpu::Operations {
