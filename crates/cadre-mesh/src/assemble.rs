@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 
+use cadre_brep::trim::EdgeSamples;
 use cadre_brep::{Body, FaceId, Model, PartId, ShellId, SolidId, Style};
 
 use crate::ModelMesh;
@@ -203,11 +204,37 @@ impl Builder<'_> {
                         face_ids: vec![u32::try_from(tm.step_id).unwrap_or(0); tm.triangles.len()],
                     });
                 }
-                Body::Edge(_) | Body::Wire(_) | Body::Point(_) => {}
+                Body::Edge(e) => {
+                    let samples = self.mesh.edges.samples(*e);
+                    add_polyline(&mut out.lines, samples.iter().map(|s| s.xyz));
+                }
+                Body::Wire(w) => {
+                    let curve = &self.model.curves[w.curve.index()];
+                    if let Some((t0, t1)) = w.range.or_else(|| curve.domain()) {
+                        let points = crate::edges::sample_curve(curve, t0, t1, &self.mesh.params);
+                        add_polyline(&mut out.lines, points.into_iter().map(|(_, p)| p));
+                    }
+                }
+                // A lone point has nothing to draw yet.
+                Body::Point(_) => {}
             }
         }
         out.primitives.retain(|p| !p.indices.is_empty());
-        (!out.primitives.is_empty()).then_some(out)
+        (!out.primitives.is_empty() || !out.lines.is_empty()).then_some(out)
+    }
+}
+
+/// Appends the segments between consecutive finite points.
+fn add_polyline(lines: &mut Vec<[[f32; 3]; 2]>, points: impl Iterator<Item = cadre_geom::Vec3>) {
+    let mut prev: Option<[f32; 3]> = None;
+    for p in points.filter(|p| p.is_finite()) {
+        let p = p.as_vec3().to_array();
+        if let Some(q) = prev
+            && q != p
+        {
+            lines.push([q, p]);
+        }
+        prev = Some(p);
     }
 }
 

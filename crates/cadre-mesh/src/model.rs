@@ -33,6 +33,8 @@ pub struct ModelMesh {
     pub truncated: Vec<FaceId>,
     /// The shared edge samples.
     pub edges: EdgeDiscretisation,
+    /// The tolerances the model was meshed with (wire curves are sampled with them too).
+    pub params: MeshParams,
 }
 
 /// The trim polygons of a face as the triangulator takes them.
@@ -105,6 +107,7 @@ pub fn mesh_model(
         failures: Vec::new(),
         truncated: Vec::new(),
         edges,
+        params: *params,
     };
     for (i, r) in results.into_iter().enumerate() {
         let id = FaceId(i as u32);

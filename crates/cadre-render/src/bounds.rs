@@ -3,16 +3,16 @@
 use cadre_mesh::export::Scene;
 use glam::DVec3;
 
-/// The axis-aligned box of every placed mesh of `scene` (each mesh's local box transformed
-/// by its instances), or `None` for a scene with no vertex.
+/// The axis-aligned box of every placed mesh of `scene`, wires included (each mesh's local
+/// box transformed by its instances), or `None` for a scene with no vertex.
 pub fn scene_bounds(scene: &Scene) -> Option<(DVec3, DVec3)> {
     let local: Vec<Option<(DVec3, DVec3)>> = scene
         .meshes
         .iter()
         .map(|m| {
-            m.positions
-                .iter()
-                .fold(None, |acc: Option<(DVec3, DVec3)>, p| {
+            m.positions.iter().chain(m.lines.iter().flatten()).fold(
+                None,
+                |acc: Option<(DVec3, DVec3)>, p| {
                     let p = DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]));
                     if !p.is_finite() {
                         return acc;
@@ -21,7 +21,8 @@ pub fn scene_bounds(scene: &Scene) -> Option<(DVec3, DVec3)> {
                         None => (p, p),
                         Some((lo, hi)) => (lo.min(p), hi.max(p)),
                     })
-                })
+                },
+            )
         })
         .collect();
     let mut out: Option<(DVec3, DVec3)> = None;

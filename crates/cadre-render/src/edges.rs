@@ -75,6 +75,7 @@ mod tests {
             ],
             normals: Vec::new(),
             surface_uv: Vec::new(),
+            lines: Vec::new(),
             primitives: vec![Primitive {
                 indices: vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7],
                 material: None,
@@ -107,6 +108,7 @@ mod tests {
             ],
             normals: Vec::new(),
             surface_uv: Vec::new(),
+            lines: Vec::new(),
             primitives: vec![Primitive {
                 // (0,1,2),(0,2,3) one side; (1,4,5),(1,5,2) the other, back to the seam copies.
                 indices: vec![0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2],

@@ -251,6 +251,8 @@ impl Renderer {
         });
         let with_edges = edge_mode.is_some() && readback == Readback::Colour;
         let gpu_scene = GpuScene::upload(device, scene, camera, with_edges);
+        // Wire bodies are drawn in every mode; B-Rep edges only in the modes with edges.
+        let draw_lines = readback == Readback::Colour && !gpu_scene.edge_calls.is_empty();
         let targets = VisibilityTargets::new(device, w, h);
         let mut encoder = device.create_command_encoder(&Default::default());
         self.visibility
@@ -301,7 +303,7 @@ impl Renderer {
                         &colour_view,
                     );
                 }
-                if with_edges {
+                if draw_lines {
                     self.edges.record(
                         device,
                         &mut encoder,

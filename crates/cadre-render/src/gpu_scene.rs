@@ -43,7 +43,7 @@ pub(crate) struct GpuScene {
 
 impl GpuScene {
     /// Uploads `scene` with every instance placed relative to `camera.eye` (in `f64`); the
-    /// B-Rep edges too when `with_edges`.
+    /// B-Rep edges too when `with_edges` (wire bodies always).
     pub fn upload(
         device: &wgpu::Device,
         scene: &Scene,
@@ -55,6 +55,10 @@ impl GpuScene {
         let mut mesh_segments: Vec<(u32, u32)> = Vec::with_capacity(scene.meshes.len());
         for mesh in &scene.meshes {
             let first = segments.len() as u32;
+            segments.extend(mesh.lines.iter().map(|[a, b]| Segment {
+                a: [a[0], a[1], a[2], 1.0],
+                b: [b[0], b[1], b[2], 1.0],
+            }));
             if with_edges {
                 segments.extend(feature_edges(mesh).into_iter().map(|[a, b]| Segment {
                     a: [a[0], a[1], a[2], 1.0],

@@ -136,6 +136,18 @@ fn fixtures_match_their_golden_images() {
         "pin-assembly-front-ortho.png",
         &render(&gpu, &renderer, &scene, ViewPreset::Front, true),
     );
+    // A wireframe model: curves only, drawn in the default (shaded) mode.
+    let wires = self::scene("wire-triangle.step");
+    assert!(
+        wires
+            .meshes
+            .iter()
+            .all(|m| m.primitives.is_empty() && m.lines.len() >= 3)
+    );
+    check_golden(
+        "wire-triangle-top.png",
+        &render(&gpu, &renderer, &wires, ViewPreset::Top, true),
+    );
     let dome_and_cone = self::scene("dome-and-cone.step");
     check_golden(
         "dome-and-cone-iso.png",

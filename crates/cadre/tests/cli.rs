@@ -167,5 +167,29 @@ fn render_writes_a_png_of_the_asked_size_and_refuses_bad_options() {
         index.starts_with("row 1 column 1: ") && index.contains("a.step"),
         "{index}"
     );
+    // A file with nothing to draw still gets its (blank) image, with a warning.
+    let empty = dir.join("empty.step");
+    std::fs::write(
+        &empty,
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('e','',(''),(''),'','','');\n\
+         FILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n\
+         #1=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n",
+    )
+    .unwrap();
+    let run = cadre()
+        .args(["render"])
+        .arg(&empty)
+        .arg("-o")
+        .arg(dir.join("empty.png"))
+        .args(["--size", "16x16"])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(String::from_utf8_lossy(&run.stderr).contains("nothing to draw"));
+    assert!(dir.join("empty.png").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }

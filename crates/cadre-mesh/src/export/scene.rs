@@ -54,6 +54,9 @@ pub struct SceneMesh {
     /// seams), one per position, or empty (meshes from the file). The renderer keeps them in
     /// its visibility buffer; the file writers do not write them.
     pub surface_uv: Vec<[f32; 2]>,
+    /// Segments of wire bodies (edges and curves standing alone, as in wireframe models),
+    /// mesh-local; the renderer draws them, the file writers do not write them yet.
+    pub lines: Vec<[[f32; 3]; 2]>,
     /// Triangle sets sharing [`SceneMesh::positions`].
     pub primitives: Vec<Primitive>,
 }
