@@ -11,7 +11,11 @@ fn module(pass: &str) -> naga::Module {
         .join("src/passes")
         .join(pass)
         .join(format!("{pass}.wgsl"));
-    let source = std::fs::read_to_string(&path).expect("shader source");
+    // Passes are built as the shared declarations followed by their own source.
+    let common = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/passes/common.wgsl");
+    let source = std::fs::read_to_string(&common).expect("common.wgsl")
+        + "\n"
+        + &std::fs::read_to_string(&path).expect("shader source");
     let module = naga::front::wgsl::parse_str(&source)
         .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&source)));
     naga::valid::Validator::new(
@@ -36,6 +40,20 @@ fn struct_size(module: &naga::Module, name: &str) -> Option<usize> {
 #[test]
 fn shaders_validate_and_share_the_rust_layouts() {
     let visibility = module("visibility");
+    // The shared structs are declared once, in common.wgsl, for every pass.
+    for pass in ["visibility", "shade", "edges", "xray"] {
+        let own = std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("src/passes")
+                .join(pass)
+                .join(format!("{pass}.wgsl")),
+        )
+        .expect("shader source");
+        assert!(
+            !own.contains("struct Frame"),
+            "{pass}.wgsl redeclares Frame"
+        );
+    }
     let shade = module("shade");
     let edges = module("edges");
     let xray = module("xray");

@@ -3,6 +3,7 @@
 //! (lighting from the visibility buffer alone), [`xray`] (see-through faces, x-ray mode only),
 //! then [`edges`] (B-Rep edges as lines).
 
+pub(crate) mod common;
 pub(crate) mod edges;
 pub(crate) mod shade;
 pub(crate) mod visibility;

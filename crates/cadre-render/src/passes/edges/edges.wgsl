@@ -4,35 +4,6 @@
 // tolerance keeps edges from fighting with their own faces): hidden fragments are dropped,
 // drawn dashed, or drawn like the others, by the edge mode.
 
-struct Frame {
-    view_proj: mat4x4<f32>,
-    inv_proj: mat4x4<f32>,
-    background: vec4<f32>,
-    viewport: vec4<f32>,
-    edges: vec4<f32>,
-    edge_colour: vec4<f32>,
-    hidden_colour: vec4<f32>,
-    outline: vec4<f32>,
-    sky_up: vec4<f32>,
-    counts: vec4<u32>,
-}
-
-struct Draw {
-    model: mat4x4<f32>,
-    normal0: vec4<f32>,
-    normal1: vec4<f32>,
-    normal2: vec4<f32>,
-    material: u32,
-    instance: u32,
-    pad: vec2<u32>,
-}
-
-struct Segment {
-    a: vec4<f32>,
-    b: vec4<f32>,
-}
-
-@group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> draws: array<Draw>;
 @group(0) @binding(2) var<storage, read> segments: array<Segment>;
 @group(0) @binding(3) var ids_tex: texture_2d<u32>;

@@ -1,6 +1,9 @@
-//! Edges pass: B-Rep edges drawn over the shaded image as anti-aliased lines of constant pixel
-//! width, visible, hidden-dashed or all, by the display mode.
+//! Edges pass: wire bodies and B-Rep edges drawn over the shaded image as anti-aliased lines
+//! of constant pixel width, visible, hidden-dashed or all, by the display mode.
 
+use super::common::{
+    STORAGE, bind_group, blended, buffer_entry, colour_pass, layouts, shader, texture_entry,
+};
 use super::shade::COLOUR;
 use super::visibility::VisibilityTargets;
 use crate::gpu_scene::GpuScene;
@@ -14,46 +17,23 @@ pub(crate) struct EdgesPass {
 impl EdgesPass {
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> EdgesPass {
-        let shader = device.create_shader_module(wgpu::include_wgsl!("edges.wgsl"));
+        let module = shader(device, "edges", include_str!("edges.wgsl"));
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let buffer = |binding, ty| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: stages,
-            ty: wgpu::BindingType::Buffer {
-                ty,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("edges"),
-            entries: &[
-                buffer(0, wgpu::BufferBindingType::Uniform),
-                buffer(1, wgpu::BufferBindingType::Storage { read_only: true }),
-                buffer(2, wgpu::BufferBindingType::Storage { read_only: true }),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Uint,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+        let (layout, pipeline_layout) = layouts(
+            device,
+            "edges",
+            &[
+                buffer_entry(0, wgpu::BufferBindingType::Uniform, stages),
+                buffer_entry(1, STORAGE, stages),
+                buffer_entry(2, STORAGE, stages),
+                texture_entry(3, wgpu::TextureSampleType::Uint),
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("edges"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        );
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("edges"),
             layout: Some(&pipeline_layout),
             vertex: wgpu::VertexState {
-                module: &shader,
+                module: &module,
                 entry_point: Some("vs_main"),
                 compilation_options: Default::default(),
                 buffers: &[],
@@ -62,14 +42,10 @@ impl EdgesPass {
             depth_stencil: None,
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &shader,
+                module: &module,
                 entry_point: Some("fs_main"),
                 compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: COLOUR,
-                    blend: Some(wgpu::BlendState::ALPHA_BLENDING),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
+                targets: &[Some(blended(COLOUR))],
             }),
             multiview_mask: None,
             cache: None,
@@ -90,44 +66,18 @@ impl EdgesPass {
         if scene.edge_calls.is_empty() {
             return;
         }
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("edges"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: frame.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: scene.draws.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: scene.segments.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(&visibility.ids),
-                },
+        let bind = bind_group(
+            device,
+            "edges",
+            &self.layout,
+            &[
+                frame.as_entire_binding(),
+                scene.draws.as_entire_binding(),
+                scene.segments.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&visibility.ids),
             ],
-        });
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("edges"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        );
+        let mut pass = colour_pass(encoder, "edges", target, None);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
         for call in &scene.edge_calls {

@@ -1,5 +1,8 @@
 //! Shading pass: lights the visibility buffer into the colour target.
 
+use super::common::{
+    STORAGE, bind_group, buffer_entry, colour_pass, layouts, shader, texture_entry,
+};
 use super::visibility::VisibilityTargets;
 
 /// Format of the colour target (linear output, sRGB encoding on write).
@@ -21,47 +24,24 @@ pub(crate) struct ShadePass {
 impl ShadePass {
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> ShadePass {
-        let shader = device.create_shader_module(wgpu::include_wgsl!("shade.wgsl"));
-        let buffer = |binding, ty| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let texture = |binding, sample_type| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("shade"),
-            entries: &[
-                buffer(0, wgpu::BufferBindingType::Uniform),
-                buffer(1, wgpu::BufferBindingType::Storage { read_only: true }),
-                texture(2, wgpu::TextureSampleType::Float { filterable: false }),
-                texture(3, wgpu::TextureSampleType::Uint),
-                buffer(4, wgpu::BufferBindingType::Storage { read_only: true }),
+        let module = shader(device, "shade", include_str!("shade.wgsl"));
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let (layout, pipeline_layout) = layouts(
+            device,
+            "shade",
+            &[
+                buffer_entry(0, wgpu::BufferBindingType::Uniform, fragment),
+                buffer_entry(1, STORAGE, fragment),
+                texture_entry(2, wgpu::TextureSampleType::Float { filterable: false }),
+                texture_entry(3, wgpu::TextureSampleType::Uint),
+                buffer_entry(4, STORAGE, fragment),
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("shade"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        );
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("shade"),
             layout: Some(&pipeline_layout),
             vertex: wgpu::VertexState {
-                module: &shader,
+                module: &module,
                 entry_point: Some("vs_main"),
                 compilation_options: Default::default(),
                 buffers: &[],
@@ -70,7 +50,7 @@ impl ShadePass {
             depth_stencil: None,
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &shader,
+                module: &module,
                 entry_point: Some("fs_main"),
                 compilation_options: Default::default(),
                 targets: &[Some(COLOUR.into())],
@@ -95,48 +75,19 @@ impl ShadePass {
             materials,
             lights,
         } = inputs;
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("shade"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: frame.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: materials.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&visibility.normal),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(&visibility.ids),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: lights.as_entire_binding(),
-                },
+        let bind = bind_group(
+            device,
+            "shade",
+            &self.layout,
+            &[
+                frame.as_entire_binding(),
+                materials.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&visibility.normal),
+                wgpu::BindingResource::TextureView(&visibility.ids),
+                lights.as_entire_binding(),
             ],
-        });
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("shade"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        );
+        let mut pass = colour_pass(encoder, "shade", target, Some(wgpu::Color::BLACK));
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
         pass.draw(0..3, 0..1);

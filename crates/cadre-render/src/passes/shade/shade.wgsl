@@ -1,40 +1,14 @@
 // Shading pass: Cook–Torrance lighting (GGX distribution, Smith Schlick-GGX geometry,
 // Fresnel–Schlick) of the visibility buffer under the frame's lights (directional, point,
 // spot; by default a CAD key/fill/rim rig fixed to the camera) and image-based ambient light
-// from a procedural sky/ground environment, prefiltered analytically (its irradiance is exact;
-// the specular lobe blurs the horizon by the roughness; Karis' analytic split-sum BRDF), then
+// from a procedural sky/ground environment, prefiltered analytically (irradiance of a uniform
+// sky over a uniform ground; the specular lobe blurs the horizon by the roughness; Karis'
+// analytic split-sum BRDF), then
 // ACES tone mapping. The target is an sRGB texture, so the output here is linear.
 
-struct Frame {
-    view_proj: mat4x4<f32>,
-    inv_proj: mat4x4<f32>,
-    background: vec4<f32>,
-    viewport: vec4<f32>,
-    edges: vec4<f32>,
-    edge_colour: vec4<f32>,
-    hidden_colour: vec4<f32>,
-    outline: vec4<f32>,
-    sky_up: vec4<f32>,
-    counts: vec4<u32>,
-}
-
-struct Material {
-    base_color: vec4<f32>,
-    params: vec4<f32>,
-}
-
-@group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
 @group(0) @binding(2) var normal_tex: texture_2d<f32>;
 @group(0) @binding(3) var ids_tex: texture_2d<u32>;
-
-struct Light {
-    position: vec4<f32>,
-    direction: vec4<f32>,
-    colour: vec4<f32>,
-    params: vec4<f32>,
-}
-
 @group(0) @binding(4) var<storage, read> lights: array<Light>;
 
 const SKY: vec3<f32> = vec3<f32>(0.46, 0.50, 0.56);

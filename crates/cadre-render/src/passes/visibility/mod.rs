@@ -1,7 +1,9 @@
 //! Visibility pass: the mesh back-end's draw into the visibility buffer.
 
+use super::common::{
+    STORAGE, bind_group, buffer_entry, draw_meshes, layouts, mesh_vertex_layout, shader,
+};
 use crate::gpu_scene::GpuScene;
-use crate::layout::Vertex;
 
 /// Formats of the visibility buffer.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -9,8 +11,9 @@ pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub(crate) const NORMAL: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Face id, instance + 1 (0 = background), material, depth (f32 bits).
 pub(crate) const IDS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
-/// (u, v) on the face's exact surface.
-pub(crate) const UV: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+/// (u, v) on the face's exact surface, as f32 bits (float targets of 32 bits are not
+/// renderable on GL, integer ones are).
+pub(crate) const UV: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 
 /// The pass's pipeline and bind group layout.
 pub(crate) struct VisibilityPass {
@@ -67,49 +70,24 @@ impl VisibilityTargets {
 impl VisibilityPass {
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> VisibilityPass {
-        let shader = device.create_shader_module(wgpu::include_wgsl!("visibility.wgsl"));
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("visibility"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+        let module = shader(device, "visibility", include_str!("visibility.wgsl"));
+        let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let (layout, pipeline_layout) = layouts(
+            device,
+            "visibility",
+            &[
+                buffer_entry(0, wgpu::BufferBindingType::Uniform, stages),
+                buffer_entry(1, STORAGE, stages),
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("visibility"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        );
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("visibility"),
             layout: Some(&pipeline_layout),
             vertex: wgpu::VertexState {
-                module: &shader,
+                module: &module,
                 entry_point: Some("vs_main"),
                 compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32, 3 => Float32x2],
-                })],
+                buffers: &[Some(mesh_vertex_layout())],
             },
             // No culling: open shells and mirrored instances show both sides.
             primitive: wgpu::PrimitiveState::default(),
@@ -123,7 +101,7 @@ impl VisibilityPass {
             }),
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
-                module: &shader,
+                module: &module,
                 entry_point: Some("fs_main"),
                 compilation_options: Default::default(),
                 targets: &[Some(NORMAL.into()), Some(IDS.into()), Some(UV.into())],
@@ -143,20 +121,12 @@ impl VisibilityPass {
         frame: &wgpu::Buffer,
         scene: &GpuScene,
     ) {
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("visibility"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: frame.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: scene.draws.as_entire_binding(),
-                },
-            ],
-        });
+        let bind = bind_group(
+            device,
+            "visibility",
+            &self.layout,
+            &[frame.as_entire_binding(), scene.draws.as_entire_binding()],
+        );
         let clear = |view| {
             Some(wgpu::RenderPassColorAttachment {
                 view,
@@ -189,17 +159,6 @@ impl VisibilityPass {
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        for call in &scene.calls {
-            pass.set_vertex_buffer(0, scene.vertices[call.mesh].slice(..));
-            pass.set_index_buffer(
-                scene.indices[call.mesh].slice(..),
-                wgpu::IndexFormat::Uint32,
-            );
-            pass.draw_indexed(
-                call.first..call.first + call.count,
-                0,
-                call.draw..call.draw + 1,
-            );
-        }
+        draw_meshes(&mut pass, scene);
     }
 }

@@ -3,30 +3,6 @@
 // the nearest surface at every pixel. The
 // depth is repeated in the ids so later passes need not read a depth texture (GLSL cannot).
 
-struct Frame {
-    view_proj: mat4x4<f32>,
-    inv_proj: mat4x4<f32>,
-    background: vec4<f32>,
-    viewport: vec4<f32>,
-    edges: vec4<f32>,
-    edge_colour: vec4<f32>,
-    hidden_colour: vec4<f32>,
-    outline: vec4<f32>,
-    sky_up: vec4<f32>,
-    counts: vec4<u32>,
-}
-
-struct Draw {
-    model: mat4x4<f32>,
-    normal0: vec4<f32>,
-    normal1: vec4<f32>,
-    normal2: vec4<f32>,
-    material: u32,
-    instance: u32,
-    pad: vec2<u32>,
-}
-
-@group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> draws: array<Draw>;
 
 struct VertexOut {
@@ -58,7 +34,7 @@ fn vs_main(
 struct VisibilityOut {
     @location(0) normal: vec4<f32>,
     @location(1) ids: vec4<u32>,
-    @location(2) uv: vec2<f32>,
+    @location(2) uv: vec2<u32>,
 }
 
 @fragment
@@ -68,6 +44,6 @@ fn fs_main(in: VertexOut) -> VisibilityOut {
     let len = length(in.normal);
     out.normal = vec4<f32>(select(vec3<f32>(0.0, 0.0, 1.0), in.normal / len, len > 0.0), 1.0);
     out.ids = vec4<u32>(in.face, d.instance + 1u, d.material, bitcast<u32>(in.clip.z));
-    out.uv = in.uv;
+    out.uv = bitcast<vec2<u32>>(in.uv);
     return out;
 }

@@ -1,35 +1,6 @@
 // X-ray pass: every triangle drawn see-through, without depth test, more opaque where it is
 // seen edge-on (a Fresnel-like rim), so the inside of an assembly shows through its shell.
 
-struct Frame {
-    view_proj: mat4x4<f32>,
-    inv_proj: mat4x4<f32>,
-    background: vec4<f32>,
-    viewport: vec4<f32>,
-    edges: vec4<f32>,
-    edge_colour: vec4<f32>,
-    hidden_colour: vec4<f32>,
-    outline: vec4<f32>,
-    sky_up: vec4<f32>,
-    counts: vec4<u32>,
-}
-
-struct Draw {
-    model: mat4x4<f32>,
-    normal0: vec4<f32>,
-    normal1: vec4<f32>,
-    normal2: vec4<f32>,
-    material: u32,
-    instance: u32,
-    pad: vec2<u32>,
-}
-
-struct Material {
-    base_color: vec4<f32>,
-    params: vec4<f32>,
-}
-
-@group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> draws: array<Draw>;
 @group(0) @binding(2) var<storage, read> materials: array<Material>;
 

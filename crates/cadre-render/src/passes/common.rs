@@ -1,0 +1,158 @@
+//! Pieces every pass uses: its shader module (the shared WGSL declarations first), bind group
+//! layout entries, the mesh vertex layout, overlay render passes and drawing a scene's meshes.
+
+use crate::gpu_scene::GpuScene;
+use crate::layout::Vertex;
+
+/// The WGSL every pass starts with (`common.wgsl`: the layout structs and the frame uniform).
+pub(crate) const COMMON_WGSL: &str = include_str!("common.wgsl");
+
+/// A pass's shader module: [`COMMON_WGSL`] followed by the pass's own source.
+pub(crate) fn shader(device: &wgpu::Device, label: &str, own: &str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(format!("{COMMON_WGSL}\n{own}").into()),
+    })
+}
+
+/// A uniform or storage buffer binding.
+pub(crate) fn buffer_entry(
+    binding: u32,
+    ty: wgpu::BufferBindingType,
+    visibility: wgpu::ShaderStages,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// A read-only storage buffer binding.
+pub(crate) const STORAGE: wgpu::BufferBindingType =
+    wgpu::BufferBindingType::Storage { read_only: true };
+
+/// A 2D texture read by `textureLoad` in fragment shaders.
+pub(crate) fn texture_entry(
+    binding: u32,
+    sample_type: wgpu::TextureSampleType,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// The bind group layout (group 0) of `entries` and a pipeline layout with only it.
+pub(crate) fn layouts(
+    device: &wgpu::Device,
+    label: &str,
+    entries: &[wgpu::BindGroupLayoutEntry],
+) -> (wgpu::BindGroupLayout, wgpu::PipelineLayout) {
+    let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries,
+    });
+    let pipeline = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(&group)],
+        immediate_size: 0,
+    });
+    (group, pipeline)
+}
+
+/// A bind group whose entries are `resources` at bindings 0, 1, 2, ...
+pub(crate) fn bind_group(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[wgpu::BindingResource<'_>],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+        .iter()
+        .enumerate()
+        .map(|(i, r)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: r.clone(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// Attributes of [`Vertex`]: position, normal, face id, (u, v).
+const MESH_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
+    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32, 3 => Float32x2];
+
+/// The vertex buffer layout of the scene's meshes.
+pub(crate) fn mesh_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Vertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &MESH_ATTRIBUTES,
+    }
+}
+
+/// A colour target that blends over what is there.
+pub(crate) fn blended(format: wgpu::TextureFormat) -> wgpu::ColorTargetState {
+    wgpu::ColorTargetState {
+        format,
+        blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+        write_mask: wgpu::ColorWrites::ALL,
+    }
+}
+
+/// A render pass over `target` that keeps its content (`clear` to start from a colour).
+pub(crate) fn colour_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    target: &wgpu::TextureView,
+    clear: Option<wgpu::Color>,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: clear.map_or(wgpu::LoadOp::Load, wgpu::LoadOp::Clear),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
+
+/// Draws every (primitive, instance) of `scene`, the draw record picked by the instance index.
+pub(crate) fn draw_meshes(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
+    for call in &scene.calls {
+        pass.set_vertex_buffer(0, scene.vertices[call.mesh].slice(..));
+        pass.set_index_buffer(
+            scene.indices[call.mesh].slice(..),
+            wgpu::IndexFormat::Uint32,
+        );
+        pass.draw_indexed(
+            call.first..call.first + call.count,
+            0,
+            call.draw..call.draw + 1,
+        );
+    }
+}
