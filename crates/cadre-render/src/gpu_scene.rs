@@ -152,6 +152,17 @@ impl GpuScene {
             )
             .as_mat4();
             let n = normal.as_mat3();
+            let record = |material: u32| Draw {
+                model: model.to_cols_array_2d(),
+                normal: [
+                    n.x_axis.extend(0.0).to_array(),
+                    n.y_axis.extend(0.0).to_array(),
+                    n.z_axis.extend(0.0).to_array(),
+                ],
+                material,
+                instance: instance as u32,
+                pad: [0; 2],
+            };
             let (seg_first, seg_count) = mesh_segments[mesh];
             if seg_count > 0 {
                 edge_calls.push(EdgeCall {
@@ -160,17 +171,7 @@ impl GpuScene {
                     draw: draws.len() as u32,
                 });
                 // The instance's own record, whatever its primitives.
-                draws.push(Draw {
-                    model: model.to_cols_array_2d(),
-                    normal: [
-                        n.x_axis.extend(0.0).to_array(),
-                        n.y_axis.extend(0.0).to_array(),
-                        n.z_axis.extend(0.0).to_array(),
-                    ],
-                    material: default_material,
-                    instance: instance as u32,
-                    pad: [0; 2],
-                });
+                draws.push(record(default_material));
             }
             for &(first, count, material) in &starts[mesh] {
                 if count == 0 {
@@ -185,17 +186,7 @@ impl GpuScene {
                     count,
                     draw: draws.len() as u32,
                 });
-                draws.push(Draw {
-                    model: model.to_cols_array_2d(),
-                    normal: [
-                        n.x_axis.extend(0.0).to_array(),
-                        n.y_axis.extend(0.0).to_array(),
-                        n.z_axis.extend(0.0).to_array(),
-                    ],
-                    material,
-                    instance: instance as u32,
-                    pad: [0; 2],
-                });
+                draws.push(record(material));
             }
         }
         if draws.is_empty() {

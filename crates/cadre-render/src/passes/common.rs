@@ -156,3 +156,40 @@ pub(crate) fn draw_meshes(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
         );
     }
 }
+
+/// What differs between the passes' render pipelines.
+pub(crate) struct PipelineSpec<'a> {
+    pub label: &'a str,
+    pub layout: &'a wgpu::PipelineLayout,
+    pub module: &'a wgpu::ShaderModule,
+    /// Vertex buffers (none: vertices are built from storage buffers or the vertex index).
+    pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    pub depth: Option<wgpu::DepthStencilState>,
+    pub targets: &'a [Option<wgpu::ColorTargetState>],
+}
+
+/// A render pipeline with entry points `vs_main` and `fs_main`, triangle lists, no culling
+/// (open shells and mirrored instances show both sides), no multisampling.
+pub(crate) fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(spec.label),
+        layout: Some(spec.layout),
+        vertex: wgpu::VertexState {
+            module: spec.module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: spec.buffers,
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: spec.depth,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: spec.module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: spec.targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}

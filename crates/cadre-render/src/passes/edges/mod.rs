@@ -2,7 +2,8 @@
 //! of constant pixel width, visible, hidden-dashed or all, by the display mode.
 
 use super::common::{
-    STORAGE, bind_group, blended, buffer_entry, colour_pass, layouts, shader, texture_entry,
+    PipelineSpec, STORAGE, bind_group, blended, buffer_entry, colour_pass, layouts, pipeline,
+    shader, texture_entry,
 };
 use super::shade::COLOUR;
 use super::visibility::VisibilityTargets;
@@ -29,27 +30,17 @@ impl EdgesPass {
                 texture_entry(3, wgpu::TextureSampleType::Uint),
             ],
         );
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("edges"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
+        let pipeline = pipeline(
+            device,
+            PipelineSpec {
+                label: "edges",
+                layout: &pipeline_layout,
                 module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
                 buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
+                depth: None,
                 targets: &[Some(blended(COLOUR))],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+            },
+        );
         EdgesPass { pipeline, layout }
     }
 

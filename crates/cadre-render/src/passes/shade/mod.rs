@@ -1,7 +1,8 @@
 //! Shading pass: lights the visibility buffer into the colour target.
 
 use super::common::{
-    STORAGE, bind_group, buffer_entry, colour_pass, layouts, shader, texture_entry,
+    PipelineSpec, STORAGE, bind_group, buffer_entry, colour_pass, layouts, pipeline, shader,
+    texture_entry,
 };
 use super::visibility::VisibilityTargets;
 
@@ -37,27 +38,17 @@ impl ShadePass {
                 buffer_entry(4, STORAGE, fragment),
             ],
         );
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("shade"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
+        let pipeline = pipeline(
+            device,
+            PipelineSpec {
+                label: "shade",
+                layout: &pipeline_layout,
                 module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
                 buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
+                depth: None,
                 targets: &[Some(COLOUR.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+            },
+        );
         ShadePass { pipeline, layout }
     }
 

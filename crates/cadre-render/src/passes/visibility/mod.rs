@@ -1,7 +1,8 @@
 //! Visibility pass: the mesh back-end's draw into the visibility buffer.
 
 use super::common::{
-    STORAGE, bind_group, buffer_entry, draw_meshes, layouts, mesh_vertex_layout, shader,
+    PipelineSpec, STORAGE, bind_group, buffer_entry, draw_meshes, layouts, mesh_vertex_layout,
+    pipeline, shader,
 };
 use crate::gpu_scene::GpuScene;
 
@@ -80,35 +81,24 @@ impl VisibilityPass {
                 buffer_entry(1, STORAGE, stages),
             ],
         );
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("visibility"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
+        let pipeline = pipeline(
+            device,
+            PipelineSpec {
+                label: "visibility",
+                layout: &pipeline_layout,
                 module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
                 buffers: &[Some(mesh_vertex_layout())],
-            },
-            // No culling: open shells and mirrored instances show both sides.
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH,
-                depth_write_enabled: Some(true),
-                // Reverse Z: nearer is larger.
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
+                depth: Some(wgpu::DepthStencilState {
+                    format: DEPTH,
+                    depth_write_enabled: Some(true),
+                    // Reverse Z: nearer is larger.
+                    depth_compare: Some(wgpu::CompareFunction::Greater),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
                 targets: &[Some(NORMAL.into()), Some(IDS.into()), Some(UV.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+            },
+        );
         VisibilityPass { pipeline, layout }
     }
 

@@ -1,8 +1,8 @@
 //! X-ray pass: the meshes drawn see-through over the background, before the edges.
 
 use super::common::{
-    STORAGE, bind_group, blended, buffer_entry, colour_pass, draw_meshes, layouts,
-    mesh_vertex_layout, shader,
+    PipelineSpec, STORAGE, bind_group, blended, buffer_entry, colour_pass, draw_meshes, layouts,
+    mesh_vertex_layout, pipeline, shader,
 };
 use super::shade::COLOUR;
 use crate::gpu_scene::GpuScene;
@@ -27,27 +27,17 @@ impl XrayPass {
                 buffer_entry(2, STORAGE, stages),
             ],
         );
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("xray"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
+        let pipeline = pipeline(
+            device,
+            PipelineSpec {
+                label: "xray",
+                layout: &pipeline_layout,
                 module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
                 buffers: &[Some(mesh_vertex_layout())],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
+                depth: None,
                 targets: &[Some(blended(COLOUR))],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+            },
+        );
         XrayPass { pipeline, layout }
     }
 
