@@ -94,18 +94,27 @@ pub struct Renderer {
     shade: ShadePass,
     edges: EdgesPass,
     xray: XrayPass,
+    /// Format of the colour target the pipelines write.
+    colour: wgpu::TextureFormat,
 }
 
 impl Renderer {
-    /// Builds the passes' pipelines on `gpu`; an adapter that cannot run them gives an error,
-    /// not a panic.
+    /// Builds the passes' pipelines on `gpu` for offscreen images; an adapter that cannot run
+    /// them gives an error, not a panic.
     pub fn new(gpu: &Gpu) -> Result<Renderer, RenderError> {
+        Renderer::for_format(gpu, COLOUR)
+    }
+
+    /// Builds the pipelines for a colour target of `format` (a window surface's, typically
+    /// `Bgra8UnormSrgb`; an sRGB format gives correct output, the shading is linear).
+    pub fn for_format(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<Renderer, RenderError> {
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let renderer = Renderer {
             visibility: VisibilityPass::new(&gpu.device),
-            shade: ShadePass::new(&gpu.device),
-            edges: EdgesPass::new(&gpu.device),
-            xray: XrayPass::new(&gpu.device),
+            shade: ShadePass::new(&gpu.device, format),
+            edges: EdgesPass::new(&gpu.device, format),
+            xray: XrayPass::new(&gpu.device, format),
+            colour: format,
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e.to_string())),
@@ -123,7 +132,15 @@ impl Renderer {
     ) -> Result<RgbaImage, RenderError> {
         let ss = options.supersample.clamp(1, 4);
         let (w, h) = (options.width * ss, options.height * ss);
-        let pixels = self.run(gpu, scene, camera, options, (w, h), Readback::Colour)?;
+        let mut pixels = self.run(gpu, scene, camera, options, (w, h), Readback::Colour)?;
+        if matches!(
+            self.colour,
+            wgpu::TextureFormat::Bgra8UnormSrgb | wgpu::TextureFormat::Bgra8Unorm
+        ) {
+            for px in pixels.chunks_exact_mut(4) {
+                px.swap(0, 2);
+            }
+        }
         let full = RgbaImage::from_raw(w, h, pixels)
             .ok_or_else(|| RenderError::Readback("image size mismatch".into()))?;
         Ok(downsample(&full, ss))
@@ -172,6 +189,21 @@ impl Renderer {
             .collect())
     }
 
+    /// Renders into `target` (a window surface's texture, of `options.width` ×
+    /// `options.height` and of this renderer's format; no supersampling) and submits the work.
+    pub fn render_into(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        camera: &Camera,
+        options: &FrameOptions,
+        target: &wgpu::TextureView,
+    ) -> Result<(), RenderError> {
+        let size = (options.width, options.height);
+        self.run(gpu, scene, camera, options, size, Readback::Into(target))
+            .map(drop)
+    }
+
     /// Records and runs the passes at `w` × `h` and reads back the asked target.
     fn run(
         &self,
@@ -180,7 +212,7 @@ impl Renderer {
         camera: &Camera,
         options: &FrameOptions,
         (w, h): (u32, u32),
-        readback: Readback,
+        readback: Readback<'_>,
     ) -> Result<Vec<u8>, RenderError> {
         let max = gpu.max_side();
         if options.width == 0 || options.height == 0 || w > max || h > max {
@@ -249,17 +281,31 @@ impl Renderer {
             contents: bytemuck::bytes_of(&frame),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let with_edges = edge_mode.is_some() && readback == Readback::Colour;
+        let with_edges = edge_mode.is_some() && readback.shaded();
         let gpu_scene = GpuScene::upload(device, scene, camera, with_edges);
         // Wire bodies are drawn in every mode; B-Rep edges only in the modes with edges.
-        let draw_lines = readback == Readback::Colour && !gpu_scene.edge_calls.is_empty();
+        let draw_lines = readback.shaded() && !gpu_scene.edge_calls.is_empty();
         let targets = VisibilityTargets::new(device, w, h);
         let mut encoder = device.create_command_encoder(&Default::default());
         self.visibility
             .record(device, &mut encoder, &targets, &frame_buffer, &gpu_scene);
+        let shading = Shading {
+            device,
+            camera,
+            options,
+            targets: &targets,
+            frame: &frame_buffer,
+            scene: &gpu_scene,
+            draw_lines,
+        };
         let bytes = match readback {
             Readback::Ids => read_texture(gpu, encoder, &targets.ids_texture, w, h, 16)?,
             Readback::Uv => read_texture(gpu, encoder, &targets.uv_texture, w, h, 8)?,
+            Readback::Into(view) => {
+                self.shade_into(&shading, &mut encoder, view);
+                gpu.queue.submit([encoder.finish()]);
+                Vec::new()
+            }
             Readback::Colour => {
                 let colour = device.create_texture(&wgpu::TextureDescriptor {
                     label: Some("colour"),
@@ -271,48 +317,12 @@ impl Renderer {
                     mip_level_count: 1,
                     sample_count: 1,
                     dimension: wgpu::TextureDimension::D2,
-                    format: COLOUR,
+                    format: self.colour,
                     usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
                     view_formats: &[],
                 });
                 let colour_view = colour.create_view(&Default::default());
-                let mut lights: Vec<LightGpu> =
-                    options.lights.iter().map(|l| l.to_gpu(camera)).collect();
-                if lights.is_empty() {
-                    // Storage bindings may not be empty; the count stays 0.
-                    lights.push(LightGpu::default());
-                }
-                let light_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("lights"),
-                    contents: bytemuck::cast_slice(&lights),
-                    usage: wgpu::BufferUsages::STORAGE,
-                });
-                let inputs = ShadeInputs {
-                    frame: &frame_buffer,
-                    materials: &gpu_scene.materials,
-                    lights: &light_buffer,
-                };
-                self.shade
-                    .record(device, &mut encoder, &targets, &inputs, &colour_view);
-                if options.mode == DisplayMode::XRay {
-                    self.xray.record(
-                        device,
-                        &mut encoder,
-                        &frame_buffer,
-                        &gpu_scene,
-                        &colour_view,
-                    );
-                }
-                if draw_lines {
-                    self.edges.record(
-                        device,
-                        &mut encoder,
-                        &targets,
-                        &frame_buffer,
-                        &gpu_scene,
-                        &colour_view,
-                    );
-                }
+                self.shade_into(&shading, &mut encoder, &colour_view);
                 read_texture(gpu, encoder, &colour, w, h, 4)?
             }
         };
@@ -323,12 +333,75 @@ impl Renderer {
     }
 }
 
-/// Which target a frame reads back.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Readback {
+/// Which target a frame reads back, or the caller's view it draws into.
+#[derive(Clone, Copy, Debug)]
+enum Readback<'a> {
     Colour,
     Ids,
     Uv,
+    Into(&'a wgpu::TextureView),
+}
+
+impl Readback<'_> {
+    /// Whether the frame is shaded (not only the visibility buffer).
+    fn shaded(&self) -> bool {
+        matches!(self, Readback::Colour | Readback::Into(_))
+    }
+}
+
+/// What the shading passes of a frame read.
+struct Shading<'a> {
+    device: &'a wgpu::Device,
+    camera: &'a Camera,
+    options: &'a FrameOptions,
+    targets: &'a VisibilityTargets,
+    frame: &'a wgpu::Buffer,
+    scene: &'a GpuScene,
+    draw_lines: bool,
+}
+
+impl Renderer {
+    /// Records the passes after the visibility pass (shade, x-ray, edges) into `colour_view`.
+    fn shade_into(
+        &self,
+        s: &Shading<'_>,
+        encoder: &mut wgpu::CommandEncoder,
+        colour_view: &wgpu::TextureView,
+    ) {
+        let Shading {
+            device,
+            camera,
+            options,
+            targets,
+            frame,
+            scene,
+            draw_lines,
+        } = *s;
+        let mut lights: Vec<LightGpu> = options.lights.iter().map(|l| l.to_gpu(camera)).collect();
+        if lights.is_empty() {
+            // Storage bindings may not be empty; the count stays 0.
+            lights.push(LightGpu::default());
+        }
+        let light_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("lights"),
+            contents: bytemuck::cast_slice(&lights),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let inputs = ShadeInputs {
+            frame,
+            materials: &scene.materials,
+            lights: &light_buffer,
+        };
+        self.shade
+            .record(device, encoder, targets, &inputs, colour_view);
+        if options.mode == DisplayMode::XRay {
+            self.xray.record(device, encoder, frame, scene, colour_view);
+        }
+        if draw_lines {
+            self.edges
+                .record(device, encoder, targets, frame, scene, colour_view);
+        }
+    }
 }
 
 /// Copies `texture` (`bytes_per_pixel` wide texels) to the CPU, rows unpadded.

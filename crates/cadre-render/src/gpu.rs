@@ -25,11 +25,23 @@ impl Gpu {
         } else {
             &[wgpu::Backends::PRIMARY, wgpu::Backends::GL]
         };
+        Gpu::first_of(tries, !from_env)
+    }
+
+    /// A device on the high-performance adapter of `backends` only (e.g.
+    /// `wgpu::Backends::GL` for llvmpipe through EGL).
+    pub fn headless_on(backends: wgpu::Backends) -> Result<Gpu, RenderError> {
+        Gpu::first_of(&[backends], true)
+    }
+
+    /// The first adapter found trying each set of backends in turn (`force`: the sets replace
+    /// what `WGPU_BACKEND` would choose).
+    fn first_of(tries: &[wgpu::Backends], force: bool) -> Result<Gpu, RenderError> {
         let mut last = String::from("no backend tried");
         let mut found = None;
         for &backends in tries {
             let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-            if !from_env {
+            if force {
                 desc.backends = backends;
             }
             let instance = wgpu::Instance::new(desc);
@@ -45,6 +57,13 @@ impl Gpu {
             }
         }
         let adapter = found.ok_or(RenderError::NoAdapter(last))?;
+        Gpu::from_adapter(&adapter)
+    }
+
+    /// A device on `adapter`: what a window's viewer calls with the adapter it requested as
+    /// compatible with its surface (`wgpu::RequestAdapterOptions::compatible_surface`), then
+    /// renders with [`crate::Renderer::for_format`] into the surface's textures.
+    pub fn from_adapter(adapter: &wgpu::Adapter) -> Result<Gpu, RenderError> {
         let info = adapter.get_info();
         tracing::info!(adapter = %info.name, backend = ?info.backend, "GPU adapter");
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {

@@ -29,3 +29,5 @@ pub use error::RenderError;
 pub use frame::{DisplayMode, FrameOptions, Renderer};
 pub use gpu::Gpu;
 pub use lights::Light;
+/// The wgpu this renderer is built on, for embedders that hand it their window's surface.
+pub use wgpu;

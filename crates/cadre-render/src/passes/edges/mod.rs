@@ -5,7 +5,6 @@ use super::common::{
     PipelineSpec, STORAGE, bind_group, blended, buffer_entry, colour_pass, layouts, pipeline,
     shader, texture_entry,
 };
-use super::shade::COLOUR;
 use super::visibility::VisibilityTargets;
 use crate::gpu_scene::GpuScene;
 
@@ -16,8 +15,8 @@ pub(crate) struct EdgesPass {
 }
 
 impl EdgesPass {
-    /// Builds the pipeline.
-    pub fn new(device: &wgpu::Device) -> EdgesPass {
+    /// Builds the pipeline for a `colour` target of that format.
+    pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> EdgesPass {
         let module = shader(device, "edges", include_str!("edges.wgsl"));
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) = layouts(
@@ -38,7 +37,7 @@ impl EdgesPass {
                 module: &module,
                 buffers: &[],
                 depth: None,
-                targets: &[Some(blended(COLOUR))],
+                targets: &[Some(blended(colour))],
             },
         );
         EdgesPass { pipeline, layout }

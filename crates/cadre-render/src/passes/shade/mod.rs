@@ -6,7 +6,8 @@ use super::common::{
 };
 use super::visibility::VisibilityTargets;
 
-/// Format of the colour target (linear output, sRGB encoding on write).
+/// Format of the offscreen colour target (linear output, sRGB encoding on write); window
+/// surfaces bring theirs (`Renderer::for_format`).
 pub(crate) const COLOUR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 
 /// The buffers the pass reads besides the visibility buffer.
@@ -23,8 +24,8 @@ pub(crate) struct ShadePass {
 }
 
 impl ShadePass {
-    /// Builds the pipeline.
-    pub fn new(device: &wgpu::Device) -> ShadePass {
+    /// Builds the pipeline for a `colour` target of that format.
+    pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> ShadePass {
         let module = shader(device, "shade", include_str!("shade.wgsl"));
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let (layout, pipeline_layout) = layouts(
@@ -46,7 +47,7 @@ impl ShadePass {
                 module: &module,
                 buffers: &[],
                 depth: None,
-                targets: &[Some(COLOUR.into())],
+                targets: &[Some(colour.into())],
             },
         );
         ShadePass { pipeline, layout }

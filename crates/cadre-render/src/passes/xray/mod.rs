@@ -4,7 +4,6 @@ use super::common::{
     PipelineSpec, STORAGE, bind_group, blended, buffer_entry, colour_pass, draw_meshes, layouts,
     mesh_vertex_layout, pipeline, shader,
 };
-use super::shade::COLOUR;
 use crate::gpu_scene::GpuScene;
 
 /// The pass's pipeline and bind group layout.
@@ -14,8 +13,8 @@ pub(crate) struct XrayPass {
 }
 
 impl XrayPass {
-    /// Builds the pipeline.
-    pub fn new(device: &wgpu::Device) -> XrayPass {
+    /// Builds the pipeline for a `colour` target of that format.
+    pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> XrayPass {
         let module = shader(device, "xray", include_str!("xray.wgsl"));
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) = layouts(
@@ -35,7 +34,7 @@ impl XrayPass {
                 module: &module,
                 buffers: &[Some(mesh_vertex_layout())],
                 depth: None,
-                targets: &[Some(blended(COLOUR))],
+                targets: &[Some(blended(colour))],
             },
         );
         XrayPass { pipeline, layout }
