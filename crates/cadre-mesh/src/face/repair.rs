@@ -136,11 +136,25 @@ pub(crate) fn build(
             next_id.set(id + 1);
             Vert { pos: p, id }
         };
+        let along = VerticesAlong::new(&cdt);
         for &[ha, hb] in &conflicts {
-            if (next_id.get() as usize - total) > budget {
-                skipped += usize::from(cdt.try_add_constraint(ha, hb).is_empty());
-            } else {
-                cdt.add_constraint_and_split(ha, hb, &ctor);
+            // A segment through other vertices goes in piece by piece between them: spade's
+            // splitting walk can loop forever on a constraint through a vertex or along
+            // another constraint (random_polygons_always_mesh found one: star and hole
+            // sharing lattice points, zero-length and overlapping sides).
+            let mut pieces = vec![ha];
+            pieces.extend(along.strictly_between(&cdt, ha, hb));
+            pieces.push(hb);
+            for w in pieces.windows(2) {
+                let (p, q) = (w[0], w[1]);
+                if p == q || !cdt.try_add_constraint(p, q).is_empty() {
+                    continue;
+                }
+                if (next_id.get() as usize - total) > budget {
+                    skipped += 1;
+                } else {
+                    cdt.add_constraint_and_split(p, q, &ctor);
+                }
             }
         }
     } else {
@@ -382,6 +396,53 @@ impl<'a> Winding<'a> {
             }
         }
         wn * self.orient
+    }
+}
+
+/// The triangulation's vertices sorted by x, to find those lying on a segment.
+struct VerticesAlong {
+    by_x: Vec<(f64, f64, FixedVertexHandle)>,
+}
+
+impl VerticesAlong {
+    fn new(cdt: &Cdt) -> VerticesAlong {
+        let mut by_x: Vec<(f64, f64, FixedVertexHandle)> = cdt
+            .vertices()
+            .map(|v| (v.position().x, v.position().y, v.fix()))
+            .collect();
+        by_x.sort_by(|a, b| a.0.total_cmp(&b.0));
+        VerticesAlong { by_x }
+    }
+
+    /// Vertices on the open segment `a`–`b` (collinear to rounding), in order from `a`.
+    fn strictly_between(
+        &self,
+        cdt: &Cdt,
+        a: FixedVertexHandle,
+        b: FixedVertexHandle,
+    ) -> Vec<FixedVertexHandle> {
+        let (pa, pb) = (cdt.vertex(a).position(), cdt.vertex(b).position());
+        let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
+        let len2 = dx * dx + dy * dy;
+        if len2.is_nan() || len2 <= 0.0 {
+            return Vec::new();
+        }
+        let (lo, hi) = (pa.x.min(pb.x), pa.x.max(pb.x));
+        let first = self.by_x.partition_point(|v| v.0 < lo);
+        let mut on: Vec<(f64, FixedVertexHandle)> = self.by_x[first..]
+            .iter()
+            .take_while(|v| v.0 <= hi)
+            .filter(|v| v.2 != a && v.2 != b)
+            .filter_map(|&(x, y, h)| {
+                let (ex, ey) = (x - pa.x, y - pa.y);
+                let cross = dx * ey - dy * ex;
+                let t = (dx * ex + dy * ey) / len2;
+                let tolerance = 1e-12 * len2.sqrt() * (ex * ex + ey * ey).sqrt();
+                (cross.abs() <= tolerance && t > 1e-12 && t < 1.0 - 1e-12).then_some((t, h))
+            })
+            .collect();
+        on.sort_by(|p, q| p.0.total_cmp(&q.0));
+        on.into_iter().map(|(_, h)| h).collect()
     }
 }
 
