@@ -204,9 +204,7 @@ fn whole_torus_from_a_vertex_loop() {
 
 /// A cone (base radius 5 at z = 0, apex at z = 10): the side face is bounded by its base
 /// circle and a vertex loop at the apex.
-#[test]
-fn cone_is_closed_at_its_apex() {
-    let data = "
+const CONE: &str = "
 #10=CONICAL_SURFACE('',#8,5.,0.463647609000806);#11=PLANE('',#4);
 #20=CIRCLE('',#8,5.);
 #30=CARTESIAN_POINT('',(5.,0.,0.));#31=VERTEX_POINT('',#30);
@@ -219,6 +217,11 @@ fn cone_is_closed_at_its_apex() {
 #63=ADVANCED_FACE('base',(#62),#11,.F.);
 #90=CLOSED_SHELL('',(#56,#63));#100=MANIFOLD_SOLID_BREP('',#90);
 ";
+
+/// The cone above meshes closed.
+#[test]
+fn cone_is_closed_at_its_apex() {
+    let data = CONE;
     let slant = (125.0f64).sqrt();
     check("cone", data, PI * 5.0 * (5.0 + slant), 250.0 / 3.0 * PI);
 }
@@ -311,19 +314,7 @@ fn trims_keep_exact_curves() {
 /// is a convention).
 #[test]
 fn scene_surface_uv_continue_across_an_apex() {
-    let data = "
-#10=CONICAL_SURFACE('',#8,5.,0.463647609000806);#11=PLANE('',#4);
-#20=CIRCLE('',#8,5.);
-#30=CARTESIAN_POINT('',(5.,0.,0.));#31=VERTEX_POINT('',#30);
-#34=CARTESIAN_POINT('',(0.,0.,10.));#35=VERTEX_POINT('',#34);
-#40=EDGE_CURVE('',#31,#31,#20,.T.);
-#50=ORIENTED_EDGE('',*,*,#40,.F.);#51=EDGE_LOOP('',(#50));#52=FACE_OUTER_BOUND('',#51,.T.);
-#53=VERTEX_LOOP('',#35);#54=FACE_BOUND('',#53,.T.);
-#56=ADVANCED_FACE('side',(#52,#54),#10,.T.);
-#60=ORIENTED_EDGE('',*,*,#40,.T.);#61=EDGE_LOOP('',(#60));#62=FACE_OUTER_BOUND('',#61,.T.);
-#63=ADVANCED_FACE('base',(#62),#11,.F.);
-#90=CLOSED_SHELL('',(#56,#63));#100=MANIFOLD_SOLID_BREP('',#90);
-";
+    let data = CONE;
     let model = model(data);
     let params = MeshParams {
         deflection: 0.05,

@@ -38,8 +38,8 @@ fn fixture(name: &str) -> PathBuf {
     }
 }
 
-/// The fixture's tessellated scene.
-fn scene(name: &str) -> Scene {
+/// The fixture's model and its tessellated scene (0.01 mm, 0.3 rad).
+fn model_and_scene(name: &str) -> (cadre_brep::Model, Scene) {
     let file = cadre_step::syntax::StepFile::read(&fixture(name)).expect("fixture reads");
     let model = cadre_step::map_file(&file);
     let params = MeshParams {
@@ -48,7 +48,13 @@ fn scene(name: &str) -> Scene {
         ..MeshParams::default()
     };
     let mesh = mesh_model(&model, &params, None);
-    cadre_mesh::assemble::build_scene(&model, &mesh)
+    let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
+    (model, scene)
+}
+
+/// The fixture's tessellated scene.
+fn scene(name: &str) -> Scene {
+    model_and_scene(name).1
 }
 
 fn options(width: u32, height: u32) -> FrameOptions {
@@ -233,18 +239,7 @@ fn agreement(
     view: ViewPreset,
     oracle_view: ViewPreset,
 ) -> f64 {
-    let file = cadre_step::syntax::StepFile::read(&fixture(name)).expect("fixture reads");
-    let model = cadre_step::map_file(&file);
-    let mesh = mesh_model(
-        &model,
-        &MeshParams {
-            deflection: 0.01,
-            angle: 0.3,
-            ..MeshParams::default()
-        },
-        None,
-    );
-    let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
+    let (model, scene) = model_and_scene(name);
     let (lo, hi) = scene_bounds(&scene).expect("geometry");
     let (w, h) = (128, 96);
     let camera = Camera::fit(lo, hi, view, false, f64::from(w) / f64::from(h));
@@ -387,14 +382,7 @@ fn surface_uv_in_the_visibility_buffer_lands_on_its_pixel() {
     let gpu = gpu();
     let renderer = Renderer::new(&gpu).expect("pipelines");
     for name in ["pin-assembly.step", "dome-and-cone.step"] {
-        let file = cadre_step::syntax::StepFile::read(&fixture(name)).expect("fixture reads");
-        let model = cadre_step::map_file(&file);
-        let params = MeshParams {
-            deflection: 0.01,
-            angle: 0.3,
-            ..MeshParams::default()
-        };
-        let scene = cadre_mesh::assemble::build_scene(&model, &mesh_model(&model, &params, None));
+        let (model, scene) = model_and_scene(name);
         let (lo, hi) = scene_bounds(&scene).expect("geometry");
         let (w, h) = (128u32, 96u32);
         let aspect = f64::from(w) / f64::from(h);
