@@ -2,13 +2,13 @@
 //! vertices so normals stay sharp at edges and each vertex knows its face), one node per
 //! occurrence (the assembly tree), materials from the STEP colours.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use cadre_brep::trim::EdgeSamples;
-use cadre_brep::{Body, FaceId, Model, PartId, ShellId, SolidId, Style};
+use cadre_brep::{Body, EdgeId, FaceId, LoopKind, Model, PartId, ShellId, SolidId, Style};
 
 use crate::ModelMesh;
-use crate::export::{Material, Primitive, Scene, SceneMesh, SceneNode};
+use crate::export::{Material, Primitive, Scene, SceneEdge, SceneMesh, SceneNode, SceneVertex};
 
 /// Most nodes the scene may get; deeper or wider assembly expansions are cut.
 const MAX_NODES: usize = 4_000_000;
@@ -30,6 +30,8 @@ struct Builder<'a> {
     mesh: &'a ModelMesh,
     materials: Vec<Material>,
     material_index: HashMap<[u16; 4], usize>,
+    /// Faces added to the part being built, for its edges and vertices.
+    part_faces: Vec<FaceId>,
 }
 
 impl Builder<'_> {
@@ -76,6 +78,7 @@ impl Builder<'_> {
         let Some(Some(fm)) = self.mesh.faces.get(face.index()) else {
             return;
         };
+        self.part_faces.push(face);
         let material = self.material(&style);
         let slot = *prims.entry(material).or_insert_with(|| {
             out.primitives.push(Primitive {
@@ -162,6 +165,7 @@ impl Builder<'_> {
             ..SceneMesh::default()
         };
         let mut prims = HashMap::new();
+        self.part_faces.clear();
         for body in &p.bodies {
             match body {
                 Body::Solid(s) => {
@@ -220,7 +224,65 @@ impl Builder<'_> {
             }
         }
         out.primitives.retain(|p| !p.indices.is_empty());
+        self.add_edges_and_vertices(&mut out);
         (!out.primitives.is_empty() || !out.lines.is_empty()).then_some(out)
+    }
+
+    /// The B-Rep edges and vertices of the part's faces ([`Builder::part_faces`]), once each:
+    /// seams (an edge a face uses twice) are left out, as CAD viewers do not draw them.
+    fn add_edges_and_vertices(&mut self, out: &mut SceneMesh) {
+        let model = self.model;
+        let mut edges: Vec<EdgeId> = Vec::new();
+        let mut seen_edges = HashSet::new();
+        for &face in &self.part_faces {
+            let mut uses: HashMap<EdgeId, u32> = HashMap::new();
+            for lp in &model.faces[face.index()].loops {
+                if let LoopKind::Edges(oriented) = &lp.kind {
+                    for oe in oriented {
+                        *uses.entry(oe.edge).or_default() += 1;
+                    }
+                }
+            }
+            let mut own: Vec<EdgeId> = uses
+                .into_iter()
+                .filter(|&(_, n)| n == 1)
+                .map(|(e, _)| e)
+                .collect();
+            own.sort_unstable_by_key(|e| e.index());
+            edges.extend(own.into_iter().filter(|&e| seen_edges.insert(e)));
+        }
+        let mut seen_vertices = HashSet::new();
+        for e in edges {
+            let Some(edge) = model.edges.get(e.index()) else {
+                continue;
+            };
+            let points: Vec<[f32; 3]> = self
+                .mesh
+                .edges
+                .samples(e)
+                .iter()
+                .filter(|s| s.xyz.is_finite())
+                .map(|s| s.xyz.as_vec3().to_array())
+                .collect();
+            if points.len() < 2 {
+                continue;
+            }
+            for v in [edge.start, edge.end] {
+                if let Some(vertex) = model.vertices.get(v.index())
+                    && vertex.point.is_finite()
+                    && seen_vertices.insert(v)
+                {
+                    out.vertices.push(SceneVertex {
+                        step_id: u32::try_from(vertex.step_id).unwrap_or(0),
+                        position: vertex.point.as_vec3().to_array(),
+                    });
+                }
+            }
+            out.edges.push(SceneEdge {
+                step_id: u32::try_from(edge.step_id).unwrap_or(0),
+                points,
+            });
+        }
     }
 }
 
@@ -285,6 +347,7 @@ pub fn build_scene(model: &Model, mesh: &ModelMesh) -> Scene {
         mesh,
         materials: Vec::new(),
         material_index: HashMap::new(),
+        part_faces: Vec::new(),
     };
     let mut scene = Scene::new("mm");
     let mut part_mesh: Vec<Option<usize>> = Vec::with_capacity(model.parts.len());

@@ -81,6 +81,7 @@ mod tests {
                 material: None,
                 face_ids: vec![1, 1, 2, 2],
             }],
+            ..SceneMesh::default()
         };
         let edges = feature_edges(&mesh);
         // 4 + 4 sides, the shared one once, the diagonals not at all.
@@ -115,6 +116,7 @@ mod tests {
                 material: None,
                 face_ids: vec![7, 7, 7, 7],
             }],
+            ..SceneMesh::default()
         };
         let edges = feature_edges(&mesh);
         assert!(

@@ -4,12 +4,15 @@ use cadre_mesh::export::Scene;
 use image::RgbaImage;
 use wgpu::util::DeviceExt;
 
-use crate::gpu_scene::GpuScene;
+use crate::gpu_scene::{FrameScene, PreparedScene};
 use crate::layout::{Frame, LightGpu};
 use crate::passes::edges::EdgesPass;
+use crate::passes::pick::{PickInputs, PickPass};
 use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass};
 use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
 use crate::passes::xray::XrayPass;
+use crate::view::{MAX_HIGHLIGHTED, ViewState};
+use crate::viewport::{LastFrame, PickWindow, Viewport};
 use crate::{Camera, Gpu, Light, RenderError};
 
 /// How faces and edges are drawn.
@@ -94,6 +97,7 @@ pub struct Renderer {
     shade: ShadePass,
     edges: EdgesPass,
     xray: XrayPass,
+    pick: PickPass,
     /// Format of the colour target the pipelines write.
     colour: wgpu::TextureFormat,
 }
@@ -114,12 +118,19 @@ impl Renderer {
             shade: ShadePass::new(&gpu.device, format),
             edges: EdgesPass::new(&gpu.device, format),
             xray: XrayPass::new(&gpu.device, format),
+            pick: PickPass::new(&gpu.device),
             colour: format,
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e.to_string())),
             None => Ok(renderer),
         }
+    }
+
+    /// Uploads `scene`'s geometry once, for any number of frames ([`Renderer::draw`],
+    /// [`Renderer::render_prepared`]).
+    pub fn prepare(&self, gpu: &Gpu, scene: &Scene) -> PreparedScene {
+        PreparedScene::new(&gpu.device, scene)
     }
 
     /// Renders `scene` seen by `camera` into an sRGB image.
@@ -130,9 +141,30 @@ impl Renderer {
         camera: &Camera,
         options: &FrameOptions,
     ) -> Result<RgbaImage, RenderError> {
+        let prepared = self.prepare(gpu, scene);
+        self.render_prepared(gpu, &prepared, camera, options, &ViewState::default())
+    }
+
+    /// Renders a prepared scene in a view's state (colours, hidden parts, highlights) into
+    /// an sRGB image: a viewer's screenshot at any size, independent of its window.
+    pub fn render_prepared(
+        &self,
+        gpu: &Gpu,
+        scene: &PreparedScene,
+        camera: &Camera,
+        options: &FrameOptions,
+        state: &ViewState,
+    ) -> Result<RgbaImage, RenderError> {
         let ss = options.supersample.clamp(1, 4);
         let (w, h) = (options.width * ss, options.height * ss);
-        let mut pixels = self.run(gpu, scene, camera, options, (w, h), Readback::Colour)?;
+        let frame = FrameInput {
+            scene,
+            camera,
+            options,
+            state,
+            size: (w, h),
+        };
+        let mut pixels = self.run(gpu, &frame, Readback::Colour, None)?;
         if matches!(
             self.colour,
             wgpu::TextureFormat::Bgra8UnormSrgb | wgpu::TextureFormat::Bgra8Unorm
@@ -147,7 +179,7 @@ impl Renderer {
     }
 
     /// The visibility buffer's ids at every pixel (no supersampling), row by row: STEP face
-    /// id, instance + 1 (0 = background), material index, 0.
+    /// id, instance + 1 (0 = background), material index, depth (`f32` bits).
     pub fn render_ids(
         &self,
         gpu: &Gpu,
@@ -155,20 +187,16 @@ impl Renderer {
         camera: &Camera,
         options: &FrameOptions,
     ) -> Result<Vec<[u32; 4]>, RenderError> {
-        let size = (options.width, options.height);
-        let bytes = self.run(gpu, scene, camera, options, size, Readback::Ids)?;
-        let word = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-        Ok(bytes
-            .chunks_exact(16)
-            .map(|p| {
-                [
-                    word(&p[0..4]),
-                    word(&p[4..8]),
-                    word(&p[8..12]),
-                    word(&p[12..16]),
-                ]
-            })
-            .collect())
+        let prepared = self.prepare(gpu, scene);
+        let frame = FrameInput {
+            scene: &prepared,
+            camera,
+            options,
+            state: &ViewState::default(),
+            size: (options.width, options.height),
+        };
+        let bytes = self.run(gpu, &frame, Readback::Ids, None)?;
+        Ok(words4(&bytes))
     }
 
     /// The visibility buffer's (u, v) on the exact surface at every pixel (no supersampling),
@@ -180,8 +208,15 @@ impl Renderer {
         camera: &Camera,
         options: &FrameOptions,
     ) -> Result<Vec<[f32; 2]>, RenderError> {
-        let size = (options.width, options.height);
-        let bytes = self.run(gpu, scene, camera, options, size, Readback::Uv)?;
+        let prepared = self.prepare(gpu, scene);
+        let frame = FrameInput {
+            scene: &prepared,
+            camera,
+            options,
+            state: &ViewState::default(),
+            size: (options.width, options.height),
+        };
+        let bytes = self.run(gpu, &frame, Readback::Uv, None)?;
         let float = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(bytes
             .chunks_exact(8)
@@ -199,23 +234,119 @@ impl Renderer {
         options: &FrameOptions,
         target: &wgpu::TextureView,
     ) -> Result<(), RenderError> {
-        let size = (options.width, options.height);
-        self.run(gpu, scene, camera, options, size, Readback::Into(target))
+        let prepared = self.prepare(gpu, scene);
+        let mut viewport = Viewport::new(gpu, options.width, options.height);
+        self.draw(
+            gpu,
+            &mut viewport,
+            &prepared,
+            camera,
+            options,
+            &ViewState::default(),
+            target,
+        )
+    }
+
+    /// A viewer's frame: draws the prepared scene in `state` into `target` (a surface's
+    /// texture of this renderer's format, of the viewport's size; no supersampling) and
+    /// submits the work. The viewport keeps the frame's visibility buffer for
+    /// [`Renderer::pick`] and reuses its targets while the size stays.
+    #[allow(clippy::too_many_arguments)]
+    pub fn draw(
+        &self,
+        gpu: &Gpu,
+        viewport: &mut Viewport,
+        scene: &PreparedScene,
+        camera: &Camera,
+        options: &FrameOptions,
+        state: &ViewState,
+        target: &wgpu::TextureView,
+    ) -> Result<(), RenderError> {
+        let frame = FrameInput {
+            scene,
+            camera,
+            options,
+            state,
+            size: (viewport.width, viewport.height),
+        };
+        self.run(gpu, &frame, Readback::Into(target), Some(viewport))
             .map(drop)
     }
 
-    /// Records and runs the passes at `w` × `h` and reads back the asked target.
+    /// What lies around pixel (`x`, `y`) of the viewport's last frame, `radius` pixels each
+    /// way: its face ids and, drawn now by the pick pass, its edge and vertex ids. `scene`
+    /// must be the one that frame drew.
+    pub fn pick(
+        &self,
+        gpu: &Gpu,
+        viewport: &Viewport,
+        scene: &PreparedScene,
+        (x, y): (u32, u32),
+        radius: u32,
+    ) -> Result<PickWindow, RenderError> {
+        let Some(last) = &viewport.last else {
+            return Err(RenderError::Readback("no frame drawn yet".into()));
+        };
+        let window = PickWindow::around(viewport.width, viewport.height, (x, y), radius);
+        if window.width == 0 || window.height == 0 {
+            return Ok(window);
+        }
+        let device = &gpu.device;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let inputs = PickInputs {
+            frame: &last.frame,
+            draws: &last.draws,
+            segments: &scene.segments,
+            calls: &last.pick_calls,
+        };
+        self.pick.record(
+            device,
+            &mut encoder,
+            &viewport.targets,
+            &inputs,
+            &viewport.pick_view,
+        );
+        let origin = (window.x, window.y);
+        let size = (window.width, window.height);
+        let faces = read_region(
+            gpu,
+            encoder,
+            &viewport.targets.ids_texture,
+            origin,
+            size,
+            16,
+        )?;
+        let encoder = device.create_command_encoder(&Default::default());
+        let lines = read_region(gpu, encoder, &viewport.pick_texture, origin, size, 16)?;
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(RenderError::Gpu(e.to_string()));
+        }
+        Ok(PickWindow {
+            faces: words4(&faces),
+            lines: words4(&lines),
+            ..window
+        })
+    }
+
+    /// Records and runs the passes and reads back the asked target; with a viewport, into
+    /// its targets, which keep the frame for picking.
     fn run(
         &self,
         gpu: &Gpu,
-        scene: &Scene,
-        camera: &Camera,
-        options: &FrameOptions,
-        (w, h): (u32, u32),
+        input: &FrameInput<'_>,
         readback: Readback<'_>,
+        viewport: Option<&mut Viewport>,
     ) -> Result<Vec<u8>, RenderError> {
+        let FrameInput {
+            scene,
+            camera,
+            options,
+            state,
+            size: (w, h),
+        } = *input;
         let max = gpu.max_side();
-        if options.width == 0 || options.height == 0 || w > max || h > max {
+        if options.width == 0 || options.height == 0 || w == 0 || h == 0 || w > max || h > max {
             return Err(RenderError::Size {
                 width: options.width,
                 height: options.height,
@@ -225,82 +356,57 @@ impl Renderer {
         let device = &gpu.device;
         // Validation errors become a RenderError instead of wgpu's default panic.
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let aspect = f64::from(w) / f64::from(h);
-        let bg = options.background;
-        let (fill, edge_mode) = options.mode.fill_and_edges();
-        let frame = Frame {
-            view_proj: camera.view_projection_f32(aspect).to_cols_array_2d(),
-            inv_proj: camera
-                .projection_matrix(aspect)
-                .inverse()
-                .as_mat4()
-                .to_cols_array_2d(),
-            background: [
-                srgb_to_linear(bg[0]),
-                srgb_to_linear(bg[1]),
-                srgb_to_linear(bg[2]),
-                bg[3],
-            ],
-            viewport: [
-                w as f32,
-                h as f32,
-                if camera.is_orthographic() { 1.0 } else { 0.0 },
-                fill,
-            ],
-            edges: [
-                options.edge_width.max(0.1) * (w as f32 / options.width.max(1) as f32),
-                edge_mode.unwrap_or(0.0),
-                8.0 * (w as f32 / options.width.max(1) as f32),
-                2e-3,
-            ],
-            edge_colour: if options.mode == DisplayMode::XRay {
-                [0.05, 0.07, 0.10, 0.6]
-            } else {
-                [0.02, 0.02, 0.025, 1.0]
-            },
-            hidden_colour: [0.25, 0.25, 0.27, 1.0],
-            sky_up: (glam::DMat3::from_mat4(camera.view_rotation()) * glam::DVec3::Z)
-                .as_vec3()
-                .extend(0.0)
-                .to_array(),
-            counts: [options.lights.len() as u32, 0, 0, 0],
-            // Outlines with the visible edges (not in wireframe, which shows edges only).
-            outline: [
-                if matches!(edge_mode, Some(m) if m != 1.0) {
-                    1.0
-                } else {
-                    0.0
-                },
-                0.02,
-                0.0,
-                0.0,
-            ],
-        };
+        let (_, edge_mode) = options.mode.fill_and_edges();
+        let frame = frame_uniform(camera, options, state, (w, h));
         let frame_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("frame"),
             contents: bytemuck::bytes_of(&frame),
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let with_edges = edge_mode.is_some() && readback.shaded();
-        let gpu_scene = GpuScene::upload(device, scene, camera, with_edges);
+        let frame_scene = FrameScene::new(device, scene, camera, state, with_edges);
         // Wire bodies are drawn in every mode; B-Rep edges only in the modes with edges.
-        let draw_lines = readback.shaded() && !gpu_scene.edge_calls.is_empty();
-        let targets = VisibilityTargets::new(device, w, h);
+        let draw_lines = readback.shaded() && !frame_scene.edge_calls.is_empty();
+        let fresh;
+        let targets = match &viewport {
+            Some(v) => &v.targets,
+            None => {
+                fresh = VisibilityTargets::new(device, w, h);
+                &fresh
+            }
+        };
         let mut encoder = device.create_command_encoder(&Default::default());
         self.visibility
-            .record(device, &mut encoder, &targets, &frame_buffer, &gpu_scene);
+            .record(device, &mut encoder, targets, &frame_buffer, &frame_scene);
+        let mut selection: Vec<[u32; 4]> = state
+            .selection
+            .iter()
+            .take(MAX_HIGHLIGHTED)
+            .map(|p| p.to_gpu())
+            .collect();
+        if selection.is_empty() {
+            // Storage bindings may not be empty; the count stays 0.
+            selection.push([0; 4]);
+        }
+        let selection = crate::gpu_scene::buffer(
+            device,
+            "selection",
+            bytemuck::cast_slice(&selection),
+            wgpu::BufferUsages::STORAGE,
+        );
         let shading = Shading {
             device,
             camera,
             options,
-            targets: &targets,
+            targets,
             frame: &frame_buffer,
-            scene: &gpu_scene,
+            scene: &frame_scene,
+            selection: &selection,
             draw_lines,
         };
         let bytes = match readback {
-            Readback::Ids => read_texture(gpu, encoder, &targets.ids_texture, w, h, 16)?,
-            Readback::Uv => read_texture(gpu, encoder, &targets.uv_texture, w, h, 8)?,
+            Readback::Ids => read_region(gpu, encoder, &targets.ids_texture, (0, 0), (w, h), 16)?,
+            Readback::Uv => read_region(gpu, encoder, &targets.uv_texture, (0, 0), (w, h), 8)?,
             Readback::Into(view) => {
                 self.shade_into(&shading, &mut encoder, view);
                 gpu.queue.submit([encoder.finish()]);
@@ -323,14 +429,119 @@ impl Renderer {
                 });
                 let colour_view = colour.create_view(&Default::default());
                 self.shade_into(&shading, &mut encoder, &colour_view);
-                read_texture(gpu, encoder, &colour, w, h, 4)?
+                read_region(gpu, encoder, &colour, (0, 0), (w, h), 4)?
             }
         };
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(RenderError::Gpu(e.to_string()));
         }
+        if let Some(v) = viewport {
+            v.last = Some(LastFrame {
+                frame: frame_buffer,
+                draws: frame_scene.draws,
+                pick_calls: frame_scene.pick_calls,
+            });
+        }
         Ok(bytes)
     }
+}
+
+/// One frame's inputs.
+#[derive(Clone, Copy)]
+struct FrameInput<'a> {
+    scene: &'a PreparedScene,
+    camera: &'a Camera,
+    options: &'a FrameOptions,
+    state: &'a ViewState,
+    /// Target size in pixels (supersampled for images).
+    size: (u32, u32),
+}
+
+/// The frame's uniform for a `w` × `h` target.
+fn frame_uniform(
+    camera: &Camera,
+    options: &FrameOptions,
+    state: &ViewState,
+    (w, h): (u32, u32),
+) -> Frame {
+    let aspect = f64::from(w) / f64::from(h);
+    let bg = options.background;
+    let (fill, edge_mode) = options.mode.fill_and_edges();
+    // Output pixels → target pixels (supersampling).
+    let scale = w as f32 / options.width.max(1) as f32;
+    Frame {
+        view_proj: camera.view_projection_f32(aspect).to_cols_array_2d(),
+        inv_proj: camera
+            .projection_matrix(aspect)
+            .inverse()
+            .as_mat4()
+            .to_cols_array_2d(),
+        background: [
+            srgb_to_linear(bg[0]),
+            srgb_to_linear(bg[1]),
+            srgb_to_linear(bg[2]),
+            bg[3],
+        ],
+        viewport: [
+            w as f32,
+            h as f32,
+            if camera.is_orthographic() { 1.0 } else { 0.0 },
+            fill,
+        ],
+        edges: [
+            options.edge_width.max(0.1) * scale,
+            edge_mode.unwrap_or(0.0),
+            8.0 * scale,
+            2e-3,
+        ],
+        edge_colour: if options.mode == DisplayMode::XRay {
+            [0.05, 0.07, 0.10, 0.6]
+        } else {
+            [0.02, 0.02, 0.025, 1.0]
+        },
+        hidden_colour: [0.25, 0.25, 0.27, 1.0],
+        sky_up: (glam::DMat3::from_mat4(camera.view_rotation()) * glam::DVec3::Z)
+            .as_vec3()
+            .extend(0.0)
+            .to_array(),
+        counts: [
+            options.lights.len() as u32,
+            state.selection.len().min(MAX_HIGHLIGHTED) as u32,
+            0,
+            0,
+        ],
+        // Outlines with the visible edges (not in wireframe, which shows edges only).
+        outline: [
+            if matches!(edge_mode, Some(m) if m != 1.0) {
+                1.0
+            } else {
+                0.0
+            },
+            0.02,
+            0.0,
+            0.0,
+        ],
+        hover: state.hover.map_or([0; 4], |p| p.to_gpu()),
+        // Hover: a light cyan wash; selection: a stronger orange (the usual CAD pair).
+        hover_colour: [0.30, 0.75, 1.0, 0.35],
+        selection_colour: [1.0, 0.45, 0.05, 0.55],
+    }
+}
+
+/// Little-endian `u32` quadruples.
+fn words4(bytes: &[u8]) -> Vec<[u32; 4]> {
+    let word = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+    bytes
+        .chunks_exact(16)
+        .map(|p| {
+            [
+                word(&p[0..4]),
+                word(&p[4..8]),
+                word(&p[8..12]),
+                word(&p[12..16]),
+            ]
+        })
+        .collect()
 }
 
 /// Which target a frame reads back, or the caller's view it draws into.
@@ -356,12 +567,14 @@ struct Shading<'a> {
     options: &'a FrameOptions,
     targets: &'a VisibilityTargets,
     frame: &'a wgpu::Buffer,
-    scene: &'a GpuScene,
+    scene: &'a FrameScene<'a>,
+    selection: &'a wgpu::Buffer,
     draw_lines: bool,
 }
 
 impl Renderer {
-    /// Records the passes after the visibility pass (shade, x-ray, edges) into `colour_view`.
+    /// Records the passes after the visibility pass (shade, see-through parts or x-ray,
+    /// edges) into `colour_view`.
     fn shade_into(
         &self,
         s: &Shading<'_>,
@@ -375,6 +588,7 @@ impl Renderer {
             targets,
             frame,
             scene,
+            selection,
             draw_lines,
         } = *s;
         let mut lights: Vec<LightGpu> = options.lights.iter().map(|l| l.to_gpu(camera)).collect();
@@ -391,26 +605,37 @@ impl Renderer {
             frame,
             materials: &scene.materials,
             lights: &light_buffer,
+            selection,
         };
         self.shade
             .record(device, encoder, targets, &inputs, colour_view);
         if options.mode == DisplayMode::XRay {
             self.xray.record(device, encoder, frame, scene, colour_view);
+        } else {
+            self.xray
+                .record_transparent(device, encoder, frame, scene, (targets, colour_view));
         }
         if draw_lines {
-            self.edges
-                .record(device, encoder, targets, frame, scene, colour_view);
+            self.edges.record(
+                device,
+                encoder,
+                targets,
+                (frame, selection),
+                scene,
+                colour_view,
+            );
         }
     }
 }
 
-/// Copies `texture` (`bytes_per_pixel` wide texels) to the CPU, rows unpadded.
-fn read_texture(
+/// Copies the `w` × `h` region of `texture` at `origin` (`bytes_per_pixel` wide texels) to
+/// the CPU, rows unpadded.
+pub(crate) fn read_region(
     gpu: &Gpu,
     mut encoder: wgpu::CommandEncoder,
     texture: &wgpu::Texture,
-    w: u32,
-    h: u32,
+    (x, y): (u32, u32),
+    (w, h): (u32, u32),
     bytes_per_pixel: u32,
 ) -> Result<Vec<u8>, RenderError> {
     let row = w * bytes_per_pixel;
@@ -426,7 +651,7 @@ fn read_texture(
         wgpu::TexelCopyTextureInfo {
             texture,
             mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
+            origin: wgpu::Origin3d { x, y, z: 0 },
             aspect: wgpu::TextureAspect::All,
         },
         wgpu::TexelCopyBufferInfo {

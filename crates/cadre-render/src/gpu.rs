@@ -44,6 +44,11 @@ impl Gpu {
             if force {
                 desc.backends = backends;
             }
+            // No indirect draws here, so no indirect-call validation: its compute pipeline
+            // fails on NVIDIA's GL driver through EGL ("the selected version doesn't support
+            // COMPUTE_SHADER"), losing the device (seen on an H100, 2026-11-26).
+            desc.flags
+                .remove(wgpu::InstanceFlags::VALIDATION_INDIRECT_CALL);
             let instance = wgpu::Instance::new(desc);
             match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
                 power_preference: wgpu::PowerPreference::HighPerformance,

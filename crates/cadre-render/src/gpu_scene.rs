@@ -1,18 +1,26 @@
-//! A scene's meshes, draws and materials in GPU buffers, placed relative to the camera.
+//! A scene in GPU buffers: the geometry uploaded once ([`PreparedScene`]), and per frame the
+//! draw records that place every instance relative to the camera, with the view's styles
+//! ([`FrameScene`]).
 
-use cadre_mesh::export::Scene;
-use glam::{DMat3, DVec3};
+use cadre_mesh::export::{Scene, SceneMesh};
+use glam::{DAffine3, DMat3, DVec3};
 use wgpu::util::DeviceExt;
 
 use crate::Camera;
 use crate::edges::feature_edges;
 use crate::layout::{Draw, Material, Segment, Vertex};
+use crate::view::{InstanceStyle, ViewState};
 
 /// Default CAD material (light grey, dielectric, fairly rough) for primitives without one.
 const DEFAULT_MATERIAL: Material = Material {
     base_color: [0.62, 0.64, 0.66, 1.0],
     params: [0.0, 0.5, 0.0, 0.0],
 };
+
+/// What a segment of the segment buffer is, in its `b.w` (as `f32` bits).
+pub(crate) const SEGMENT_EDGE: u32 = 1;
+/// A B-Rep vertex: a segment of zero length, drawn only for picking.
+pub(crate) const SEGMENT_VERTEX: u32 = 2;
 
 /// One indexed draw call: `count` indices from `first` of mesh `mesh`, with draw record `draw`.
 pub(crate) struct DrawCall {
@@ -22,87 +30,49 @@ pub(crate) struct DrawCall {
     pub draw: u32,
 }
 
-/// One edge draw: `count` segments from `first` of the segment buffer, placed by draw record
-/// `draw` (any of the instance's records: they share its model matrix).
+/// One segment draw: `count` segments from `first` of the segment buffer, placed by draw
+/// record `draw` (any of the instance's records: they share its model matrix).
 pub(crate) struct EdgeCall {
     pub first: u32,
     pub count: u32,
     pub draw: u32,
 }
 
-/// GPU buffers of a scene.
-pub(crate) struct GpuScene {
-    pub vertices: Vec<wgpu::Buffer>,
-    pub indices: Vec<wgpu::Buffer>,
-    pub draws: wgpu::Buffer,
-    pub materials: wgpu::Buffer,
-    pub calls: Vec<DrawCall>,
-    pub segments: wgpu::Buffer,
-    pub edge_calls: Vec<EdgeCall>,
+/// Where one mesh's pieces lie in the shared buffers.
+#[derive(Clone, Debug, Default)]
+struct MeshRanges {
+    /// Per primitive: first index, index count, material of the scene.
+    primitives: Vec<(u32, u32, Option<usize>)>,
+    /// Wire-body lines in the segment buffer (first, count), drawn in every mode.
+    lines: (u32, u32),
+    /// B-Rep (or feature) edges after the lines, drawn in the modes with edges.
+    edges: (u32, u32),
+    /// B-Rep vertices after the edges, for picking only.
+    points: (u32, u32),
 }
 
-impl GpuScene {
-    /// Uploads `scene` with every instance placed relative to `camera.eye` (in `f64`); the
-    /// B-Rep edges too when `with_edges` (wire bodies always).
-    pub fn upload(
-        device: &wgpu::Device,
-        scene: &Scene,
-        camera: &Camera,
-        with_edges: bool,
-    ) -> GpuScene {
-        // Per mesh: its range in the segment buffer.
+/// A scene's geometry on the GPU, uploaded once and drawn by any number of frames: vertex and
+/// index buffers per mesh, the segments of its edges (with their STEP ids), its materials and
+/// its instances' placements. Made by [`crate::Renderer::prepare`].
+pub struct PreparedScene {
+    pub(crate) vertices: Vec<wgpu::Buffer>,
+    pub(crate) indices: Vec<wgpu::Buffer>,
+    pub(crate) segments: wgpu::Buffer,
+    meshes: Vec<MeshRanges>,
+    materials: Vec<Material>,
+    /// Per instance (scene order): its mesh and world placement.
+    instances: Vec<(Option<usize>, DAffine3)>,
+}
+
+impl PreparedScene {
+    /// Uploads `scene`'s geometry.
+    pub(crate) fn new(device: &wgpu::Device, scene: &Scene) -> PreparedScene {
         let mut segments: Vec<Segment> = Vec::new();
-        let mut mesh_segments: Vec<(u32, u32)> = Vec::with_capacity(scene.meshes.len());
-        for mesh in &scene.meshes {
-            let first = segments.len() as u32;
-            segments.extend(mesh.lines.iter().map(|[a, b]| Segment {
-                a: [a[0], a[1], a[2], 1.0],
-                b: [b[0], b[1], b[2], 1.0],
-            }));
-            if with_edges {
-                segments.extend(feature_edges(mesh).into_iter().map(|[a, b]| Segment {
-                    a: [a[0], a[1], a[2], 1.0],
-                    b: [b[0], b[1], b[2], 1.0],
-                }));
-            }
-            mesh_segments.push((first, segments.len() as u32 - first));
-        }
-        let mut edge_calls = Vec::new();
+        let mut meshes = Vec::with_capacity(scene.meshes.len());
         let mut vertices = Vec::with_capacity(scene.meshes.len());
         let mut indices = Vec::with_capacity(scene.meshes.len());
-        // Per mesh: where each primitive starts in the mesh's index buffer.
-        let mut starts: Vec<Vec<(u32, u32, Option<usize>)>> = Vec::new();
         for mesh in &scene.meshes {
-            let mut face_of_vertex = vec![0u32; mesh.positions.len()];
-            let mut all = Vec::new();
-            let mut prims = Vec::new();
-            for prim in &mesh.primitives {
-                for (t, tri) in prim.indices.chunks_exact(3).enumerate() {
-                    let id = prim.face_ids.get(t).copied().unwrap_or(0);
-                    for &i in tri {
-                        if let Some(f) = face_of_vertex.get_mut(i as usize) {
-                            *f = id;
-                        }
-                    }
-                }
-                prims.push((all.len() as u32, prim.indices.len() as u32, prim.material));
-                all.extend(
-                    prim.indices
-                        .iter()
-                        .map(|&i| i.min(mesh.positions.len().saturating_sub(1) as u32)),
-                );
-            }
-            let verts: Vec<Vertex> = mesh
-                .positions
-                .iter()
-                .enumerate()
-                .map(|(i, &position)| Vertex {
-                    position,
-                    normal: mesh.normals.get(i).copied().unwrap_or([0.0, 0.0, 1.0]),
-                    face_id: face_of_vertex[i],
-                    uv: mesh.surface_uv.get(i).copied().unwrap_or([0.0; 2]),
-                })
-                .collect();
+            let (verts, all, primitives) = mesh_buffers(mesh);
             vertices.push(buffer(
                 device,
                 "vertices",
@@ -115,7 +85,37 @@ impl GpuScene {
                 bytemuck::cast_slice(&all),
                 wgpu::BufferUsages::INDEX,
             ));
-            starts.push(prims);
+            let lines = append(&mut segments, mesh.lines.iter().map(|&[a, b]| (a, b, 0, 0)));
+            let edges = if mesh.edges.is_empty() {
+                // Meshes from the file: edges where the face id or the surface folds.
+                append(
+                    &mut segments,
+                    feature_edges(mesh)
+                        .into_iter()
+                        .map(|[a, b]| (a, b, 0, SEGMENT_EDGE)),
+                )
+            } else {
+                append(
+                    &mut segments,
+                    mesh.edges.iter().flat_map(|e| {
+                        e.points
+                            .windows(2)
+                            .map(move |w| (w[0], w[1], e.step_id, SEGMENT_EDGE))
+                    }),
+                )
+            };
+            let points = append(
+                &mut segments,
+                mesh.vertices
+                    .iter()
+                    .map(|v| (v.position, v.position, v.step_id, SEGMENT_VERTEX)),
+            );
+            meshes.push(MeshRanges {
+                primitives,
+                lines,
+                edges,
+                points,
+            });
         }
         let mut materials: Vec<Material> = scene
             .materials
@@ -125,67 +125,184 @@ impl GpuScene {
                 params: [m.metallic, m.roughness, 0.0, 0.0],
             })
             .collect();
-        let default_material = materials.len() as u32;
         materials.push(DEFAULT_MATERIAL);
+        let instances = scene
+            .instances()
+            .map(|(node, world)| {
+                let mesh = scene.nodes[node].mesh.filter(|&m| m < scene.meshes.len());
+                (mesh, world)
+            })
+            .collect();
+        PreparedScene {
+            vertices,
+            indices,
+            segments: buffer(
+                device,
+                "segments",
+                bytemuck::cast_slice(&segments),
+                wgpu::BufferUsages::STORAGE,
+            ),
+            meshes,
+            materials,
+            instances,
+        }
+    }
 
+    /// Number of instances (placed meshes), in the scene's instance order.
+    pub fn instance_count(&self) -> usize {
+        self.instances.len()
+    }
+
+    /// Index of the default material (after the scene's own).
+    fn default_material(&self) -> u32 {
+        self.materials.len() as u32 - 1
+    }
+}
+
+/// One mesh's vertex records, its index list and where each primitive lies in it.
+type MeshBuffers = (Vec<Vertex>, Vec<u32>, Vec<(u32, u32, Option<usize>)>);
+
+/// The vertex records (each with its face id), the indices and the primitive ranges of `mesh`.
+fn mesh_buffers(mesh: &SceneMesh) -> MeshBuffers {
+    let mut face_of_vertex = vec![0u32; mesh.positions.len()];
+    let mut all = Vec::new();
+    let mut prims = Vec::new();
+    for prim in &mesh.primitives {
+        for (t, tri) in prim.indices.chunks_exact(3).enumerate() {
+            let id = prim.face_ids.get(t).copied().unwrap_or(0);
+            for &i in tri {
+                if let Some(f) = face_of_vertex.get_mut(i as usize) {
+                    *f = id;
+                }
+            }
+        }
+        prims.push((all.len() as u32, prim.indices.len() as u32, prim.material));
+        all.extend(
+            prim.indices
+                .iter()
+                .map(|&i| i.min(mesh.positions.len().saturating_sub(1) as u32)),
+        );
+    }
+    let verts = mesh
+        .positions
+        .iter()
+        .enumerate()
+        .map(|(i, &position)| Vertex {
+            position,
+            normal: mesh.normals.get(i).copied().unwrap_or([0.0, 0.0, 1.0]),
+            face_id: face_of_vertex[i],
+            uv: mesh.surface_uv.get(i).copied().unwrap_or([0.0; 2]),
+        })
+        .collect();
+    (verts, all, prims)
+}
+
+/// Appends segments `(a, b, id, kind)` and returns their (first, count).
+fn append(
+    segments: &mut Vec<Segment>,
+    items: impl Iterator<Item = ([f32; 3], [f32; 3], u32, u32)>,
+) -> (u32, u32) {
+    let first = segments.len() as u32;
+    segments.extend(items.map(|(a, b, id, kind)| Segment {
+        a: [a[0], a[1], a[2], f32::from_bits(id)],
+        b: [b[0], b[1], b[2], f32::from_bits(kind)],
+    }));
+    (first, segments.len() as u32 - first)
+}
+
+/// What one frame draws: the draw records (instances placed relative to the camera, with
+/// the view's colours), the mesh draw calls split into opaque and see-through, and the
+/// segment calls.
+pub(crate) struct FrameScene<'a> {
+    pub geometry: &'a PreparedScene,
+    pub draws: wgpu::Buffer,
+    pub materials: wgpu::Buffer,
+    /// Opaque triangles, drawn into the visibility buffer.
+    pub calls: Vec<DrawCall>,
+    /// Triangles of see-through instances, blended after shading.
+    pub transparent: Vec<DrawCall>,
+    /// Lines and edges of visible instances.
+    pub edge_calls: Vec<EdgeCall>,
+    /// B-Rep edges and vertices of visible instances, for the pick pass.
+    pub pick_calls: Vec<EdgeCall>,
+}
+
+impl<'a> FrameScene<'a> {
+    /// The draw records of `geometry` seen by `camera` in `state`; B-Rep edges are drawn when
+    /// `with_edges` (wire bodies always).
+    pub fn new(
+        device: &wgpu::Device,
+        geometry: &'a PreparedScene,
+        camera: &Camera,
+        state: &ViewState,
+        with_edges: bool,
+    ) -> FrameScene<'a> {
+        let mut materials = geometry.materials.clone();
         let rotation = DMat3::from_mat4(camera.view_rotation());
         let mut draws = Vec::new();
         let mut calls = Vec::new();
-        for (instance, (node, world)) in scene.instances().enumerate() {
-            let Some(mesh) = scene.nodes[node].mesh.filter(|&m| m < scene.meshes.len()) else {
+        let mut transparent = Vec::new();
+        let mut edge_calls = Vec::new();
+        let mut pick_calls = Vec::new();
+        for (instance, &(mesh, world)) in geometry.instances.iter().enumerate() {
+            let Some(mesh) = mesh else { continue };
+            let style = state
+                .instances
+                .get(instance)
+                .copied()
+                .unwrap_or(InstanceStyle::default());
+            if !style.visible {
                 continue;
-            };
-            let linear = world.matrix3;
-            // Normals transform by the inverse transpose; mirrors are fine, singular
-            // placements get the plain rotation part.
-            let normal = if linear.determinant().abs() > 1e-300 {
-                rotation * linear.inverse().transpose()
-            } else {
-                rotation * linear
-            };
-            let translation: DVec3 = world.translation - camera.eye;
-            let model = glam::DMat4::from_cols(
-                linear.x_axis.extend(0.0),
-                linear.y_axis.extend(0.0),
-                linear.z_axis.extend(0.0),
-                translation.extend(1.0),
-            )
-            .as_mat4();
-            let n = normal.as_mat3();
-            let record = |material: u32| Draw {
-                model: model.to_cols_array_2d(),
-                normal: [
-                    n.x_axis.extend(0.0).to_array(),
-                    n.y_axis.extend(0.0).to_array(),
-                    n.z_axis.extend(0.0).to_array(),
-                ],
-                material,
-                instance: instance as u32,
-                pad: [0; 2],
-            };
-            let (seg_first, seg_count) = mesh_segments[mesh];
-            if seg_count > 0 {
-                edge_calls.push(EdgeCall {
-                    first: seg_first,
-                    count: seg_count,
-                    draw: draws.len() as u32,
-                });
-                // The instance's own record, whatever its primitives.
-                draws.push(record(default_material));
             }
-            for &(first, count, material) in &starts[mesh] {
+            // A colour of the view replaces the part's materials with one of its own.
+            let colour_material = style.colour.map(|c| {
+                materials.push(Material {
+                    base_color: c,
+                    params: DEFAULT_MATERIAL.params,
+                });
+                materials.len() as u32 - 1
+            });
+            let record = placement(camera, rotation, world, instance as u32);
+            let ranges = &geometry.meshes[mesh];
+            let own = draws.len() as u32;
+            // The instance's own record, whatever its primitives.
+            draws.push(record(geometry.default_material()));
+            let segment_call = |calls: &mut Vec<EdgeCall>, (first, count): (u32, u32)| {
+                if count > 0 {
+                    calls.push(EdgeCall {
+                        first,
+                        count,
+                        draw: own,
+                    });
+                }
+            };
+            segment_call(&mut edge_calls, ranges.lines);
+            if with_edges {
+                segment_call(&mut edge_calls, ranges.edges);
+            }
+            segment_call(&mut pick_calls, ranges.edges);
+            segment_call(&mut pick_calls, ranges.points);
+            for &(first, count, material) in &ranges.primitives {
                 if count == 0 {
                     continue;
                 }
-                let material = material
-                    .filter(|&m| m < scene.materials.len())
-                    .map_or(default_material, |m| m as u32);
-                calls.push(DrawCall {
+                let material = colour_material.unwrap_or_else(|| {
+                    material
+                        .filter(|&m| m + 1 < geometry.materials.len())
+                        .map_or(geometry.default_material(), |m| m as u32)
+                });
+                let alpha = materials[material as usize].base_color[3];
+                let call = DrawCall {
                     mesh,
                     first,
                     count,
                     draw: draws.len() as u32,
-                });
+                };
+                if alpha < 0.999 {
+                    transparent.push(call);
+                } else {
+                    calls.push(call);
+                }
                 draws.push(record(material));
             }
         }
@@ -193,9 +310,8 @@ impl GpuScene {
             // Storage bindings may not be empty.
             draws.push(Draw::default());
         }
-        GpuScene {
-            vertices,
-            indices,
+        FrameScene {
+            geometry,
             draws: buffer(
                 device,
                 "draws",
@@ -209,19 +325,53 @@ impl GpuScene {
                 wgpu::BufferUsages::STORAGE,
             ),
             calls,
-            segments: buffer(
-                device,
-                "segments",
-                bytemuck::cast_slice(&segments),
-                wgpu::BufferUsages::STORAGE,
-            ),
+            transparent,
             edge_calls,
+            pick_calls,
         }
     }
 }
 
-/// A buffer initialised with `bytes` (at least 4 bytes, as wgpu requires non-empty buffers).
-fn buffer(
+/// The draw record maker of one instance placed by `world`, relative to the camera's eye (in
+/// `f64`, so parts far from the origin keep their precision).
+fn placement(
+    camera: &Camera,
+    rotation: DMat3,
+    world: DAffine3,
+    instance: u32,
+) -> impl Fn(u32) -> Draw {
+    let linear = world.matrix3;
+    // Normals transform by the inverse transpose; mirrors are fine, singular placements get
+    // the plain rotation part.
+    let normal = if linear.determinant().abs() > 1e-300 {
+        rotation * linear.inverse().transpose()
+    } else {
+        rotation * linear
+    };
+    let translation: DVec3 = world.translation - camera.eye;
+    let model = glam::DMat4::from_cols(
+        linear.x_axis.extend(0.0),
+        linear.y_axis.extend(0.0),
+        linear.z_axis.extend(0.0),
+        translation.extend(1.0),
+    )
+    .as_mat4();
+    let n = normal.as_mat3();
+    move |material: u32| Draw {
+        model: model.to_cols_array_2d(),
+        normal: [
+            n.x_axis.extend(0.0).to_array(),
+            n.y_axis.extend(0.0).to_array(),
+            n.z_axis.extend(0.0).to_array(),
+        ],
+        material,
+        instance,
+        pad: [0; 2],
+    }
+}
+
+/// A buffer initialised with `bytes` (at least 16 bytes, as wgpu requires non-empty buffers).
+pub(crate) fn buffer(
     device: &wgpu::Device,
     label: &str,
     bytes: &[u8],
@@ -229,7 +379,7 @@ fn buffer(
 ) -> wgpu::Buffer {
     let padded;
     let contents = if bytes.is_empty() {
-        padded = [0u8; 16];
+        padded = [0u8; 32];
         &padded[..]
     } else {
         bytes

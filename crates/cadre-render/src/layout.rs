@@ -42,8 +42,15 @@ pub struct Frame {
     pub outline: [f32; 4],
     /// World up in view space (the environment's zenith), w unused.
     pub sky_up: [f32; 4],
-    /// Number of lights, unused ×3.
+    /// Number of lights, number of selected items, unused ×2.
     pub counts: [u32; 4],
+    /// What the cursor is over: kind (0 nothing, 1 face, 2 edge, 3 vertex, 4 part),
+    /// instance + 1, STEP id, unused.
+    pub hover: [u32; 4],
+    /// Tint of hovered items, linear RGB and strength.
+    pub hover_colour: [f32; 4],
+    /// Tint of selected items, linear RGB and strength.
+    pub selection_colour: [f32; 4],
 }
 
 /// A light in view space, as the shade pass reads it.
@@ -60,13 +67,13 @@ pub struct LightGpu {
     pub params: [f32; 4],
 }
 
-/// A segment of a B-Rep edge, mesh-local (w unused).
+/// A segment of a B-Rep edge or wire, or a B-Rep vertex (both ends equal), mesh-local.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct Segment {
-    /// First end.
+    /// First end (xyz); STEP id of its edge or vertex as `u32` bits (w, 0 for none).
     pub a: [f32; 4],
-    /// Second end.
+    /// Second end (xyz); kind as `u32` bits (w: 0 wire line, 1 edge, 2 vertex).
     pub b: [f32; 4],
 }
 

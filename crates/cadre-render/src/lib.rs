@@ -22,12 +22,17 @@ pub mod layout;
 mod lights;
 mod passes;
 pub mod raycast;
+mod view;
+mod viewport;
 
 pub use bounds::scene_bounds;
 pub use camera::{Camera, Projection, ViewPreset};
 pub use error::RenderError;
 pub use frame::{DisplayMode, FrameOptions, Renderer};
 pub use gpu::Gpu;
+pub use gpu_scene::PreparedScene;
 pub use lights::Light;
+pub use view::{InstanceStyle, MAX_HIGHLIGHTED, Pick, ViewState};
+pub use viewport::{PickHit, PickWindow, Viewport};
 /// The wgpu this renderer is built on, for embedders that hand it their window's surface.
 pub use wgpu;

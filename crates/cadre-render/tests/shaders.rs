@@ -41,7 +41,7 @@ fn struct_size(module: &naga::Module, name: &str) -> Option<usize> {
 fn shaders_validate_and_share_the_rust_layouts() {
     let visibility = module("visibility");
     // The shared structs are declared once, in common.wgsl, for every pass.
-    for pass in ["visibility", "shade", "edges", "xray"] {
+    for pass in ["visibility", "shade", "edges", "xray", "pick"] {
         let own = std::fs::read_to_string(
             Path::new(env!("CARGO_MANIFEST_DIR"))
                 .join("src/passes")
@@ -57,6 +57,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
     let shade = module("shade");
     let edges = module("edges");
     let xray = module("xray");
+    let pick = module("pick");
     for (m, name, size) in [
         (&visibility, "Frame", size_of::<Frame>()),
         (&visibility, "Draw", size_of::<Draw>()),
@@ -69,6 +70,8 @@ fn shaders_validate_and_share_the_rust_layouts() {
         (&xray, "Frame", size_of::<Frame>()),
         (&xray, "Draw", size_of::<Draw>()),
         (&xray, "Material", size_of::<Material>()),
+        (&pick, "Frame", size_of::<Frame>()),
+        (&pick, "Segment", size_of::<Segment>()),
     ] {
         assert_eq!(struct_size(m, name), Some(size), "{name}");
     }

@@ -59,6 +59,30 @@ pub struct SceneMesh {
     pub lines: Vec<[[f32; 3]; 2]>,
     /// Triangle sets sharing [`SceneMesh::positions`].
     pub primitives: Vec<Primitive>,
+    /// The B-Rep edges bounding this mesh's faces, once each (seams left out), as polylines
+    /// through the samples every face's mesh shares: what the renderer draws as edges and
+    /// picks by id. Empty for meshes from the file (the renderer then finds feature edges).
+    pub edges: Vec<SceneEdge>,
+    /// The B-Rep vertices at the ends of [`SceneMesh::edges`], once each, for picking.
+    pub vertices: Vec<SceneVertex>,
+}
+
+/// A B-Rep edge of a [`SceneMesh`], as a polyline.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SceneEdge {
+    /// STEP entity id of the edge (`EDGE_CURVE`), 0 when it has none.
+    pub step_id: u32,
+    /// Points from the edge's start to its end, mesh-local.
+    pub points: Vec<[f32; 3]>,
+}
+
+/// A B-Rep vertex of a [`SceneMesh`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SceneVertex {
+    /// STEP entity id of the vertex (`VERTEX_POINT`), 0 when it has none.
+    pub step_id: u32,
+    /// Position, mesh-local.
+    pub position: [f32; 3],
 }
 
 /// Triangles of one mesh with one material.

@@ -1,7 +1,7 @@
 //! Pieces every pass uses: its shader module (the shared WGSL declarations first), bind group
 //! layout entries, the mesh vertex layout, overlay render passes and drawing a scene's meshes.
 
-use crate::gpu_scene::GpuScene;
+use crate::gpu_scene::{DrawCall, FrameScene};
 use crate::layout::Vertex;
 
 /// The WGSL every pass starts with (`common.wgsl`: the layout structs and the frame uniform).
@@ -142,11 +142,16 @@ pub(crate) fn colour_pass<'e>(
 }
 
 /// Draws every (primitive, instance) of `scene`, the draw record picked by the instance index.
-pub(crate) fn draw_meshes(pass: &mut wgpu::RenderPass<'_>, scene: &GpuScene) {
-    for call in &scene.calls {
-        pass.set_vertex_buffer(0, scene.vertices[call.mesh].slice(..));
+pub(crate) fn draw_meshes(
+    pass: &mut wgpu::RenderPass<'_>,
+    scene: &FrameScene<'_>,
+    calls: &[DrawCall],
+) {
+    let geometry = scene.geometry;
+    for call in calls {
+        pass.set_vertex_buffer(0, geometry.vertices[call.mesh].slice(..));
         pass.set_index_buffer(
-            scene.indices[call.mesh].slice(..),
+            geometry.indices[call.mesh].slice(..),
             wgpu::IndexFormat::Uint32,
         );
         pass.draw_indexed(
@@ -162,13 +167,15 @@ pub(crate) struct PipelineSpec<'a> {
     pub label: &'a str,
     pub layout: &'a wgpu::PipelineLayout,
     pub module: &'a wgpu::ShaderModule,
+    /// Fragment entry point (the vertex one is `vs_main`).
+    pub fragment: &'a str,
     /// Vertex buffers (none: vertices are built from storage buffers or the vertex index).
     pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     pub depth: Option<wgpu::DepthStencilState>,
     pub targets: &'a [Option<wgpu::ColorTargetState>],
 }
 
-/// A render pipeline with entry points `vs_main` and `fs_main`, triangle lists, no culling
+/// A render pipeline with entry points `vs_main` and `spec.fragment`, triangle lists, no culling
 /// (open shells and mirrored instances show both sides), no multisampling.
 pub(crate) fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -185,7 +192,7 @@ pub(crate) fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::R
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: spec.module,
-            entry_point: Some("fs_main"),
+            entry_point: Some(spec.fragment),
             compilation_options: Default::default(),
             targets: spec.targets,
         }),

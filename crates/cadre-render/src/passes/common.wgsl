@@ -13,6 +13,9 @@ struct Frame {
     outline: vec4<f32>,
     sky_up: vec4<f32>,
     counts: vec4<u32>,
+    hover: vec4<u32>,
+    hover_colour: vec4<f32>,
+    selection_colour: vec4<f32>,
 }
 
 struct Draw {
@@ -43,3 +46,56 @@ struct Light {
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
+
+// Whether the item (kind: 1 face, 2 edge, 3 vertex; instance + 1; STEP id) is `wanted`
+// itself or, for a whole part (kind 4), belongs to its instance.
+fn is_target(wanted: vec4<u32>, kind: u32, instance1: u32, id: u32) -> bool {
+    if wanted.x == 0u || wanted.y != instance1 {
+        return false;
+    }
+    return wanted.x == 4u || (wanted.x == kind && wanted.z == id);
+}
+
+// A segment of `segments` as a screen-aligned quad `half` pixels wide each side (plus one
+// pixel of fringe, and past the ends): corner `vi % 6` of segment `vi / 6`, placed by draw
+// record `d`. A segment of zero length is a square (a B-Rep vertex).
+struct LineOut {
+    @builtin(position) clip: vec4<f32>,
+    // Signed distance across the line and distance along it, in pixels.
+    @location(0) @interpolate(linear) across: f32,
+    @location(1) @interpolate(linear) along: f32,
+    @location(2) @interpolate(flat) segment: u32,
+    @location(3) @interpolate(flat) draw: u32,
+}
+
+fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32) -> LineOut {
+    let corner = vi % 6u;
+    let ca = frame.view_proj * (d.model * vec4<f32>(seg.a.xyz, 1.0));
+    let cb = frame.view_proj * (d.model * vec4<f32>(seg.b.xyz, 1.0));
+    let size = frame.viewport.xy;
+    let sa = (ca.xy / ca.w) * 0.5 * size;
+    let sb = (cb.xy / cb.w) * 0.5 * size;
+    var dir = sb - sa;
+    let len = length(dir);
+    dir = select(vec2<f32>(1.0, 0.0), dir / len, len > 1e-6);
+    let side = vec2<f32>(-dir.y, dir.x);
+    let half = half_width + 1.0;
+    // Corners: (end, side) for the two triangles (0,0) (1,0) (1,1) / (0,0) (1,1) (0,1).
+    var ends = array<u32, 6>(0u, 1u, 1u, 0u, 1u, 0u);
+    var sides = array<f32, 6>(-1.0, -1.0, 1.0, -1.0, 1.0, 1.0);
+    let at_b = ends[corner] == 1u;
+    let c = select(ca, cb, at_b);
+    let s = select(sa, sb, at_b) + side * sides[corner] * half
+        + dir * select(-1.0, 1.0, at_b) * select(1.0, half, len <= 1e-6);
+    var out: LineOut;
+    out.clip = vec4<f32>(s / (0.5 * size) * c.w, c.z, c.w);
+    out.across = sides[corner] * half;
+    out.along = select(0.0, len, at_b);
+    out.segment = vi / 6u;
+    return out;
+}
+
+// Reverse-Z depth kept in the visibility buffer's ids at `p` (0 for the background).
+fn scene_depth_at(ids: vec4<u32>) -> f32 {
+    return select(0.0, bitcast<f32>(ids.w), ids.y != 0u);
+}

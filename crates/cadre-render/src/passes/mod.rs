@@ -1,10 +1,12 @@
 //! The frame's passes, in order, each in its own folder with its WGSL:
 //! [`visibility`] (every surface back-end writes depth, normal and ids), [`shade`]
 //! (lighting from the visibility buffer alone), [`xray`] (see-through faces, x-ray mode only),
-//! then [`edges`] (B-Rep edges as lines).
+//! then [`edges`] (B-Rep edges as lines); [`pick`] (edge and vertex ids) runs when a viewer
+//! picks.
 
 pub(crate) mod common;
 pub(crate) mod edges;
+pub(crate) mod pick;
 pub(crate) mod shade;
 pub(crate) mod visibility;
 pub(crate) mod xray;

@@ -8,51 +8,58 @@
 @group(0) @binding(2) var<storage, read> segments: array<Segment>;
 @group(0) @binding(3) var ids_tex: texture_2d<u32>;
 
-struct LineOut {
-    @builtin(position) clip: vec4<f32>,
-    // Signed distance across the line and distance along it, in pixels.
-    @location(0) @interpolate(linear) across: f32,
-    @location(1) @interpolate(linear) along: f32,
-}
+@group(0) @binding(4) var<storage, read> selection: array<vec4<u32>>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> LineOut {
     let seg = segments[vi / 6u];
-    let corner = vi % 6u;
     let d = draws[draw_index];
-    let ca = frame.view_proj * (d.model * vec4<f32>(seg.a.xyz, 1.0));
-    let cb = frame.view_proj * (d.model * vec4<f32>(seg.b.xyz, 1.0));
-    let size = frame.viewport.xy;
-    let sa = (ca.xy / ca.w) * 0.5 * size;
-    let sb = (cb.xy / cb.w) * 0.5 * size;
-    var dir = sb - sa;
-    let len = length(dir);
-    dir = select(vec2<f32>(1.0, 0.0), dir / len, len > 1e-6);
-    let side = vec2<f32>(-dir.y, dir.x);
-    // One pixel beyond the half width for the anti-aliased fringe, and past the ends.
-    let half = 0.5 * frame.edges.x + 1.0;
-    // Corners: (end, side) for the two triangles (0,0) (1,0) (1,1) / (0,0) (1,1) (0,1).
-    var ends = array<u32, 6>(0u, 1u, 1u, 0u, 1u, 0u);
-    var sides = array<f32, 6>(-1.0, -1.0, 1.0, -1.0, 1.0, 1.0);
-    let at_b = ends[corner] == 1u;
-    let c = select(ca, cb, at_b);
-    let s = select(sa, sb, at_b) + side * sides[corner] * half
-        + dir * select(-1.0, 1.0, at_b);
-    var out: LineOut;
-    out.clip = vec4<f32>(s / (0.5 * size) * c.w, c.z, c.w);
-    out.across = sides[corner] * half;
-    out.along = select(0.0, len, at_b);
+    var width = frame.edges.x;
+    if is_highlighted(seg, d) {
+        width = max(2.0 * width, width + 2.0);
+    }
+    var out = segment_quad(seg, vi, d, 0.5 * width);
+    out.draw = draw_index;
     return out;
+}
+
+// Whether the segment's edge (or part) is hovered or selected.
+fn is_highlighted(seg: Segment, d: Draw) -> bool {
+    return highlight_of(seg, d).w > 0.0;
+}
+
+// The highlight colour of the segment's edge: selection over hover, alpha 0 for none.
+fn highlight_of(seg: Segment, d: Draw) -> vec4<f32> {
+    let id = bitcast<u32>(seg.a.w);
+    if bitcast<u32>(seg.b.w) != 1u {
+        return vec4<f32>(0.0);
+    }
+    for (var i = 0u; i < frame.counts.y; i++) {
+        if is_target(selection[i], 2u, d.instance + 1u, id) {
+            return frame.selection_colour;
+        }
+    }
+    if is_target(frame.hover, 2u, d.instance + 1u, id) {
+        return frame.hover_colour;
+    }
+    return vec4<f32>(0.0);
 }
 
 @fragment
 fn fs_main(in: LineOut) -> @location(0) vec4<f32> {
     let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy), 0);
-    let scene_depth = select(0.0, bitcast<f32>(ids.w), ids.y != 0u);
+    let scene_depth = scene_depth_at(ids);
+    let seg = segments[in.segment];
+    let highlight = highlight_of(seg, draws[in.draw]);
     // Reverse Z: nearer is larger. The tolerance keeps an edge on its own faces visible.
     let hidden = in.clip.z < scene_depth * (1.0 - frame.edges.w);
     let mode = u32(frame.edges.y + 0.5);
     var colour = frame.edge_colour;
+    var width = frame.edges.x;
+    if highlight.w > 0.0 {
+        colour = vec4<f32>(highlight.rgb, 1.0);
+        width = max(2.0 * width, width + 2.0);
+    }
     if hidden {
         if mode == 0u {
             discard;
@@ -64,7 +71,7 @@ fn fs_main(in: LineOut) -> @location(0) vec4<f32> {
             colour = frame.hidden_colour;
         }
     }
-    let coverage = clamp(0.5 * frame.edges.x + 0.5 - abs(in.across), 0.0, 1.0);
+    let coverage = clamp(0.5 * width + 0.5 - abs(in.across), 0.0, 1.0);
     if coverage <= 0.0 {
         discard;
     }

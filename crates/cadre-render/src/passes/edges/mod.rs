@@ -6,7 +6,7 @@ use super::common::{
     shader, texture_entry,
 };
 use super::visibility::VisibilityTargets;
-use crate::gpu_scene::GpuScene;
+use crate::gpu_scene::FrameScene;
 
 /// The pass's pipeline and bind group layout.
 pub(crate) struct EdgesPass {
@@ -27,6 +27,7 @@ impl EdgesPass {
                 buffer_entry(1, STORAGE, stages),
                 buffer_entry(2, STORAGE, stages),
                 texture_entry(3, wgpu::TextureSampleType::Uint),
+                buffer_entry(4, STORAGE, stages),
             ],
         );
         let pipeline = pipeline(
@@ -35,6 +36,7 @@ impl EdgesPass {
                 label: "edges",
                 layout: &pipeline_layout,
                 module: &module,
+                fragment: "fs_main",
                 buffers: &[],
                 depth: None,
                 targets: &[Some(blended(colour))],
@@ -49,8 +51,8 @@ impl EdgesPass {
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         visibility: &VisibilityTargets,
-        frame: &wgpu::Buffer,
-        scene: &GpuScene,
+        (frame, selection): (&wgpu::Buffer, &wgpu::Buffer),
+        scene: &FrameScene<'_>,
         target: &wgpu::TextureView,
     ) {
         if scene.edge_calls.is_empty() {
@@ -63,8 +65,9 @@ impl EdgesPass {
             &[
                 frame.as_entire_binding(),
                 scene.draws.as_entire_binding(),
-                scene.segments.as_entire_binding(),
+                scene.geometry.segments.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&visibility.ids),
+                selection.as_entire_binding(),
             ],
         );
         let mut pass = colour_pass(encoder, "edges", target, None);

@@ -15,6 +15,7 @@ pub(crate) struct ShadeInputs<'a> {
     pub frame: &'a wgpu::Buffer,
     pub materials: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
+    pub selection: &'a wgpu::Buffer,
 }
 
 /// The pass's pipeline and bind group layout.
@@ -37,6 +38,7 @@ impl ShadePass {
                 texture_entry(2, wgpu::TextureSampleType::Float { filterable: false }),
                 texture_entry(3, wgpu::TextureSampleType::Uint),
                 buffer_entry(4, STORAGE, fragment),
+                buffer_entry(5, STORAGE, fragment),
             ],
         );
         let pipeline = pipeline(
@@ -45,6 +47,7 @@ impl ShadePass {
                 label: "shade",
                 layout: &pipeline_layout,
                 module: &module,
+                fragment: "fs_main",
                 buffers: &[],
                 depth: None,
                 targets: &[Some(colour.into())],
@@ -66,6 +69,7 @@ impl ShadePass {
             frame,
             materials,
             lights,
+            selection,
         } = inputs;
         let bind = bind_group(
             device,
@@ -77,6 +81,7 @@ impl ShadePass {
                 wgpu::BindingResource::TextureView(&visibility.normal),
                 wgpu::BindingResource::TextureView(&visibility.ids),
                 lights.as_entire_binding(),
+                selection.as_entire_binding(),
             ],
         );
         let mut pass = colour_pass(encoder, "shade", target, Some(wgpu::Color::BLACK));

@@ -10,6 +10,7 @@
 @group(0) @binding(2) var normal_tex: texture_2d<f32>;
 @group(0) @binding(3) var ids_tex: texture_2d<u32>;
 @group(0) @binding(4) var<storage, read> lights: array<Light>;
+@group(0) @binding(5) var<storage, read> selection: array<vec4<u32>>;
 
 const SKY: vec3<f32> = vec3<f32>(0.46, 0.50, 0.56);
 const HORIZON: vec3<f32> = vec3<f32>(0.34, 0.34, 0.34);
@@ -176,5 +177,18 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
         colour += light(n, v, l, radiance, base, metallic, roughness);
     }
     colour += ambient(n, v, base, metallic, roughness);
-    return vec4<f32>(aces(colour), 1.0);
+    return vec4<f32>(highlighted(aces(colour), ids), 1.0);
+}
+
+// `colour` tinted when its face (or part) is selected or hovered.
+fn highlighted(colour: vec3<f32>, ids: vec4<u32>) -> vec3<f32> {
+    for (var i = 0u; i < frame.counts.y; i++) {
+        if is_target(selection[i], 1u, ids.y, ids.x) {
+            return mix(colour, frame.selection_colour.rgb, frame.selection_colour.w);
+        }
+    }
+    if is_target(frame.hover, 1u, ids.y, ids.x) {
+        return mix(colour, frame.hover_colour.rgb, frame.hover_colour.w);
+    }
+    return colour;
 }

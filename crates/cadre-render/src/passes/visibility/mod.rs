@@ -4,7 +4,7 @@ use super::common::{
     PipelineSpec, STORAGE, bind_group, buffer_entry, draw_meshes, layouts, mesh_vertex_layout,
     pipeline, shader,
 };
-use crate::gpu_scene::GpuScene;
+use crate::gpu_scene::FrameScene;
 
 /// Formats of the visibility buffer.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -87,6 +87,7 @@ impl VisibilityPass {
                 label: "visibility",
                 layout: &pipeline_layout,
                 module: &module,
+                fragment: "fs_main",
                 buffers: &[Some(mesh_vertex_layout())],
                 depth: Some(wgpu::DepthStencilState {
                     format: DEPTH,
@@ -109,7 +110,7 @@ impl VisibilityPass {
         encoder: &mut wgpu::CommandEncoder,
         targets: &VisibilityTargets,
         frame: &wgpu::Buffer,
-        scene: &GpuScene,
+        scene: &FrameScene<'_>,
     ) {
         let bind = bind_group(
             device,
@@ -149,6 +150,6 @@ impl VisibilityPass {
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        draw_meshes(&mut pass, scene);
+        draw_meshes(&mut pass, scene, &scene.calls);
     }
 }

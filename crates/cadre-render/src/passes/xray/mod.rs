@@ -4,11 +4,14 @@ use super::common::{
     PipelineSpec, STORAGE, bind_group, blended, buffer_entry, colour_pass, draw_meshes, layouts,
     mesh_vertex_layout, pipeline, shader,
 };
-use crate::gpu_scene::GpuScene;
+use super::visibility::{DEPTH, VisibilityTargets};
+use crate::gpu_scene::FrameScene;
 
 /// The pass's pipeline and bind group layout.
 pub(crate) struct XrayPass {
     pipeline: wgpu::RenderPipeline,
+    /// See-through parts of an opaque view: lit, blended, hidden behind the opaque depth.
+    transparent: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
 }
 
@@ -26,30 +29,106 @@ impl XrayPass {
                 buffer_entry(2, STORAGE, stages),
             ],
         );
-        let pipeline = pipeline(
+        let buffers = [Some(mesh_vertex_layout())];
+        let targets = [Some(blended(colour))];
+        let spec = |label, fragment, depth| PipelineSpec {
+            label,
+            layout: &pipeline_layout,
+            module: &module,
+            fragment,
+            buffers: &buffers,
+            depth,
+            targets: &targets,
+        };
+        let xray = pipeline(device, spec("xray", "fs_main", None));
+        let transparent = pipeline(
             device,
-            PipelineSpec {
-                label: "xray",
-                layout: &pipeline_layout,
-                module: &module,
-                buffers: &[Some(mesh_vertex_layout())],
-                depth: None,
-                targets: &[Some(blended(colour))],
-            },
+            spec(
+                "transparent",
+                "fs_transparent",
+                Some(wgpu::DepthStencilState {
+                    format: DEPTH,
+                    depth_write_enabled: Some(false),
+                    // Reverse Z: in front of the opaque surfaces (or on them).
+                    depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+            ),
         );
-        XrayPass { pipeline, layout }
+        XrayPass {
+            pipeline: xray,
+            transparent,
+            layout,
+        }
     }
 
-    /// Records the pass over `target` (kept, blended onto).
+    /// Records the pass over `target` (kept, blended onto): every opaque call see-through.
     pub fn record(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         frame: &wgpu::Buffer,
-        scene: &GpuScene,
+        scene: &FrameScene<'_>,
         target: &wgpu::TextureView,
     ) {
-        let bind = bind_group(
+        let bind = self.bind(device, frame, scene);
+        let mut pass = colour_pass(encoder, "xray", target, None);
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        draw_meshes(&mut pass, scene, &scene.calls);
+        draw_meshes(&mut pass, scene, &scene.transparent);
+    }
+
+    /// Records the see-through parts of an opaque view over `target`, tested against the
+    /// visibility depth (drawn in scene order, not sorted).
+    pub fn record_transparent(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &wgpu::Buffer,
+        scene: &FrameScene<'_>,
+        (visibility, target): (&VisibilityTargets, &wgpu::TextureView),
+    ) {
+        if scene.transparent.is_empty() {
+            return;
+        }
+        let bind = self.bind(device, frame, scene);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("transparent"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &visibility.depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.transparent);
+        pass.set_bind_group(0, &bind, &[]);
+        draw_meshes(&mut pass, scene, &scene.transparent);
+    }
+
+    fn bind(
+        &self,
+        device: &wgpu::Device,
+        frame: &wgpu::Buffer,
+        scene: &FrameScene<'_>,
+    ) -> wgpu::BindGroup {
+        bind_group(
             device,
             "xray",
             &self.layout,
@@ -58,10 +137,6 @@ impl XrayPass {
                 scene.draws.as_entire_binding(),
                 scene.materials.as_entire_binding(),
             ],
-        );
-        let mut pass = colour_pass(encoder, "xray", target, None);
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind, &[]);
-        draw_meshes(&mut pass, scene);
+        )
     }
 }

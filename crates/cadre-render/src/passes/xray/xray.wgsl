@@ -35,3 +35,13 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let alpha = mix(0.06, 0.45, rim);
     return vec4<f32>(m.base_color.rgb * (0.55 + 0.45 * facing), alpha);
 }
+
+// A see-through part of an opaque view: its material's colour lit by a headlight, with the
+// material's opacity.
+@fragment
+fn fs_transparent(in: VertexOut) -> @location(0) vec4<f32> {
+    let m = materials[draws[in.draw].material];
+    let len = length(in.normal);
+    let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
+    return vec4<f32>(m.base_color.rgb * (0.35 + 0.65 * facing), m.base_color.a);
+}

@@ -1,0 +1,36 @@
+// Pick pass: the B-Rep edges and vertices of every visible instance drawn into an id target
+// (STEP id, instance + 1, kind: 2 edge, 3 vertex), one pixel wide and hidden by the
+// visibility depth like the edges pass, vertices after edges so they win where both fall. The
+// viewer reads a small window around the cursor and takes the nearest vertex, else the
+// nearest edge, else the face under the cursor.
+
+@group(0) @binding(1) var<storage, read> draws: array<Draw>;
+@group(0) @binding(2) var<storage, read> segments: array<Segment>;
+@group(0) @binding(3) var ids_tex: texture_2d<u32>;
+
+@vertex
+fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> LineOut {
+    let seg = segments[vi / 6u];
+    // Vertices a little larger than the one-pixel edges, so an edge's end still shows them.
+    let vertex = bitcast<u32>(seg.b.w) == 2u;
+    var out = segment_quad(seg, vi, draws[draw_index], select(0.0, 1.0, vertex));
+    out.draw = draw_index;
+    return out;
+}
+
+@fragment
+fn fs_main(in: LineOut) -> @location(0) vec4<u32> {
+    let seg = segments[in.segment];
+    let vertex = bitcast<u32>(seg.b.w) == 2u;
+    // The quads carry a pixel of fringe: keep the core only.
+    if abs(in.across) > select(0.5, 1.5, vertex) {
+        discard;
+    }
+    let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy), 0);
+    // Reverse Z: nearer is larger; the tolerance keeps edges on their own faces.
+    if in.clip.z < scene_depth_at(ids) * (1.0 - frame.edges.w) {
+        discard;
+    }
+    let kind = select(2u, 3u, vertex);
+    return vec4<u32>(bitcast<u32>(seg.a.w), draws[in.draw].instance + 1u, kind, 0u);
+}

@@ -1,0 +1,309 @@
+//! The viewer's path through the renderer on the machine's adapter (lavapipe in CI): a
+//! prepared scene drawn into a kept viewport, picking faces, edges and vertices from it, and
+//! the view's styles (hidden, recoloured, see-through, highlighted parts).
+
+use std::path::Path;
+
+use cadre_mesh::export::Scene;
+use cadre_mesh::{MeshParams, mesh_model};
+use cadre_render::{
+    Camera, DisplayMode, FrameOptions, Gpu, InstanceStyle, Pick, Renderer, ViewPreset, ViewState,
+    Viewport, scene_bounds, wgpu,
+};
+use glam::{DVec3, DVec4};
+
+const W: u32 = 200;
+const H: u32 = 150;
+
+fn gpu() -> Gpu {
+    Gpu::headless().unwrap_or_else(|e| {
+        panic!("{e}\nthe renderer tests need a GPU or Mesa's software Vulkan (lavapipe)")
+    })
+}
+
+/// The bundled pin assembly (two placed pins), tessellated.
+fn pin_assembly() -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pin-assembly.step");
+    let file = cadre_step::syntax::StepFile::read(&path).expect("example reads");
+    let model = cadre_step::map_file(&file);
+    let params = MeshParams {
+        deflection: 0.01,
+        angle: 0.3,
+        ..MeshParams::default()
+    };
+    cadre_mesh::assemble::build_scene(&model, &mesh_model(&model, &params, None))
+}
+
+fn camera(scene: &Scene) -> Camera {
+    let (lo, hi) = scene_bounds(scene).expect("geometry");
+    Camera::fit(lo, hi, ViewPreset::Iso, false, f64::from(W) / f64::from(H))
+}
+
+fn options() -> FrameOptions {
+    FrameOptions {
+        width: W,
+        height: H,
+        supersample: 1,
+        mode: DisplayMode::ShadedEdges,
+        ..FrameOptions::default()
+    }
+}
+
+/// The pixel a world point lands on.
+fn pixel_of(camera: &Camera, p: DVec3) -> Option<(u32, u32)> {
+    let m = camera.projection_matrix(f64::from(W) / f64::from(H)) * camera.view_rotation();
+    let c = m * DVec4::from((p - camera.eye, 1.0));
+    if c.w <= 0.0 {
+        return None;
+    }
+    let (x, y) = (c.x / c.w, c.y / c.w);
+    let px = ((x + 1.0) * 0.5 * f64::from(W)).floor();
+    let py = ((1.0 - y) * 0.5 * f64::from(H)).floor();
+    (px >= 0.0 && py >= 0.0 && px < f64::from(W) && py < f64::from(H))
+        .then_some((px as u32, py as u32))
+}
+
+/// A colour texture the viewport's frames are drawn into, as a window's surface texture.
+fn target(gpu: &Gpu) -> wgpu::TextureView {
+    gpu.device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some("target"),
+            size: wgpu::Extent3d {
+                width: W,
+                height: H,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&Default::default())
+}
+
+#[test]
+fn picking_finds_faces_edges_and_vertices_under_the_cursor() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let scene = pin_assembly();
+    let prepared = renderer.prepare(&gpu, &scene);
+    let camera = camera(&scene);
+    let mut viewport = Viewport::new(&gpu, W, H);
+    let view = target(&gpu);
+    let state = ViewState::default();
+    renderer
+        .draw(
+            &gpu,
+            &mut viewport,
+            &prepared,
+            &camera,
+            &options(),
+            &state,
+            &view,
+        )
+        .expect("frame");
+    let ids = renderer
+        .render_ids(&gpu, &scene, &camera, &options())
+        .expect("ids");
+
+    // Faces: wherever the visibility buffer has one, the pick under the cursor agrees.
+    let mut faces = 0;
+    for (i, id) in ids.iter().enumerate().step_by(97) {
+        let (x, y) = (i as u32 % W, i as u32 / W);
+        let window = renderer
+            .pick(&gpu, &viewport, &prepared, (x, y), 0)
+            .expect("pick");
+        let expected = (id[1] != 0).then(|| Pick::Face {
+            instance: id[1] - 1,
+            face: id[0],
+        });
+        assert_eq!(window.face().map(|h| h.pick), expected, "pixel {x} {y}");
+        faces += usize::from(expected.is_some());
+    }
+    assert!(faces > 20, "{faces} face pixels checked");
+
+    // Edges: the midpoint of every B-Rep edge of every instance; the visible ones (most, in
+    // an iso view of two pins) pick as that edge within 3 pixels.
+    let (mut edges, mut hits) = (0, 0);
+    let (mut vertices, mut vertex_hits) = (0, 0);
+    for (instance, (node, world)) in scene.instances().enumerate() {
+        let Some(mesh) = scene.nodes[node].mesh else {
+            continue;
+        };
+        for edge in &scene.meshes[mesh].edges {
+            let mid = edge.points[edge.points.len() / 2];
+            let p = world.transform_point3(DVec3::from(mid.map(f64::from)));
+            let Some(px) = pixel_of(&camera, p) else {
+                continue;
+            };
+            edges += 1;
+            let hit = renderer
+                .pick(&gpu, &viewport, &prepared, px, 4)
+                .expect("pick")
+                .nearest(3.0);
+            if let Some(hit) = hit
+                && hit.pick
+                    == (Pick::Edge {
+                        instance: instance as u32,
+                        edge: edge.step_id,
+                    })
+            {
+                hits += 1;
+            }
+        }
+        for vertex in &scene.meshes[mesh].vertices {
+            let p = world.transform_point3(DVec3::from(vertex.position.map(f64::from)));
+            let Some(px) = pixel_of(&camera, p) else {
+                continue;
+            };
+            vertices += 1;
+            let hit = renderer
+                .pick(&gpu, &viewport, &prepared, px, 4)
+                .expect("pick")
+                .nearest(3.0);
+            vertex_hits += usize::from(
+                hit.map(|h| h.pick)
+                    == Some(Pick::Vertex {
+                        instance: instance as u32,
+                        vertex: vertex.step_id,
+                    }),
+            );
+        }
+    }
+    assert!(edges >= 4, "{edges} edges");
+    assert!(
+        hits * 2 >= edges,
+        "{hits} of {edges} edge midpoints pick their edge"
+    );
+    assert!(
+        vertices >= 2 && vertex_hits * 2 >= vertices,
+        "{vertex_hits} of {vertices} vertices pick"
+    );
+}
+
+/// Mean linear-ish colour of the pixels where `mask` holds.
+fn mean(image: &image::RgbaImage, mask: &[bool]) -> [f64; 3] {
+    let mut sum = [0.0; 3];
+    let mut n = 0.0f64;
+    for (p, &m) in image.pixels().zip(mask) {
+        if m {
+            for (s, &c) in sum.iter_mut().zip(&p.0[..3]) {
+                *s += f64::from(c);
+            }
+            n += 1.0;
+        }
+    }
+    sum.map(|s| s / n.max(1.0))
+}
+
+/// Distance between two mean colours (sRGB bytes).
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The renderer's selection (orange) and hover (light blue) tints, as sRGB bytes.
+const ORANGE: [f64; 3] = [255.0, 178.0, 63.0];
+const LIGHT_BLUE: [f64; 3] = [149.0, 225.0, 255.0];
+
+#[test]
+fn hidden_recoloured_see_through_and_highlighted_parts_draw_as_asked() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let scene = pin_assembly();
+    let prepared = renderer.prepare(&gpu, &scene);
+    assert!(prepared.instance_count() >= 2, "the example has two pins");
+    let camera = camera(&scene);
+    let opts = FrameOptions {
+        mode: DisplayMode::Shaded,
+        ..options()
+    };
+    let ids = renderer
+        .render_ids(&gpu, &scene, &camera, &opts)
+        .expect("ids");
+    let first: Vec<bool> = ids.iter().map(|id| id[1] == 1).collect();
+    assert!(first.iter().filter(|&&m| m).count() > 100);
+    let render = |state: &ViewState| {
+        renderer
+            .render_prepared(&gpu, &prepared, &camera, &opts, state)
+            .expect("render")
+    };
+    let plain = render(&ViewState::default());
+    let base = mean(&plain, &first);
+    let style = |s: InstanceStyle| ViewState {
+        instances: vec![s],
+        ..ViewState::default()
+    };
+
+    // Hidden: the background (white) where the first pin was.
+    let hidden = mean(
+        &render(&style(InstanceStyle {
+            visible: false,
+            colour: None,
+        })),
+        &first,
+    );
+    assert!(hidden.iter().all(|&c| c > 250.0), "hidden: {hidden:?}");
+
+    // Red: red dominates.
+    let red = mean(
+        &render(&style(InstanceStyle {
+            visible: true,
+            colour: Some([0.8, 0.02, 0.02, 1.0]),
+        })),
+        &first,
+    );
+    assert!(
+        red[0] > red[1] + 60.0 && red[0] > red[2] + 60.0,
+        "red: {red:?}"
+    );
+
+    // See-through red over a white background: lighter than the opaque red, still reddish.
+    let glass = mean(
+        &render(&style(InstanceStyle {
+            visible: true,
+            colour: Some([0.8, 0.02, 0.02, 0.3]),
+        })),
+        &first,
+    );
+    assert!(
+        glass[1] > red[1] + 40.0,
+        "see-through: {glass:?} vs {red:?}"
+    );
+    assert!(
+        glass[0] > glass[1] + 20.0,
+        "see-through keeps its hue: {glass:?}"
+    );
+
+    // Selected part: tinted towards orange.
+    let selected = mean(
+        &render(&ViewState {
+            selection: vec![Pick::Part { instance: 0 }],
+            ..ViewState::default()
+        }),
+        &first,
+    );
+    assert!(
+        distance(selected, ORANGE) < distance(base, ORANGE) - 30.0,
+        "selected: {selected:?} vs {base:?}"
+    );
+    // Hovered face: only that face's pixels change.
+    let face = ids.iter().find(|id| id[1] == 1).expect("a face")[0];
+    let on_face: Vec<bool> = ids.iter().map(|id| id[1] == 1 && id[0] == face).collect();
+    let off_face: Vec<bool> = ids.iter().map(|id| id[1] == 1 && id[0] != face).collect();
+    let hovered = render(&ViewState {
+        hover: Some(Pick::Face { instance: 0, face }),
+        ..ViewState::default()
+    });
+    let (h_on, p_on) = (mean(&hovered, &on_face), mean(&plain, &on_face));
+    assert!(
+        distance(h_on, LIGHT_BLUE) < distance(p_on, LIGHT_BLUE) - 10.0,
+        "hovered face: {h_on:?} vs {p_on:?}"
+    );
+    let (h_off, p_off) = (mean(&hovered, &off_face), mean(&plain, &off_face));
+    assert!(
+        (0..3).all(|k| (h_off[k] - p_off[k]).abs() < 1.0),
+        "other faces unchanged: {h_off:?} vs {p_off:?}"
+    );
+}

@@ -1,0 +1,1 @@
+//! The interactive desktop viewer of cadre (being written).
