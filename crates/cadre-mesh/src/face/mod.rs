@@ -5,6 +5,7 @@
 //! The boundary points come from the shared edge discretisation and are never moved or split,
 //! so two faces meeting at an edge use exactly the same vertices there.
 
+mod arrange;
 mod cdt;
 mod domain;
 mod grid;

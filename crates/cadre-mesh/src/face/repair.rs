@@ -3,35 +3,37 @@
 //!
 //! Real CAD data has all of these (loops touching at a point, nearly tangent edges whose
 //! chords cross in (u, v), slightly overlapping holes), and a face must not be lost for it.
-//! Here coincident points are merged, the constraints are added one at a time (a crossing
-//! one is split at the intersection, or left out), and inside/outside is decided by the
-//! winding number of each triangle's centroid against the original loops, which needs no
-//! constraint parity and so survives left-out or split constraints. Finally every edge
+//! Here coincident points are merged, the segments are cut where they cross, touch or
+//! overlap ([`super::arrange`]; spade's own splitting insertion can loop forever on such
+//! trims), the pieces go in as constraints (one still conflicting by a rounding is left
+//! out), and inside/outside is decided by the winding number of each triangle's centroid
+//! against the original loops, which needs no constraint parity and so survives left-out or
+//! split constraints. Finally every edge
 //! between an inside and an outside triangle is made a constraint, so that refinement,
 //! which never crosses or splits constraints, keeps the region as classified.
 
-use std::cell::Cell;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 
 use cadre_geom::{Surface, Vec2};
 use spade::handles::FixedVertexHandle;
 use spade::{Point2, Triangulation};
 
+use super::arrange::{PointGrid, arrange};
 use super::cdt::{Cdt, Vert};
 use super::domain::{Prepared, edge_key};
 use super::metric::Metric;
 use super::refine::sample;
 use super::{FaceMeshError, Points};
 
-/// How constraints that cross already added ones are resolved.
+/// How segments that cross each other are resolved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Mode {
-    /// Both constraints are split at their intersection, where a new vertex goes in: the
-    /// boundary stays in the mesh, only a few points are added on it.
+    /// Both segments are cut at their crossing, where a new vertex goes in: the boundary
+    /// stays in the mesh, only a few points are added on it.
     Split,
-    /// The later constraint is left out: no new points, but the triangles may straddle it.
-    /// Used when splitting failed (spade has had assertion failures on nearly collinear
-    /// crossings).
+    /// The later segment is left out: no new points, but the triangles may straddle it.
+    /// The fallback should the triangulation with split points fail (spade has had
+    /// assertion failures on nearly degenerate constraint sets).
     Skip,
 }
 
@@ -50,7 +52,8 @@ pub(crate) struct Repaired {
     /// Boundary points merged into an earlier point at the same (u, v) (their keys are not
     /// in the mesh).
     pub merged: usize,
-    /// Boundary segments left out (only in [`Mode::Skip`], or once the split budget ran out).
+    /// Pieces of boundary segments left out because they cross a piece already in
+    /// (uncut crossings in [`Mode::Skip`] or past the crossing budget, roundings).
     pub skipped: usize,
     /// Points created where crossing segments were split.
     pub split_points: usize,
@@ -75,8 +78,30 @@ pub(crate) fn build(
     let winding = Winding::new(&prep.segments);
 
     let plane: Vec<Point2<f64>> = pts.uv.iter().map(|&uv| metric.to_plane(uv)).collect();
-    let rep = merge_map(&plane, nb, |i| winding.sign(pts.uv[i]) > 0);
+    let mut grid = PointGrid::new(merge_tol(&plane[..nb]), total);
+    let rep = merge_map(&plane, nb, &mut grid, |i| winding.sign(pts.uv[i]) > 0);
     let merged = (0..nb).filter(|&i| rep[i] != i as u32).count();
+
+    // Each crossing adds one point; the budget is far above what real data needs and keeps
+    // a pathological trim from adding a point per pair of its segments.
+    let segs = constraint_segments(prep, &rep);
+    let max_crossings = match mode {
+        Mode::Split => 4 * segs.len() + 1024,
+        Mode::Skip => 0,
+    };
+    let arr = arrange(&plane, &segs, &mut grid, total as u32, max_crossings);
+    if !arr.complete || arr.uncut > 0 {
+        tracing::debug!(
+            uncut = arr.uncut,
+            complete = arr.complete,
+            "trim crossings left uncut"
+        );
+    }
+    for &p in &arr.crossings {
+        let uv = metric.plane_to_uv(p);
+        let (xyz, n) = sample(surface, uv);
+        pts.push(uv, xyz, n, None);
+    }
 
     let verts: Vec<Vert> = (0..total)
         .filter(|&i| rep[i] == i as u32)
@@ -84,98 +109,14 @@ pub(crate) fn build(
             pos: plane[i],
             id: i as u32,
         })
+        .chain(arr.crossings.iter().enumerate().map(|(k, &pos)| Vert {
+            pos,
+            id: (total + k) as u32,
+        }))
         .collect();
     let mut cdt = Cdt::bulk_load_cdt(verts, Vec::new())
         .map_err(|e| FaceMeshError::Triangulation(format!("{e:?}")))?;
-    let mut handle: Vec<Option<FixedVertexHandle>> = vec![None; total];
-    for v in cdt.vertices() {
-        handle[v.data().id as usize] = Some(v.fix());
-    }
-    // The merge leaves distinct positions only, so spade keeps every vertex; should it still
-    // have dropped one, the point goes to whichever vertex sits at its position.
-    let handle_of = |cdt: &Cdt, i: usize| -> Option<FixedVertexHandle> {
-        let r = rep[i] as usize;
-        if r >= total {
-            return None;
-        }
-        handle[r].or_else(|| match cdt.locate(plane[r]) {
-            spade::PositionInTriangulation::OnVertex(v) => Some(v),
-            _ => None,
-        })
-    };
-
-    // Constraints that fit go in first, so that splits only happen where segments really
-    // cross, not in whatever order the loops list them.
-    let mut seen = HashSet::with_capacity(prep.edges.len());
-    let mut conflicts = Vec::new();
-    for &[a, b] in &prep.edges {
-        let (Some(ha), Some(hb)) = (handle_of(&cdt, a as usize), handle_of(&cdt, b as usize))
-        else {
-            continue;
-        };
-        if ha == hb || !seen.insert(edge_key(ha.index() as u32, hb.index() as u32)) {
-            continue;
-        }
-        if cdt.try_add_constraint(ha, hb).is_empty() {
-            conflicts.push([ha, hb]);
-        }
-    }
-
-    let mut skipped = 0;
-    let next_id = Cell::new(total as u32);
-    if mode == Mode::Split {
-        // Each crossing adds one point, so this is far above what real data needs; the hard
-        // cap inside the constructor stops a split cascade (rounding making spade split the
-        // same crossing over and over) by a panic, which the caller turns into a retry in
-        // [`Mode::Skip`].
-        let budget = 4 * prep.edges.len() + 1024;
-        let cap = (16 * prep.edges.len() + 4096) as u32 + total as u32;
-        let ctor = |p: Point2<f64>| {
-            let id = next_id.get();
-            assert!(id < cap, "too many split points in the trim repair");
-            next_id.set(id + 1);
-            Vert { pos: p, id }
-        };
-        let along = VerticesAlong::new(&cdt);
-        for &[ha, hb] in &conflicts {
-            // A segment through other vertices goes in piece by piece between them: spade's
-            // splitting walk can loop forever on a constraint through a vertex or along
-            // another constraint (random_polygons_always_mesh found one: star and hole
-            // sharing lattice points, zero-length and overlapping sides).
-            let mut pieces = vec![ha];
-            pieces.extend(along.strictly_between(&cdt, ha, hb));
-            pieces.push(hb);
-            for w in pieces.windows(2) {
-                let (p, q) = (w[0], w[1]);
-                if p == q || !cdt.try_add_constraint(p, q).is_empty() {
-                    continue;
-                }
-                if (next_id.get() as usize - total) > budget {
-                    skipped += 1;
-                } else {
-                    cdt.add_constraint_and_split(p, q, &ctor);
-                }
-            }
-        }
-    } else {
-        skipped = conflicts.len();
-    }
-
-    // Split points get consecutive ids after the existing points (the constructor's ids
-    // have gaps where spade used an existing vertex instead of the new one).
-    let mut created: Vec<(u32, FixedVertexHandle)> = cdt
-        .vertices()
-        .filter(|v| v.data().id as usize >= total)
-        .map(|v| (v.data().id, v.fix()))
-        .collect();
-    created.sort_unstable_by_key(|c| c.0);
-    let split_points = created.len();
-    for (k, &(_, h)) in created.iter().enumerate() {
-        let uv = metric.plane_to_uv(cdt.vertex(h).position());
-        let (xyz, n) = sample(surface, uv);
-        pts.push(uv, xyz, n, None);
-        cdt.vertex_data_mut(h).id = (total + k) as u32;
-    }
+    let skipped = add_pieces(&mut cdt, &arr.pieces, pts.len());
 
     let inside = classify(&mut cdt, pts, &winding);
     Ok(Repaired {
@@ -183,58 +124,84 @@ pub(crate) fn build(
         inside,
         merged,
         skipped,
-        split_points,
+        split_points: arr.crossings.len(),
     })
 }
 
-/// Maps every point to the point it is merged into (itself when it is kept). Boundary
-/// points (`0..nb`) merge into the first one within the tolerance; interior points near an
-/// earlier point, or not `keep_interior`, map to `u32::MAX` (dropped: they carry no key).
-fn merge_map(plane: &[Point2<f64>], nb: usize, keep_interior: impl Fn(usize) -> bool) -> Vec<u32> {
+/// The distinct loop segments between merged points, as point ids, without the ones merged
+/// to a single point.
+fn constraint_segments(prep: &Prepared, rep: &[u32]) -> Vec<[u32; 2]> {
+    let mut seen = HashSet::with_capacity(prep.edges.len());
+    prep.edges
+        .iter()
+        .map(|&[a, b]| [rep[a as usize], rep[b as usize]])
+        .filter(|&[a, b]| a != b && a != u32::MAX && b != u32::MAX && seen.insert(edge_key(a, b)))
+        .collect()
+}
+
+/// Adds the `pieces` (point ids below `n`) as constraints with spade's non-splitting
+/// insertion, which leaves a piece out when it would cross a constraint already in (by a
+/// rounding of the crossing points, or an uncut crossing). Returns how many were left out.
+fn add_pieces(cdt: &mut Cdt, pieces: &[[u32; 2]], n: usize) -> usize {
+    let mut handle: Vec<Option<FixedVertexHandle>> = vec![None; n];
+    for v in cdt.vertices() {
+        handle[v.data().id as usize] = Some(v.fix());
+    }
+    let mut skipped = 0;
+    for &[a, b] in pieces {
+        let (Some(ha), Some(hb)) = (handle[a as usize], handle[b as usize]) else {
+            // Spade merged the point into another at the same position: the merge and the
+            // snapping of crossings leave none such, but the piece is then left out.
+            skipped += 1;
+            continue;
+        };
+        if cdt.try_add_constraint(ha, hb).is_empty() {
+            skipped += 1;
+        }
+    }
+    skipped
+}
+
+/// The distance below which points of the triangulation plane are one point (see
+/// [`MERGE_TOL`]), from the boundary points' extent.
+fn merge_tol(boundary: &[Point2<f64>]) -> f64 {
     let (mut lo, mut hi) = (
         Point2::new(f64::INFINITY, f64::INFINITY),
         Point2::new(f64::NEG_INFINITY, f64::NEG_INFINITY),
     );
-    for p in &plane[..nb] {
+    for p in boundary {
         lo = Point2::new(lo.x.min(p.x), lo.y.min(p.y));
         hi = Point2::new(hi.x.max(p.x), hi.y.max(p.y));
     }
     let ext = (hi.x - lo.x).max(hi.y - lo.y);
-    let tol = if ext.is_finite() && ext > 0.0 {
+    if ext.is_finite() && ext > 0.0 {
         (MERGE_TOL * ext).max(f64::MIN_POSITIVE)
     } else {
         f64::MIN_POSITIVE
-    };
-    // Cells of the tolerance's size: a point within the tolerance (per coordinate) of
-    // another is in one of the 3 × 3 cells around it. The casts saturate, which only makes
-    // far-out cells shared, never misses a neighbour.
-    let cell = |p: Point2<f64>| ((p.x / tol).floor() as i64, (p.y / tol).floor() as i64);
-    let mut grid: HashMap<(i64, i64), Vec<u32>> = HashMap::with_capacity(plane.len());
+    }
+}
+
+/// Maps every point to the point it is merged into (itself when it is kept), and puts the
+/// kept ones in `grid`. Boundary points (`0..nb`) merge into the first one within the
+/// tolerance; interior points near an earlier point, or not `keep_interior`, map to
+/// `u32::MAX` (dropped: they carry no key).
+fn merge_map(
+    plane: &[Point2<f64>],
+    nb: usize,
+    grid: &mut PointGrid,
+    keep_interior: impl Fn(usize) -> bool,
+) -> Vec<u32> {
     let mut rep = vec![u32::MAX; plane.len()];
     for (i, &p) in plane.iter().enumerate() {
         if i >= nb && !keep_interior(i) {
             continue;
         }
-        let (cx, cy) = cell(p);
-        let mut found = None;
-        'search: for dx in -1..=1i64 {
-            for dy in -1..=1i64 {
-                let key = (cx.saturating_add(dx), cy.saturating_add(dy));
-                for &j in grid.get(&key).into_iter().flatten() {
-                    let q = plane[j as usize];
-                    if (q.x - p.x).abs() <= tol && (q.y - p.y).abs() <= tol {
-                        found = Some(j);
-                        break 'search;
-                    }
-                }
-            }
-        }
-        match found {
+        match grid.find(p) {
             Some(j) if i < nb => rep[i] = j,
             Some(_) => {}
             None => {
                 rep[i] = i as u32;
-                grid.entry((cx, cy)).or_default().push(i as u32);
+                grid.insert(p, i as u32);
             }
         }
     }
@@ -396,53 +363,6 @@ impl<'a> Winding<'a> {
             }
         }
         wn * self.orient
-    }
-}
-
-/// The triangulation's vertices sorted by x, to find those lying on a segment.
-struct VerticesAlong {
-    by_x: Vec<(f64, f64, FixedVertexHandle)>,
-}
-
-impl VerticesAlong {
-    fn new(cdt: &Cdt) -> VerticesAlong {
-        let mut by_x: Vec<(f64, f64, FixedVertexHandle)> = cdt
-            .vertices()
-            .map(|v| (v.position().x, v.position().y, v.fix()))
-            .collect();
-        by_x.sort_by(|a, b| a.0.total_cmp(&b.0));
-        VerticesAlong { by_x }
-    }
-
-    /// Vertices on the open segment `a`–`b` (collinear to rounding), in order from `a`.
-    fn strictly_between(
-        &self,
-        cdt: &Cdt,
-        a: FixedVertexHandle,
-        b: FixedVertexHandle,
-    ) -> Vec<FixedVertexHandle> {
-        let (pa, pb) = (cdt.vertex(a).position(), cdt.vertex(b).position());
-        let (dx, dy) = (pb.x - pa.x, pb.y - pa.y);
-        let len2 = dx * dx + dy * dy;
-        if len2.is_nan() || len2 <= 0.0 {
-            return Vec::new();
-        }
-        let (lo, hi) = (pa.x.min(pb.x), pa.x.max(pb.x));
-        let first = self.by_x.partition_point(|v| v.0 < lo);
-        let mut on: Vec<(f64, FixedVertexHandle)> = self.by_x[first..]
-            .iter()
-            .take_while(|v| v.0 <= hi)
-            .filter(|v| v.2 != a && v.2 != b)
-            .filter_map(|&(x, y, h)| {
-                let (ex, ey) = (x - pa.x, y - pa.y);
-                let cross = dx * ey - dy * ex;
-                let t = (dx * ex + dy * ey) / len2;
-                let tolerance = 1e-12 * len2.sqrt() * (ex * ex + ey * ey).sqrt();
-                (cross.abs() <= tolerance && t > 1e-12 && t < 1.0 - 1e-12).then_some((t, h))
-            })
-            .collect();
-        on.sort_by(|p, q| p.0.total_cmp(&q.0));
-        on.into_iter().map(|(_, h)| h).collect()
     }
 }
 
