@@ -14,6 +14,7 @@ pub mod assembly;
 pub mod bounds;
 pub mod closure;
 pub mod ids;
+pub mod measure;
 pub mod mesh;
 pub mod model;
 pub mod repair;
