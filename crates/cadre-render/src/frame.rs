@@ -11,7 +11,7 @@ use crate::passes::pick::{PickInputs, PickPass};
 use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass};
 use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
 use crate::passes::xray::XrayPass;
-use crate::view::{MAX_HIGHLIGHTED, ViewState};
+use crate::view::{MAX_HIGHLIGHTED, MAX_SECTIONS, ViewState};
 use crate::viewport::{LastFrame, PickWindow, Viewport};
 use crate::{Camera, Gpu, Light, RenderError};
 
@@ -188,11 +188,25 @@ impl Renderer {
         options: &FrameOptions,
     ) -> Result<Vec<[u32; 4]>, RenderError> {
         let prepared = self.prepare(gpu, scene);
+        self.render_ids_prepared(gpu, &prepared, camera, options, &ViewState::default())
+    }
+
+    /// [`Renderer::render_ids`] of a prepared scene in a view's state (hidden parts, section
+    /// planes): section caps carry [`crate::SECTION_CAP`] and their plane in the material
+    /// channel ([`crate::section_cap`]) and the cap's own depth.
+    pub fn render_ids_prepared(
+        &self,
+        gpu: &Gpu,
+        scene: &PreparedScene,
+        camera: &Camera,
+        options: &FrameOptions,
+        state: &ViewState,
+    ) -> Result<Vec<[u32; 4]>, RenderError> {
         let frame = FrameInput {
-            scene: &prepared,
+            scene,
             camera,
             options,
-            state: &ViewState::default(),
+            state,
             size: (options.width, options.height),
         };
         let bytes = self.run(gpu, &frame, Readback::Ids, None)?;
@@ -469,6 +483,10 @@ fn frame_uniform(
     let (fill, edge_mode) = options.mode.fill_and_edges();
     // Output pixels → target pixels (supersampling).
     let scale = w as f32 / options.width.max(1) as f32;
+    let rotation = glam::DMat3::from_mat4(camera.view_rotation());
+    let (planes, plane_normals) = section_planes(camera, rotation, state);
+    // View space looks down −z; the world direction is the rotation's inverse (transpose).
+    let forward = rotation.transpose() * glam::DVec3::NEG_Z;
     Frame {
         view_proj: camera.view_projection_f32(aspect).to_cols_array_2d(),
         inv_proj: camera
@@ -500,14 +518,11 @@ fn frame_uniform(
             [0.02, 0.02, 0.025, 1.0]
         },
         hidden_colour: [0.25, 0.25, 0.27, 1.0],
-        sky_up: (glam::DMat3::from_mat4(camera.view_rotation()) * glam::DVec3::Z)
-            .as_vec3()
-            .extend(0.0)
-            .to_array(),
+        sky_up: (rotation * glam::DVec3::Z).as_vec3().extend(0.0).to_array(),
         counts: [
             options.lights.len() as u32,
             state.selection.len().min(MAX_HIGHLIGHTED) as u32,
-            0,
+            state.sections.len().min(MAX_SECTIONS) as u32,
             0,
         ],
         // Outlines with the visible edges (not in wireframe, which shows edges only).
@@ -525,7 +540,35 @@ fn frame_uniform(
         // Hover: a light cyan wash; selection: a stronger orange (the usual CAD pair).
         hover_colour: [0.30, 0.75, 1.0, 0.35],
         selection_colour: [1.0, 0.45, 0.05, 0.55],
+        planes,
+        plane_normals,
+        forward: forward.as_vec3().extend(0.0).to_array(),
+        // Hatch lines every 8 output pixels, 1 wide; cap outlines 1 wide.
+        section: [8.0 * scale, scale, scale, 0.0],
     }
+}
+
+/// The first [`MAX_SECTIONS`] section planes of `state` as the shaders read them: relative to
+/// the eye (unit normal, offset) and their normals in view space. The offset is moved to the
+/// eye in `f64` before it becomes `f32`, so a plane through a part far from the origin stays
+/// on it. A plane without a usable normal keeps everything (zero normal, offset 1), so the
+/// others keep their indices.
+fn section_planes(
+    camera: &Camera,
+    rotation: glam::DMat3,
+    state: &ViewState,
+) -> ([[f32; 4]; 3], [[f32; 4]; 3]) {
+    let mut planes = [[0.0; 4]; MAX_SECTIONS];
+    let mut normals = [[0.0; 4]; MAX_SECTIONS];
+    for (i, plane) in state.sections.iter().take(MAX_SECTIONS).enumerate() {
+        planes[i] = [0.0, 0.0, 0.0, 1.0];
+        if let Some((n, offset)) = plane.normalised() {
+            let relative = offset - n.dot(camera.eye);
+            planes[i] = [n.x as f32, n.y as f32, n.z as f32, relative as f32];
+            normals[i] = (rotation * n).as_vec3().extend(0.0).to_array();
+        }
+    }
+    (planes, normals)
 }
 
 /// Little-endian `u32` quadruples.

@@ -8,7 +8,8 @@ use wgpu::util::DeviceExt;
 
 use crate::Camera;
 use crate::edges::feature_edges;
-use crate::layout::{Draw, Material, Segment, Vertex};
+use crate::layout::{DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Segment, Vertex};
+use crate::solid::closed_orientation;
 use crate::view::{InstanceStyle, ViewState};
 
 /// Default CAD material (light grey, dielectric, fairly rough) for primitives without one.
@@ -49,6 +50,8 @@ struct MeshRanges {
     edges: (u32, u32),
     /// B-Rep vertices after the edges, for picking only.
     points: (u32, u32),
+    /// `Some(inside_out)` when the mesh is a closed solid (section planes cap it).
+    solid: Option<bool>,
 }
 
 /// A scene's geometry on the GPU, uploaded once and drawn by any number of frames: vertex and
@@ -115,6 +118,7 @@ impl PreparedScene {
                 lines,
                 edges,
                 points,
+                solid: closed_orientation(mesh),
             });
         }
         let mut materials: Vec<Material> = scene
@@ -262,8 +266,18 @@ impl<'a> FrameScene<'a> {
                 });
                 materials.len() as u32 - 1
             });
-            let record = placement(camera, rotation, world, instance as u32);
             let ranges = &geometry.meshes[mesh];
+            // A mirroring placement turns the winding over, as does a mesh wound inside out.
+            let flags = ranges.solid.map_or(0, |inside_out| {
+                let mirrored = world.matrix3.determinant() < 0.0;
+                DRAW_CLOSED
+                    | if inside_out != mirrored {
+                        DRAW_INSIDE_OUT
+                    } else {
+                        0
+                    }
+            });
+            let record = placement(camera, rotation, world, (instance as u32, flags));
             let own = draws.len() as u32;
             // The instance's own record, whatever its primitives.
             draws.push(record(geometry.default_material()));
@@ -333,12 +347,13 @@ impl<'a> FrameScene<'a> {
 }
 
 /// The draw record maker of one instance placed by `world`, relative to the camera's eye (in
-/// `f64`, so parts far from the origin keep their precision).
+/// `f64`, so parts far from the origin keep their precision), with the mesh's `flags`
+/// ([`DRAW_CLOSED`], [`DRAW_INSIDE_OUT`]).
 fn placement(
     camera: &Camera,
     rotation: DMat3,
     world: DAffine3,
-    instance: u32,
+    (instance, flags): (u32, u32),
 ) -> impl Fn(u32) -> Draw {
     let linear = world.matrix3;
     // Normals transform by the inverse transpose; mirrors are fine, singular placements get
@@ -366,7 +381,7 @@ fn placement(
         ],
         material,
         instance,
-        pad: [0; 2],
+        pad: [flags, 0],
     }
 }
 

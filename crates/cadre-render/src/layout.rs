@@ -42,7 +42,8 @@ pub struct Frame {
     pub outline: [f32; 4],
     /// World up in view space (the environment's zenith), w unused.
     pub sky_up: [f32; 4],
-    /// Number of lights, number of selected items, unused ×2.
+    /// Number of lights, number of selected items, number of section planes (at most 3),
+    /// unused.
     pub counts: [u32; 4],
     /// What the cursor is over: kind (0 nothing, 1 face, 2 edge, 3 vertex, 4 part),
     /// instance + 1, STEP id, unused.
@@ -51,6 +52,17 @@ pub struct Frame {
     pub hover_colour: [f32; 4],
     /// Tint of selected items, linear RGB and strength.
     pub selection_colour: [f32; 4],
+    /// Section planes relative to the eye: unit world normal (xyz) and offset (w), keeping
+    /// the camera-relative points `p` with `normal · p <= w` (the first `counts.z` are set).
+    pub planes: [[f32; 4]; 3],
+    /// The section planes' unit normals in view space (xyz; w unused), to shade caps.
+    pub plane_normals: [[f32; 4]; 3],
+    /// The camera's forward direction in world space (xyz; w unused): the view ray of every
+    /// pixel when orthographic.
+    pub forward: [f32; 4],
+    /// Section caps: hatch spacing and hatch line width, outline width (target pixels),
+    /// unused.
+    pub section: [f32; 4],
 }
 
 /// A light in view space, as the shade pass reads it.
@@ -89,9 +101,16 @@ pub struct Draw {
     pub material: u32,
     /// Instance number (scene instance order).
     pub instance: u32,
-    /// Padding to 16 bytes.
+    /// Flags ([`DRAW_CLOSED`], [`DRAW_INSIDE_OUT`]), padding.
     pub pad: [u32; 2],
 }
+
+/// [`Draw::pad`]`[0]` flag: the mesh is a closed, consistently oriented solid, so seeing one
+/// of its faces from inside means looking through a section into the material (a cap).
+pub const DRAW_CLOSED: u32 = 1;
+/// [`Draw::pad`]`[0]` flag: the draw's triangles wind clockwise seen from outside (the mesh
+/// encloses a negative volume, or the instance's placement mirrors, but not both).
+pub const DRAW_INSIDE_OUT: u32 = 2;
 
 /// A metallic-roughness material.
 #[repr(C)]

@@ -9,6 +9,8 @@
 //! drivers (Vulkan lavapipe, GL llvmpipe through EGL) and [`Renderer::render`] returns an
 //! image. Geometry is placed relative to the camera in `f64` before it is sent to the GPU as
 //! `f32`, so a part 10⁶ mm from the origin renders like one at the origin.
+//! Up to three [`SectionPlane`]s of a [`ViewState`] cut the model; closed solids show hatched
+//! caps where they are cut.
 
 mod bounds;
 mod camera;
@@ -22,6 +24,7 @@ pub mod layout;
 mod lights;
 mod passes;
 pub mod raycast;
+mod solid;
 mod view;
 mod viewport;
 
@@ -32,7 +35,10 @@ pub use frame::{DisplayMode, FrameOptions, Renderer};
 pub use gpu::Gpu;
 pub use gpu_scene::PreparedScene;
 pub use lights::Light;
-pub use view::{InstanceStyle, MAX_HIGHLIGHTED, Pick, ViewState};
+pub use view::{
+    InstanceStyle, MAX_HIGHLIGHTED, MAX_SECTIONS, Pick, SECTION_CAP, SectionPlane, ViewState,
+    section_cap,
+};
 pub use viewport::{PickHit, PickWindow, Viewport};
 /// The wgpu this renderer is built on, for embedders that hand it their window's surface.
 pub use wgpu;

@@ -1,5 +1,7 @@
 //! What a viewer changes between frames without touching the geometry: which instances are
-//! shown and in which colour, what is hovered and selected.
+//! shown and in which colour, what is hovered and selected, where the model is cut.
+
+use glam::DVec3;
 
 /// How one instance (a placed part) is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -83,6 +85,61 @@ pub struct ViewState {
     pub hover: Option<Pick>,
     /// The selection (drawn in the selection colour).
     pub selection: Vec<Pick>,
+    /// Section planes: the first [`MAX_SECTIONS`] cut the model (the rest are ignored), each
+    /// removing the half-space on its normal's side; closed solids show hatched caps where
+    /// they are cut.
+    pub sections: Vec<SectionPlane>,
+}
+
+/// Most section planes a frame applies; [`ViewState::sections`] past these are ignored.
+pub const MAX_SECTIONS: usize = 3;
+
+/// A section plane in world coordinates (model units): it keeps the points `p` with
+/// `normal · p <= offset` and cuts away the half-space `normal · p > offset`, the side its
+/// normal points to (so the normal points from the kept part towards the viewer who looks
+/// into the cut).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SectionPlane {
+    /// Unit normal, world; a normal that is not unit is normalised with its offset, a zero
+    /// or non-finite one makes the plane inactive.
+    pub normal: DVec3,
+    /// Signed distance of the plane from the world origin along `normal`.
+    pub offset: f64,
+}
+
+impl SectionPlane {
+    /// The plane through `point` with `normal` (normalised), cutting away the side `normal`
+    /// points to.
+    pub fn through(point: DVec3, normal: DVec3) -> SectionPlane {
+        let normal = normal.normalize_or_zero();
+        SectionPlane {
+            normal,
+            offset: normal.dot(point),
+        }
+    }
+
+    /// Unit normal and offset, `None` for a plane without a usable normal.
+    pub(crate) fn normalised(self) -> Option<(DVec3, f64)> {
+        let len = self.normal.length();
+        (len.is_finite() && len > 1e-300 && self.offset.is_finite())
+            .then(|| (self.normal / len, self.offset / len))
+    }
+
+    /// Whether `p` is kept (on or behind the plane).
+    pub fn keeps(self, p: DVec3) -> bool {
+        self.normalised().is_none_or(|(n, d)| n.dot(p) <= d)
+    }
+}
+
+/// Flag in the material channel of the visibility buffer's ids ([`crate::Renderer::render_ids`])
+/// marking a section cap: the pixel shows the inside of a closed solid cut by a plane, at the
+/// plane's depth. Bits 28–29 hold the plane's index, the bits below the material.
+pub const SECTION_CAP: u32 = 1 << 31;
+
+/// The index (into [`ViewState::sections`]) of the plane whose cap `ids` (one pixel of the
+/// visibility buffer) shows, or `None` when it shows a face or the background.
+pub fn section_cap(ids: [u32; 4]) -> Option<usize> {
+    (ids[1] != 0 && ids[2] & SECTION_CAP != 0).then_some(((ids[2] >> 28) & 3) as usize)
 }
 
 /// Most selected items the shaders highlight (the rest stay selected, unhighlighted).

@@ -3,7 +3,7 @@
 use crate::gpu_scene::EdgeCall;
 use crate::passes::pick::PICK;
 use crate::passes::visibility::VisibilityTargets;
-use crate::view::Pick;
+use crate::view::{Pick, section_cap};
 use crate::{Gpu, RenderError};
 
 /// The buffers of the last frame drawn into a viewport, which the pick pass draws with again.
@@ -84,8 +84,8 @@ pub struct PickWindow {
     pub height: u32,
     /// The cursor's pixel in the frame.
     pub cursor: (u32, u32),
-    /// Per pixel, row by row: STEP face id, instance + 1 (0 = background), material, depth
-    /// (`f32` bits).
+    /// Per pixel, row by row: STEP face id, instance + 1 (0 = background), material (with
+    /// [`crate::SECTION_CAP`] on section caps), depth (`f32` bits).
     pub faces: Vec<[u32; 4]>,
     /// Per pixel: STEP id, instance + 1 (0 = nothing), kind (2 edge, 3 vertex), 0.
     pub lines: Vec<[u32; 4]>,
@@ -136,9 +136,14 @@ impl PickWindow {
         let i = self.index(cx, cy)?;
         let f = self.faces.get(i)?;
         (f[1] != 0).then(|| PickHit {
-            pick: Pick::Face {
-                instance: f[1] - 1,
-                face: f[0],
+            // A section cap is no B-Rep face: it picks its part.
+            pick: if section_cap(*f).is_some() {
+                Pick::Part { instance: f[1] - 1 }
+            } else {
+                Pick::Face {
+                    instance: f[1] - 1,
+                    face: f[0],
+                }
             },
             pixel: (cx, cy),
             depth: f32::from_bits(f[3]),
@@ -275,6 +280,15 @@ mod tests {
                 vertex: 9
             }
         );
+    }
+
+    #[test]
+    fn a_section_cap_picks_its_part() {
+        let mut w = window();
+        w.faces
+            .iter_mut()
+            .for_each(|f| f[2] = crate::SECTION_CAP | 3);
+        assert_eq!(w.nearest(3.0).unwrap().pick, Pick::Part { instance: 0 });
     }
 
     #[test]

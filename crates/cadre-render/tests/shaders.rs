@@ -3,7 +3,10 @@
 
 use std::path::Path;
 
-use cadre_render::layout::{Draw, Frame, LightGpu, Material, Segment};
+use cadre_render::SECTION_CAP;
+use cadre_render::layout::{
+    DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Frame, LightGpu, Material, Segment,
+};
 
 /// Parses and validates one shader; returns the module.
 fn module(pass: &str) -> naga::Module {
@@ -25,6 +28,19 @@ fn module(pass: &str) -> naga::Module {
     .validate(&module)
     .unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
     module
+}
+
+/// The value of the `u32` constant `name` of `module`.
+fn constant_u32(module: &naga::Module, name: &str) -> Option<u32> {
+    let c = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))?
+        .1;
+    match module.global_expressions[c.init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => Some(v),
+        _ => None,
+    }
 }
 
 /// Size naga gives the struct `name` of `module`.
@@ -74,5 +90,18 @@ fn shaders_validate_and_share_the_rust_layouts() {
         (&pick, "Segment", size_of::<Segment>()),
     ] {
         assert_eq!(struct_size(m, name), Some(size), "{name}");
+    }
+}
+
+#[test]
+fn the_shaders_flags_are_the_rust_flags() {
+    // Draw flags and the section cap marker are written by Rust or read by tests from Rust.
+    let visibility = module("visibility");
+    for (name, value) in [
+        ("DRAW_CLOSED", DRAW_CLOSED),
+        ("DRAW_INSIDE_OUT", DRAW_INSIDE_OUT),
+        ("SECTION_CAP", SECTION_CAP),
+    ] {
+        assert_eq!(constant_u32(&visibility, name), Some(value), "{name}");
     }
 }

@@ -16,6 +16,10 @@ struct Frame {
     hover: vec4<u32>,
     hover_colour: vec4<f32>,
     selection_colour: vec4<f32>,
+    planes: array<vec4<f32>, 3>,
+    plane_normals: array<vec4<f32>, 3>,
+    forward: vec4<f32>,
+    section: vec4<f32>,
 }
 
 struct Draw {
@@ -56,6 +60,31 @@ fn is_target(wanted: vec4<u32>, kind: u32, instance1: u32, id: u32) -> bool {
     return wanted.x == 4u || (wanted.x == kind && wanted.z == id);
 }
 
+// Flags of `Draw.pad.x` (layout::DRAW_CLOSED, layout::DRAW_INSIDE_OUT).
+const DRAW_CLOSED: u32 = 1u;
+const DRAW_INSIDE_OUT: u32 = 2u;
+
+// Material channel of a section cap's ids (view::SECTION_CAP): the flag, the plane's index in
+// bits 28–29, the material in the bits below.
+const SECTION_CAP: u32 = 0x80000000u;
+const CAP_MATERIAL: u32 = 0x0fffffffu;
+
+// Whether the ids of a pixel show a section cap.
+fn is_cap(ids: vec4<u32>) -> bool {
+    return ids.y != 0u && (ids.z & SECTION_CAP) != 0u;
+}
+
+// Whether the camera-relative point `p` lies in a half-space a section plane cuts away.
+fn section_cut(p: vec3<f32>) -> bool {
+    for (var i = 0u; i < frame.counts.z; i++) {
+        let plane = frame.planes[i];
+        if dot(plane.xyz, p) > plane.w {
+            return true;
+        }
+    }
+    return false;
+}
+
 // A segment of `segments` as a screen-aligned quad `half` pixels wide each side (plus one
 // pixel of fringe, and past the ends): corner `vi % 6` of segment `vi / 6`, placed by draw
 // record `d`. A segment of zero length is a square (a B-Rep vertex).
@@ -66,12 +95,16 @@ struct LineOut {
     @location(1) @interpolate(linear) along: f32,
     @location(2) @interpolate(flat) segment: u32,
     @location(3) @interpolate(flat) draw: u32,
+    // Camera-relative world position, for the section planes.
+    @location(4) world: vec3<f32>,
 }
 
 fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32) -> LineOut {
     let corner = vi % 6u;
-    let ca = frame.view_proj * (d.model * vec4<f32>(seg.a.xyz, 1.0));
-    let cb = frame.view_proj * (d.model * vec4<f32>(seg.b.xyz, 1.0));
+    let wa = d.model * vec4<f32>(seg.a.xyz, 1.0);
+    let wb = d.model * vec4<f32>(seg.b.xyz, 1.0);
+    let ca = frame.view_proj * wa;
+    let cb = frame.view_proj * wb;
     let size = frame.viewport.xy;
     let sa = (ca.xy / ca.w) * 0.5 * size;
     let sb = (cb.xy / cb.w) * 0.5 * size;
@@ -92,6 +125,8 @@ fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32) -> LineOut {
     out.across = sides[corner] * half;
     out.along = select(0.0, len, at_b);
     out.segment = vi / 6u;
+    // The corners past the ends keep the end's position: the fringe is a pixel or two.
+    out.world = select(wa.xyz, wb.xyz, at_b);
     return out;
 }
 

@@ -47,6 +47,9 @@ fn highlight_of(seg: Segment, d: Draw) -> vec4<f32> {
 
 @fragment
 fn fs_main(in: LineOut) -> @location(0) vec4<f32> {
+    if section_cut(in.world) {
+        discard;
+    }
     let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy), 0);
     let scene_depth = scene_depth_at(ids);
     let seg = segments[in.segment];

@@ -20,6 +20,10 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: 
 
 @fragment
 fn fs_main(in: LineOut) -> @location(0) vec4<u32> {
+    // Edges and vertices cut away by a section plane cannot be picked.
+    if section_cut(in.world) {
+        discard;
+    }
     let seg = segments[in.segment];
     let vertex = bitcast<u32>(seg.b.w) == 2u;
     // The quads carry a pixel of fringe: keep the core only.

@@ -5,6 +5,11 @@
 // sky over a uniform ground; the specular lobe blurs the horizon by the roughness; Karis'
 // analytic split-sum BRDF), then
 // ACES tone mapping. The target is an sRGB texture, so the output here is linear.
+//
+// Section caps (the inside of a closed solid seen through a cut, marked in the ids' material
+// channel) get the part's base colour a little darker, lit by the plane's normal, crossed by
+// dark 45° hatch lines in screen space (the other diagonal on every other part, as drawings
+// tell adjacent parts apart) and outlined where the cap ends.
 
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
 @group(0) @binding(2) var normal_tex: texture_2d<f32>;
@@ -123,6 +128,42 @@ fn on_silhouette(p: vec2<i32>, depth: f32) -> bool {
     return false;
 }
 
+// The ids at `p`, or `fallback` outside the image.
+fn ids_at(p: vec2<i32>, fallback: vec4<u32>) -> vec4<u32> {
+    let size = vec2<i32>(frame.viewport.xy);
+    if any(p < vec2<i32>(0)) || any(p >= size) {
+        return fallback;
+    }
+    return textureLoad(ids_tex, p, 0);
+}
+
+// Whether the cap pixel `p` (ids `ids`) lies within the outline width of where its cap ends:
+// a pixel that is not a cap of the same part and plane.
+fn on_cap_boundary(p: vec2<i32>, ids: vec4<u32>) -> bool {
+    let offsets = array<vec2<i32>, 4>(vec2<i32>(1, 0), vec2<i32>(-1, 0), vec2<i32>(0, 1), vec2<i32>(0, -1));
+    let reach = max(i32(frame.section.z + 0.5), 1);
+    for (var k = 0; k < 4; k++) {
+        for (var r = 1; r <= reach; r++) {
+            let q = ids_at(p + offsets[k] * r, ids);
+            if q.y != ids.y || q.z != ids.z {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+// Coverage (0..1, anti-aliased) of the cap hatch lines at pixel centre `pos`: 45° lines every
+// `section.x` pixels, `section.y` wide, the other diagonal for every other part and plane.
+fn hatch(pos: vec2<f32>, ids: vec4<u32>) -> f32 {
+    let plane = (ids.z >> 28u) & 3u;
+    let flip = ((ids.y + plane) & 1u) == 1u;
+    let u = select(pos.x + pos.y, pos.x - pos.y, flip) * 0.70710678;
+    let spacing = max(frame.section.x, 2.0);
+    let d = abs(u - spacing * round(u / spacing));
+    return clamp(0.5 * frame.section.y + 0.5 - d, 0.0, 1.0);
+}
+
 @fragment
 fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(pos.xy);
@@ -130,12 +171,23 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     if ids.y != 0u && frame.outline.x > 0.5 && on_silhouette(p, bitcast<f32>(ids.w)) {
         return frame.edge_colour;
     }
-    // No face (background), or faces drawn as the background (hidden-line, wireframe).
+    let cap = is_cap(ids);
+    // Caps are outlined whenever faces are filled (shaded or hidden-line).
+    if cap && frame.viewport.w < 1.5 && on_cap_boundary(p, ids) {
+        return frame.edge_colour;
+    }
+    // No face (background), or faces drawn as the background (hidden-line, wireframe);
+    // hidden-line drawings keep the caps' hatching.
     if ids.y == 0u || frame.viewport.w > 0.5 {
+        if cap && frame.viewport.w < 1.5 {
+            let h = hatch(pos.xy, ids);
+            return vec4<f32>(mix(frame.background.rgb, frame.edge_colour.rgb, h), frame.background.a);
+        }
         return frame.background;
     }
-    let m = materials[ids.z];
-    let base = m.base_color.rgb;
+    let m = materials[ids.z & CAP_MATERIAL];
+    // The cut material a little darker than the part's surface.
+    let base = m.base_color.rgb * select(1.0, 0.8, cap);
     let metallic = clamp(m.params.x, 0.0, 1.0);
     let roughness = clamp(m.params.y, 0.04, 1.0);
     // View direction from the depth: towards the eye (perspective) or along +z (orthographic).
@@ -177,7 +229,12 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
         colour += light(n, v, l, radiance, base, metallic, roughness);
     }
     colour += ambient(n, v, base, metallic, roughness);
-    return vec4<f32>(highlighted(aces(colour), ids), 1.0);
+    var mapped = aces(colour);
+    if cap {
+        // Dark lines in the cap's own hue.
+        mapped = mix(mapped, 0.1 * mapped, hatch(pos.xy, ids));
+    }
+    return vec4<f32>(highlighted(mapped, ids), 1.0);
 }
 
 // `colour` tinted when its face (or part) is selected or hovered.

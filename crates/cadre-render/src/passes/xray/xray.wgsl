@@ -8,6 +8,8 @@ struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) normal: vec3<f32>,
     @location(1) @interpolate(flat) draw: u32,
+    // Camera-relative world position, for the section planes.
+    @location(2) world: vec3<f32>,
 }
 
 @vertex
@@ -20,7 +22,9 @@ fn vs_main(
 ) -> VertexOut {
     let d = draws[draw_index];
     var out: VertexOut;
-    out.clip = frame.view_proj * (d.model * vec4<f32>(position, 1.0));
+    let world = d.model * vec4<f32>(position, 1.0);
+    out.clip = frame.view_proj * world;
+    out.world = world.xyz;
     out.normal = mat3x3<f32>(d.normal0.xyz, d.normal1.xyz, d.normal2.xyz) * normal;
     out.draw = draw_index;
     return out;
@@ -28,6 +32,9 @@ fn vs_main(
 
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    if section_cut(in.world) {
+        discard;
+    }
     let m = materials[draws[in.draw].material];
     let len = length(in.normal);
     let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
@@ -40,6 +47,9 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
 // material's opacity.
 @fragment
 fn fs_transparent(in: VertexOut) -> @location(0) vec4<f32> {
+    if section_cut(in.world) {
+        discard;
+    }
     let m = materials[draws[in.draw].material];
     let len = length(in.normal);
     let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
