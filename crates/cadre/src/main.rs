@@ -25,6 +25,9 @@ enum Command {
     /// Render a STEP file (or a folder of them) to PNG, headless (GPU or Mesa's software
     /// drivers).
     Render(commands::render::RenderArgs),
+    /// Open the interactive viewer (model tree, picking, measurement, screenshots, 3D
+    /// mouse) on a STEP file, or empty.
+    View(commands::view::ViewArgs),
     /// Time cadre's stages over a folder of files (used by the scripts in `scripts/`).
     Bench(commands::bench::BenchArgs),
 }
@@ -43,6 +46,7 @@ fn main() -> Result<()> {
         Command::Info(args) => commands::info::run(&args),
         Command::Mesh(args) => commands::mesh::run(&args),
         Command::Render(args) => commands::render::run(&args),
+        Command::View(args) => commands::view::run(&args),
         Command::Bench(args) => commands::bench::run(&args),
     }
 }

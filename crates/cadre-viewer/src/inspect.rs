@@ -1,0 +1,378 @@
+//! What the properties panel and the measurement tools say about picked items, from the
+//! exact B-Rep (lengths along curves, radii of surfaces, areas on the exact surface), placed
+//! in the world by the picked instance.
+
+use cadre_brep::measure::{angle_between_faces, edge_properties, face_properties};
+use cadre_render::Pick;
+use glam::DVec3;
+
+use crate::document::Document;
+
+/// A measurement tool: what it needs picked and what it reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tool {
+    /// Distance between two picked points (vertices exactly, faces and edges at the pick).
+    Distance,
+    /// Length of a picked edge.
+    EdgeLength,
+    /// Radius and diameter of a picked cylinder, sphere, circle or arc.
+    Radius,
+    /// Angle between two picked planar faces.
+    Angle,
+}
+
+impl Tool {
+    /// Every tool, for menus.
+    pub const ALL: [Tool; 4] = [Tool::Distance, Tool::EdgeLength, Tool::Radius, Tool::Angle];
+
+    /// Its name in the UI.
+    pub fn name(self) -> &'static str {
+        match self {
+            Tool::Distance => "Distance",
+            Tool::EdgeLength => "Edge length",
+            Tool::Radius => "Radius / diameter",
+            Tool::Angle => "Angle between planes",
+        }
+    }
+
+    /// How many picks it takes.
+    pub fn picks(self) -> usize {
+        match self {
+            Tool::Distance | Tool::Angle => 2,
+            Tool::EdgeLength | Tool::Radius => 1,
+        }
+    }
+}
+
+/// A picked item with the world point where it was picked.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Picked {
+    /// The item.
+    pub pick: Pick,
+    /// World point under the cursor (on the surface, or the vertex itself).
+    pub point: DVec3,
+}
+
+/// A finished measurement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measurement {
+    /// The tool.
+    pub tool: Tool,
+    /// Its value: mm, or radians for angles.
+    pub value: f64,
+    /// What it shows, e.g. "Distance 12.500 mm (dx 3.000, dy …)".
+    pub text: String,
+    /// World points to draw a dimension line between (may be empty).
+    pub points: Vec<DVec3>,
+}
+
+/// The world position of vertex `pick` (exact, from the model), if it is one.
+pub fn vertex_position(doc: &Document, pick: Pick) -> Option<DVec3> {
+    let Pick::Vertex { instance, vertex } = pick else {
+        return None;
+    };
+    let v = doc.index.vertex(u64::from(vertex))?;
+    let world = doc.instances.get(instance as usize)?.world;
+    Some(world.transform_point3(doc.model.vertices.get(v.index())?.point))
+}
+
+/// Rows for the properties panel: the part, then the picked item's own properties.
+pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
+    let instance = pick.instance() as usize;
+    let mut rows = Vec::new();
+    if let Some(info) = doc.instances.get(instance) {
+        rows.push(("Part".to_string(), info.name.clone()));
+    }
+    match pick {
+        Pick::Face { instance, face } => {
+            rows.push(("Face".into(), format!("#{face}")));
+            if let Some(f) = doc.index.face(u64::from(face)) {
+                if let Some(p) = face_properties(&doc.model, f) {
+                    rows.extend(p.rows());
+                }
+                if let Some(Some(fm)) = doc.mesh.faces.get(f.index()) {
+                    let area = cadre_mesh::measure::face_area(&doc.model, f, fm);
+                    let scale = scale_of(doc, instance as usize);
+                    rows.push(("Area".into(), format!("{:.4} mm²", area * scale * scale)));
+                }
+            }
+        }
+        Pick::Edge { edge, .. } => {
+            rows.push(("Edge".into(), format!("#{edge}")));
+            if let Some(e) = doc.index.edge(u64::from(edge))
+                && let Some(p) = edge_properties(&doc.model, e)
+            {
+                rows.extend(p.rows());
+            }
+        }
+        Pick::Vertex { vertex, .. } => {
+            rows.push(("Vertex".into(), format!("#{vertex}")));
+            if let Some(p) = vertex_position(doc, pick) {
+                rows.push((
+                    "Position".into(),
+                    format!("({:.4}, {:.4}, {:.4}) mm", p.x, p.y, p.z),
+                ));
+            }
+        }
+        Pick::Part { instance } => {
+            if let Some((lo, hi)) = doc.instance_bounds(instance as usize) {
+                let d = hi - lo;
+                rows.push((
+                    "Size".into(),
+                    format!("{:.3} × {:.3} × {:.3} mm", d.x, d.y, d.z),
+                ));
+            }
+        }
+    }
+    rows
+}
+
+/// Uniform scale of an instance's placement (1 for rigid placements).
+fn scale_of(doc: &Document, instance: usize) -> f64 {
+    doc.instances
+        .get(instance)
+        .map_or(1.0, |i| i.world.matrix3.determinant().abs().cbrt())
+}
+
+/// Runs `tool` on `picks` (as many as it takes); `Err` says what is wrong with them.
+pub fn measure(doc: &Document, tool: Tool, picks: &[Picked]) -> Result<Measurement, String> {
+    match (tool, picks) {
+        (Tool::Distance, [a, b]) => {
+            let pa = vertex_position(doc, a.pick).unwrap_or(a.point);
+            let pb = vertex_position(doc, b.pick).unwrap_or(b.point);
+            let d = pb - pa;
+            Ok(Measurement {
+                tool,
+                value: d.length(),
+                text: format!(
+                    "Distance {:.4} mm (dx {:.4}, dy {:.4}, dz {:.4})",
+                    d.length(),
+                    d.x,
+                    d.y,
+                    d.z
+                ),
+                points: vec![pa, pb],
+            })
+        }
+        (Tool::EdgeLength, [a]) => {
+            let Pick::Edge { instance, edge } = a.pick else {
+                return Err("pick an edge".into());
+            };
+            let e = doc
+                .index
+                .edge(u64::from(edge))
+                .ok_or_else(|| format!("edge #{edge} is not in the model"))?;
+            let p = edge_properties(&doc.model, e).ok_or("the edge has no geometry")?;
+            let length = p.length.ok_or("the edge's curve does not evaluate")?
+                * scale_of(doc, instance as usize);
+            Ok(Measurement {
+                tool,
+                value: length,
+                text: format!("Edge #{edge}: length {length:.4} mm ({})", p.kind),
+                points: Vec::new(),
+            })
+        }
+        (Tool::Radius, [a]) => {
+            let (radius, what) = match a.pick {
+                Pick::Face { face, .. } => {
+                    let f = doc
+                        .index
+                        .face(u64::from(face))
+                        .ok_or("face not in the model")?;
+                    let p = face_properties(&doc.model, f).ok_or("the face has no surface")?;
+                    (p.radius, format!("Face #{face} ({})", p.kind))
+                }
+                Pick::Edge { edge, .. } => {
+                    let e = doc
+                        .index
+                        .edge(u64::from(edge))
+                        .ok_or("edge not in the model")?;
+                    let p = edge_properties(&doc.model, e).ok_or("the edge has no geometry")?;
+                    (p.radius, format!("Edge #{edge} ({})", p.kind))
+                }
+                _ => return Err("pick a cylinder, sphere, circle or arc".into()),
+            };
+            let r = radius.ok_or(format!("{what} has no radius"))?
+                * scale_of(doc, a.pick.instance() as usize);
+            Ok(Measurement {
+                tool,
+                value: r,
+                text: format!("{what}: radius {r:.4} mm, diameter {:.4} mm", 2.0 * r),
+                points: Vec::new(),
+            })
+        }
+        (Tool::Angle, [a, b]) => {
+            let face_of = |p: Pick| match p {
+                Pick::Face { face, instance } => doc
+                    .index
+                    .face(u64::from(face))
+                    .map(|f| (f, instance as usize)),
+                _ => None,
+            };
+            let ((fa, ia), (fb, ib)) = face_of(a.pick)
+                .zip(face_of(b.pick))
+                .ok_or("pick two planar faces")?;
+            let angle =
+                angle_between_faces(&doc.model, fa, fb).ok_or("both faces must be planar")?;
+            // Normals in the world: each turned by its own instance's placement.
+            let normal = |n: DVec3, i: usize| {
+                doc.instances
+                    .get(i)
+                    .map_or(n, |info| info.world.matrix3.inverse().transpose() * n)
+                    .normalize_or_zero()
+            };
+            let (na, nb) = (normal(angle.normal_a, ia), normal(angle.normal_b, ib));
+            let between = na.dot(nb).clamp(-1.0, 1.0).acos();
+            let planes = between.min(std::f64::consts::PI - between);
+            let mut text = format!(
+                "Angle between planes {:.4}° (normals {:.4}°)",
+                planes.to_degrees(),
+                between.to_degrees()
+            );
+            if ia == ib
+                && let Some(interior) = angle.interior
+            {
+                text.push_str(&format!(
+                    ", through the material {:.4}°",
+                    interior.to_degrees()
+                ));
+            }
+            Ok(Measurement {
+                tool,
+                value: planes,
+                text,
+                points: vec![a.point, b.point],
+            })
+        }
+        _ => Err(format!("{} takes {} pick(s)", tool.name(), tool.picks())),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    fn doc(name: &str) -> Document {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let path = [
+            root.join("examples").join(name),
+            root.join("crates/cadre-render/tests/data").join(name),
+        ]
+        .into_iter()
+        .find(|p| p.is_file())
+        .expect("fixture");
+        Document::load(&path, &|_| {}).expect("loads")
+    }
+
+    fn pick_of(doc: &Document, pick: Pick) -> Picked {
+        Picked {
+            pick,
+            point: doc.bounds.map_or(DVec3::ZERO, |(lo, _)| lo),
+        }
+    }
+
+    #[test]
+    fn a_pins_cylinder_reports_its_radius_area_and_edge_lengths() {
+        let doc = doc("pin-assembly.step");
+        // Every cylindrical face's radius, and a circle edge's length 2πr.
+        let mut cylinders = 0;
+        for f in &doc.model.faces {
+            let Some(p) = face_properties(&doc.model, doc.index.face(f.step_id).unwrap()) else {
+                continue;
+            };
+            let Some(r) = p.radius else { continue };
+            cylinders += 1;
+            let pick = Pick::Face {
+                instance: 0,
+                face: f.step_id as u32,
+            };
+            let m = measure(&doc, Tool::Radius, &[pick_of(&doc, pick)]).expect("radius");
+            assert!(
+                (m.value - r).abs() < 1e-12 && m.text.contains("diameter"),
+                "{m:?}"
+            );
+            let rows = properties(&doc, pick);
+            assert!(
+                rows.iter().any(|(k, v)| k == "Area" && v.ends_with("mm²")),
+                "{rows:?}"
+            );
+            assert!(rows.iter().any(|(k, _)| k == "Part"), "{rows:?}");
+        }
+        assert!(cylinders > 0);
+        let circle = doc
+            .model
+            .edges
+            .iter()
+            .find(|e| {
+                edge_properties(&doc.model, doc.index.edge(e.step_id).unwrap())
+                    .is_some_and(|p| p.radius.is_some() && p.closed)
+            })
+            .expect("a full circle");
+        let pick = Pick::Edge {
+            instance: 0,
+            edge: circle.step_id as u32,
+        };
+        let p = edge_properties(&doc.model, doc.index.edge(circle.step_id).unwrap()).unwrap();
+        let m = measure(&doc, Tool::EdgeLength, &[pick_of(&doc, pick)]).expect("length");
+        let expected = 2.0 * std::f64::consts::PI * p.radius.unwrap();
+        assert!(
+            (m.value - expected).abs() < 1e-6 * expected,
+            "{} vs {expected}",
+            m.value
+        );
+    }
+
+    #[test]
+    fn distance_between_vertices_is_exact_and_angles_need_planes() {
+        let doc = doc("pin-assembly.step");
+        let v: Vec<u32> = doc
+            .model
+            .vertices
+            .iter()
+            .map(|v| v.step_id as u32)
+            .collect();
+        assert!(v.len() >= 2);
+        let (a, b) = (
+            Pick::Vertex {
+                instance: 0,
+                vertex: v[0],
+            },
+            Pick::Vertex {
+                instance: 1,
+                vertex: v[1],
+            },
+        );
+        let m = measure(&doc, Tool::Distance, &[pick_of(&doc, a), pick_of(&doc, b)]).unwrap();
+        let expected =
+            (vertex_position(&doc, b).unwrap() - vertex_position(&doc, a).unwrap()).length();
+        assert!((m.value - expected).abs() < 1e-12);
+        assert_eq!(m.points.len(), 2);
+        // Planar faces: the pins' end caps are parallel (0°) or not planar at all.
+        let planar: Vec<u32> = doc
+            .model
+            .faces
+            .iter()
+            .filter(|f| {
+                face_properties(&doc.model, doc.index.face(f.step_id).unwrap())
+                    .is_some_and(|p| p.plane.is_some())
+            })
+            .map(|f| f.step_id as u32)
+            .collect();
+        assert!(planar.len() >= 2);
+        let fa = Pick::Face {
+            instance: 0,
+            face: planar[0],
+        };
+        let fb = Pick::Face {
+            instance: 0,
+            face: planar[1],
+        };
+        let m = measure(&doc, Tool::Angle, &[pick_of(&doc, fa), pick_of(&doc, fb)]).unwrap();
+        assert!(m.value.abs() < 1e-9, "end caps are parallel: {}", m.text);
+        // Wrong picks give a message, not a panic.
+        assert!(measure(&doc, Tool::Angle, &[pick_of(&doc, a), pick_of(&doc, fb)]).is_err());
+        assert!(measure(&doc, Tool::EdgeLength, &[pick_of(&doc, fa)]).is_err());
+        assert!(measure(&doc, Tool::Distance, &[pick_of(&doc, fa)]).is_err());
+    }
+}
