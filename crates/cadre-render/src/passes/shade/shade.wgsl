@@ -103,25 +103,37 @@ fn aces(x: vec3<f32>) -> vec3<f32> {
     return clamp((x * (a * x + b)) / (x * (c * x + d) + e), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
-// Reverse-Z depth of the visibility buffer at `p` (0 for background or outside the image).
-fn depth_at(p: vec2<i32>) -> f32 {
+// A distance beyond any surface: the background's, so it is always farther than a face.
+const FAR_AWAY: f32 = 1e30;
+
+// Distance from the eye (along the view axis) of the visibility buffer's surface at `p`;
+// `FAR_AWAY` for background or outside the image. The reverse-Z depth is unprojected through
+// the inverse projection: with a finite far plane depth is not proportional to 1/distance (it
+// reaches 0 at the far plane, not at infinity), and orthographic depth is linear in distance,
+// so relative gaps in depth are not relative gaps in distance.
+fn distance_at(p: vec2<i32>) -> f32 {
     let size = vec2<i32>(frame.viewport.xy);
     if any(p < vec2<i32>(0)) || any(p >= size) {
-        return 0.0;
+        return FAR_AWAY;
     }
     let ids = textureLoad(ids_tex, p, 0);
-    return select(0.0, bitcast<f32>(ids.w), ids.y != 0u);
+    if ids.y == 0u {
+        return FAR_AWAY;
+    }
+    let centre = vec2<f32>(p) + 0.5;
+    let ndc = vec2<f32>(centre.x / frame.viewport.x * 2.0 - 1.0, 1.0 - centre.y / frame.viewport.y * 2.0);
+    let view_h = frame.inv_proj * vec4<f32>(ndc, bitcast<f32>(ids.w), 1.0);
+    return -view_h.z / view_h.w;
 }
 
-// Whether `p` lies on a silhouette: a neighbour farther away by more than the relative jump
-// (another part, the background, or the same part behind a fold). Only the nearer side of a
-// jump is marked, so outlines stay one pixel wide and on the object.
-fn on_silhouette(p: vec2<i32>, depth: f32) -> bool {
+// Whether `p` lies on a silhouette: a neighbour farther from the eye by more than the
+// relative jump `outline.y` (another part, the background, or the same part behind a fold).
+// Only the nearer side of a jump is marked, so outlines stay one pixel wide and on the object.
+fn on_silhouette(p: vec2<i32>) -> bool {
     let offsets = array<vec2<i32>, 4>(vec2<i32>(1, 0), vec2<i32>(-1, 0), vec2<i32>(0, 1), vec2<i32>(0, -1));
+    let limit = distance_at(p) * (1.0 + frame.outline.y);
     for (var k = 0; k < 4; k++) {
-        let d = depth_at(p + offsets[k]);
-        // Reverse Z: depth ∝ 1/distance, so a relative gap in depth is one in distance.
-        if d < depth * (1.0 - frame.outline.y) {
+        if distance_at(p + offsets[k]) > limit {
             return true;
         }
     }
@@ -168,7 +180,7 @@ fn hatch(pos: vec2<f32>, ids: vec4<u32>) -> f32 {
 fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(pos.xy);
     let ids = textureLoad(ids_tex, p, 0);
-    if ids.y != 0u && frame.outline.x > 0.5 && on_silhouette(p, bitcast<f32>(ids.w)) {
+    if ids.y != 0u && frame.outline.x > 0.5 && on_silhouette(p) {
         return frame.edge_colour;
     }
     let cap = is_cap(ids);
