@@ -14,6 +14,9 @@ pub enum RenderError {
     /// The adapter refused to create a device.
     #[error("the GPU adapter refused a device: {0}")]
     Device(String),
+    /// The adapter lacks a capability the passes need.
+    #[error("the GPU adapter cannot run the renderer: {0}")]
+    Unsupported(String),
     /// The requested image size is zero or beyond what the adapter supports.
     #[error("image size {width}x{height} is not supported (1 to {max} pixels a side)")]
     Size {

@@ -54,15 +54,18 @@ impl Gpu {
                 power_preference: wgpu::PowerPreference::HighPerformance,
                 ..Default::default()
             })) {
-                Ok(a) => {
-                    found = Some(a);
-                    break;
-                }
+                // An adapter that cannot run the passes: try the next set of backends.
+                Ok(a) => match Gpu::from_adapter(&a) {
+                    Ok(gpu) => {
+                        found = Some(gpu);
+                        break;
+                    }
+                    Err(e) => last = e.to_string(),
+                },
                 Err(e) => last = e.to_string(),
             }
         }
-        let adapter = found.ok_or(RenderError::NoAdapter(last))?;
-        Gpu::from_adapter(&adapter)
+        found.ok_or(RenderError::NoAdapter(last))
     }
 
     /// A device on `adapter`: what a window's viewer calls with the adapter it requested as
@@ -71,6 +74,19 @@ impl Gpu {
     pub fn from_adapter(adapter: &wgpu::Adapter) -> Result<Gpu, RenderError> {
         let info = adapter.get_info();
         tracing::info!(adapter = %info.name, backend = ?info.backend, "GPU adapter");
+        // Edges, picking and draw records are read from storage buffers in vertex shaders:
+        // GL contexts below GL 4.3 / GLES 3.1 (NVIDIA's EGL path gave one) cannot, and would
+        // fail at pipeline creation.
+        if !adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::VERTEX_STORAGE)
+        {
+            return Err(RenderError::Unsupported(format!(
+                "{} ({:?}) cannot read storage buffers in vertex shaders (GL 4.3 or GLES 3.1 needed)",
+                info.name, info.backend
+            )));
+        }
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("cadre"),
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
