@@ -76,6 +76,17 @@ pub fn vertex_position(doc: &Document, pick: Pick) -> Option<DVec3> {
     Some(world.transform_point3(doc.model.vertices.get(v.index())?.point))
 }
 
+/// The world plane (a point on it, outward unit normal) of a picked planar face.
+pub fn world_plane(doc: &Document, pick: Pick) -> Option<(DVec3, DVec3)> {
+    let Pick::Face { instance, face } = pick else {
+        return None;
+    };
+    let plane = face_properties(&doc.model, doc.index.face(u64::from(face))?)?.plane?;
+    let world = doc.instances.get(instance as usize)?.world;
+    let normal = (world.matrix3.inverse().transpose() * plane.normal).normalize_or_zero();
+    (normal != DVec3::ZERO).then(|| (world.transform_point3(plane.origin), normal))
+}
+
 /// Rows for the properties panel: the part, then the picked item's own properties.
 pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
     let instance = pick.instance() as usize;

@@ -81,6 +81,39 @@ pub(crate) struct Session {
     pub spacemouse: Option<String>,
     /// The 3D view's texture, drawn as the central panel's image.
     pub view_texture: Option<egui::TextureId>,
+    /// Section planes (at most [`cadre_render::MAX_SECTIONS`]).
+    pub sections: Vec<Section>,
+}
+
+/// A section plane as the user sets it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Section {
+    /// Whether it cuts.
+    pub enabled: bool,
+    /// Unit normal (world): the side it points to is cut away.
+    pub normal: glam::DVec3,
+    /// Position along the normal across the model's box, 0..1.
+    pub position: f64,
+}
+
+impl Section {
+    /// The plane across the model's box `lo`..`hi`.
+    pub fn plane(&self, lo: glam::DVec3, hi: glam::DVec3) -> cadre_render::SectionPlane {
+        // The box's extent along the normal.
+        let corners = (0..8).map(|i| {
+            glam::DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+            .dot(self.normal)
+        });
+        let (min, max) = corners.fold((f64::MAX, f64::MIN), |(a, b), d| (a.min(d), b.max(d)));
+        cadre_render::SectionPlane {
+            normal: self.normal,
+            offset: min + (max - min) * self.position.clamp(0.0, 1.0),
+        }
+    }
 }
 
 impl Session {
@@ -110,6 +143,7 @@ impl Session {
             frame_ms: 0.0,
             spacemouse: None,
             view_texture: None,
+            sections: Vec::new(),
         }
     }
 
@@ -125,6 +159,7 @@ impl Session {
         self.selection.clear();
         self.tool_picks.clear();
         self.measurements.clear();
+        self.sections.clear();
         self.status = format!(
             "{}: {} parts, {} faces, loaded in {:.2} s",
             doc.title(),
@@ -161,7 +196,15 @@ impl Session {
                 .chain(&self.tool_picks)
                 .map(|p| p.pick)
                 .collect(),
-            ..cadre_render::ViewState::default()
+            sections: match doc.bounds {
+                Some((lo, hi)) => self
+                    .sections
+                    .iter()
+                    .filter(|s| s.enabled)
+                    .map(|s| s.plane(lo, hi))
+                    .collect(),
+                None => Vec::new(),
+            },
         }
     }
 
@@ -599,6 +642,79 @@ fn properties_panel(ui: &mut egui::Ui, s: &mut Session, actions: &mut Vec<Action
     for m in s.measurements.iter().rev() {
         ui.label(&m.text);
     }
+    ui.separator();
+    sections_ui(ui, s);
+}
+
+/// Section planes: add (along an axis or a selected planar face), move, flip, remove.
+fn sections_ui(ui: &mut egui::Ui, s: &mut Session) {
+    ui.heading("Sections");
+    ui.horizontal(|ui| {
+        let room = s.sections.len() < cadre_render::MAX_SECTIONS;
+        for (name, normal) in [
+            ("+X", glam::DVec3::X),
+            ("+Y", glam::DVec3::Y),
+            ("+Z", glam::DVec3::Z),
+        ] {
+            if ui.add_enabled(room, egui::Button::new(name)).clicked() {
+                s.sections.push(Section {
+                    enabled: true,
+                    normal,
+                    position: 0.5,
+                });
+            }
+        }
+        let face_normal = s
+            .selection
+            .first()
+            .and_then(|p| s.doc.as_ref().and_then(|d| inspect::world_plane(d, p.pick)));
+        if ui
+            .add_enabled(
+                room && face_normal.is_some(),
+                egui::Button::new("From face"),
+            )
+            .on_hover_text("A plane through the selected planar face")
+            .clicked()
+            && let (Some((origin, normal)), Some((lo, hi))) =
+                (face_normal, s.doc.as_ref().and_then(|d| d.bounds))
+        {
+            // The position that puts the plane through the face.
+            let mut section = Section {
+                enabled: true,
+                normal: -normal,
+                position: 0.0,
+            };
+            let (a, b) = (section.plane(lo, hi).offset, {
+                section.position = 1.0;
+                section.plane(lo, hi).offset
+            });
+            let d = (-normal).dot(origin);
+            section.position = if (b - a).abs() > 1e-300 {
+                (d - a) / (b - a)
+            } else {
+                0.5
+            };
+            s.sections.push(section);
+        }
+    });
+    let mut remove = None;
+    for (k, section) in s.sections.iter_mut().enumerate() {
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut section.enabled, format!("{}", k + 1));
+            ui.spacing_mut().slider_width = 120.0;
+            ui.add(egui::Slider::new(&mut section.position, 0.0..=1.0).show_value(false));
+            if ui.button("Flip").clicked() {
+                section.normal = -section.normal;
+                section.position = 1.0 - section.position;
+            }
+            if ui.button("✕").clicked() {
+                remove = Some(k);
+            }
+        });
+    }
+    if let Some(k) = remove {
+        s.sections.remove(k);
+    }
 }
 
 fn dialogs(ui: &mut egui::Ui, s: &mut Session, actions: &mut Vec<Action>) {
@@ -893,6 +1009,18 @@ fn keyboard(ui: &mut egui::Ui, s: &mut Session, actions: &mut Vec<Action>) {
         }
         if i.key_pressed(Key::I) {
             s.isolate();
+        }
+        if i.key_pressed(Key::S) {
+            // A quick section across the middle, or none.
+            if s.sections.is_empty() {
+                s.sections.push(Section {
+                    enabled: true,
+                    normal: glam::DVec3::Y,
+                    position: 0.5,
+                });
+            } else {
+                s.sections.clear();
+            }
         }
         for (key, tool) in [
             (Key::D, Tool::Distance),

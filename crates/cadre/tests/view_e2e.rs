@@ -260,11 +260,15 @@ fn the_viewer_opens_a_model_and_follows_mouse_keyboard_and_3d_mouse() {
 
     // Orbit: a drag turns the view, the model stays in sight.
     viewer.mouse(vw / 2, vh / 2);
+    // Paced like a hand: the viewer must see the press, the moves and the release in
+    // different frames (a slow software GPU draws few of them).
     viewer.xdotool(&["mousedown", "1"]);
+    std::thread::sleep(Duration::from_millis(300));
     for k in 1..=10 {
         viewer.mouse(vw / 2 + 8 * k, vh / 2 + 3 * k);
-        std::thread::sleep(Duration::from_millis(30));
+        std::thread::sleep(Duration::from_millis(80));
     }
+    std::thread::sleep(Duration::from_millis(300));
     viewer.xdotool(&["mouseup", "1"]);
     let orbited = viewer.screenshot();
     assert!(
@@ -282,7 +286,7 @@ fn the_viewer_opens_a_model_and_follows_mouse_keyboard_and_3d_mouse() {
     viewer.mouse(vw / 2, vh / 2);
     for _ in 0..5 {
         viewer.xdotool(&["click", "4"]);
-        std::thread::sleep(Duration::from_millis(50));
+        std::thread::sleep(Duration::from_millis(100));
     }
     let zoomed = coverage(&viewer.screenshot());
     assert!(
@@ -309,6 +313,18 @@ fn the_viewer_opens_a_model_and_follows_mouse_keyboard_and_3d_mouse() {
     viewer.mouse(x, y);
     viewer.xdotool(&["click", "1"]);
     viewer.wait_for("selected ");
+
+    // A section across the middle (key S) cuts the pins open: their caps show.
+    viewer.key("Escape");
+    viewer.preset("0", "Iso");
+    let whole = viewer.screenshot();
+    viewer.key("s");
+    let cut = viewer.screenshot();
+    assert!(
+        differing(&whole, &cut) > 0.005,
+        "the section changed nothing"
+    );
+    viewer.key("s");
 
     // The 3D mouse: a twist turns the view; button 1 goes to the iso view.
     viewer.saw_or_wait("spacemouse ");

@@ -41,6 +41,23 @@ enum BenchWhat {
         #[arg(long, default_value_t = 5)]
         frames: u32,
     },
+    /// The viewer's frame on the same heavy scene: the scene uploaded once, then each frame
+    /// orbits the camera by 2°, draws into a kept viewport (the window's path, no readback)
+    /// and waits for the GPU; then picks (edge/vertex pass + window readback) are timed.
+    /// Prints one JSON object.
+    View {
+        /// The STEP file.
+        file: PathBuf,
+        /// Instances per side of the grid.
+        #[arg(long, default_value_t = 10)]
+        grid: u32,
+        /// View size, WIDTHxHEIGHT.
+        #[arg(long, default_value = "1920x1080", value_parser = crate::commands::render::parse_size)]
+        size: (u32, u32),
+        /// Frames timed (after one warm-up frame).
+        #[arg(long, default_value_t = 30)]
+        frames: u32,
+    },
 }
 
 fn step_files(path: &Path) -> Result<Vec<PathBuf>> {
@@ -65,6 +82,12 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             size,
             frames,
         } => bench_render(file, *grid, *size, *frames),
+        BenchWhat::View {
+            file,
+            grid,
+            size,
+            frames,
+        } => bench_view(file, *grid, *size, *frames),
         BenchWhat::Import { path, repeat } => {
             for file in step_files(path)? {
                 let bytes = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
@@ -98,10 +121,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 }
 
 /// `cadre bench render`: see [`BenchWhat::Render`].
-fn bench_render(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) -> Result<()> {
+/// FILE meshed at 0.001 × its diagonal and placed `grid` × `grid` times, with its box.
+fn grid_scene(
+    file: &Path,
+    grid: u32,
+) -> Result<(cadre_mesh::export::Scene, glam::DVec3, glam::DVec3)> {
     use cadre_mesh::export::SceneNode;
     use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
-    use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
+    use cadre_render::scene_bounds;
     use glam::{DAffine3, DVec3};
 
     let loaded = crate::load::load_step(file)?;
@@ -131,6 +158,133 @@ fn bench_render(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32
         }
     }
     let (lo, hi) = scene_bounds(&scene).context("the grid has no geometry")?;
+    Ok((scene, lo, hi))
+}
+
+/// Median of `values` (sorted copy).
+fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// `cadre bench view`: see [`BenchWhat::View`].
+fn bench_view(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) -> Result<()> {
+    use cadre_render::{
+        Camera, FrameOptions, Gpu, Renderer, ViewPreset, ViewState, Viewport, wgpu,
+    };
+    use glam::{DQuat, DVec3};
+
+    let (scene, lo, hi) = grid_scene(file, grid)?;
+    let aspect = f64::from(width) / f64::from(height);
+    let fitted = Camera::fit(lo, hi, ViewPreset::Iso, false, aspect);
+    let gpu = Gpu::headless()?;
+    let renderer = Renderer::new(&gpu)?;
+    let t0 = Instant::now();
+    let prepared = renderer.prepare(&gpu, &scene);
+    let upload_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let mut viewport = Viewport::new(&gpu, width, height);
+    let target = gpu
+        .device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some("bench view"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8UnormSrgb,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        })
+        .create_view(&Default::default());
+    let options = FrameOptions {
+        width,
+        height,
+        supersample: 1,
+        mode: cadre_render::DisplayMode::ShadedEdges,
+        ..FrameOptions::default()
+    };
+    let state = ViewState::default();
+    let wait = |gpu: &Gpu| -> Result<()> {
+        gpu.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(drop)
+            .map_err(|e| anyhow::anyhow!("{e}"))
+    };
+    let orbit = |k: u32| {
+        let q = DQuat::from_axis_angle(DVec3::Z, f64::from(k) * 2f64.to_radians());
+        Camera {
+            eye: fitted.target + q * (fitted.eye - fitted.target),
+            ..fitted
+        }
+    };
+    renderer.draw(
+        &gpu,
+        &mut viewport,
+        &prepared,
+        &orbit(0),
+        &options,
+        &state,
+        &target,
+    )?;
+    wait(&gpu)?;
+    let mut ms = Vec::new();
+    for k in 1..=frames.max(1) {
+        let t = Instant::now();
+        renderer.draw(
+            &gpu,
+            &mut viewport,
+            &prepared,
+            &orbit(k),
+            &options,
+            &state,
+            &target,
+        )?;
+        wait(&gpu)?;
+        ms.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let mut pick_ms = Vec::new();
+    for k in 0..10u32 {
+        let t = Instant::now();
+        let window = renderer.pick(
+            &gpu,
+            &viewport,
+            &prepared,
+            (width / 2 + 7 * k, height / 2),
+            5,
+        )?;
+        std::hint::black_box(window.nearest(5.0));
+        pick_ms.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    println!(
+        "{}",
+        json!({
+            "file": file.display().to_string(),
+            "adapter": gpu.info.name,
+            "backend": format!("{:?}", gpu.info.backend),
+            "instances": prepared.instance_count(),
+            "triangles": scene.instance_triangle_count(),
+            "width": width,
+            "height": height,
+            "upload_ms": upload_ms,
+            "frame_ms": ms,
+            "median_frame_ms": median(&ms),
+            "fps": 1e3 / median(&ms),
+            "median_pick_ms": median(&pick_ms),
+        })
+    );
+    Ok(())
+}
+
+/// `cadre bench render`: see [`BenchWhat::Render`].
+fn bench_render(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) -> Result<()> {
+    use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset};
+
+    let (scene, lo, hi) = grid_scene(file, grid)?;
     let camera = Camera::fit(
         lo,
         hi,
