@@ -23,20 +23,23 @@ pub(crate) const SEGMENT_EDGE: u32 = 1;
 /// A B-Rep vertex: a segment of zero length, drawn only for picking.
 pub(crate) const SEGMENT_VERTEX: u32 = 2;
 
-/// One indexed draw call: `count` indices from `first` of mesh `mesh`, with draw record `draw`.
+/// One instanced indexed draw: `count` indices from `first` of mesh `mesh`, once per draw
+/// record `draw .. draw + instances` (the instances of that mesh drawn alike).
 pub(crate) struct DrawCall {
     pub mesh: usize,
     pub first: u32,
     pub count: u32,
     pub draw: u32,
+    pub instances: u32,
 }
 
-/// One segment draw: `count` segments from `first` of the segment buffer, placed by draw
-/// record `draw` (any of the instance's records: they share its model matrix).
+/// One instanced segment draw: `count` segments from `first` of the segment buffer, once per
+/// draw record `draw .. draw + instances` (one record per instance of the mesh).
 pub(crate) struct EdgeCall {
     pub first: u32,
     pub count: u32,
     pub draw: u32,
+    pub instances: u32,
 }
 
 /// Where one mesh's pieces lie in the shared buffers.
@@ -248,6 +251,10 @@ impl<'a> FrameScene<'a> {
         let mut transparent = Vec::new();
         let mut edge_calls = Vec::new();
         let mut pick_calls = Vec::new();
+        // Visible instances grouped by mesh, each with its base record and colour: the
+        // instances of one mesh are drawn by one instanced call per primitive (an assembly of
+        // thousands of repeated parts costs a few calls, not thousands).
+        let mut by_mesh: Vec<Vec<(Draw, Option<u32>)>> = vec![Vec::new(); geometry.meshes.len()];
         for (instance, &(mesh, world)) in geometry.instances.iter().enumerate() {
             let Some(mesh) = mesh else { continue };
             let style = state
@@ -278,15 +285,24 @@ impl<'a> FrameScene<'a> {
                     }
             });
             let record = placement(camera, rotation, world, (instance as u32, flags));
+            by_mesh[mesh].push((record(geometry.default_material()), colour_material));
+        }
+        for (mesh, group) in by_mesh.iter().enumerate() {
+            if group.is_empty() {
+                continue;
+            }
+            let ranges = &geometry.meshes[mesh];
+            let n = group.len() as u32;
+            // One record per instance for its segments (the default material's).
             let own = draws.len() as u32;
-            // The instance's own record, whatever its primitives.
-            draws.push(record(geometry.default_material()));
+            draws.extend(group.iter().map(|(d, _)| *d));
             let segment_call = |calls: &mut Vec<EdgeCall>, (first, count): (u32, u32)| {
                 if count > 0 {
                     calls.push(EdgeCall {
                         first,
                         count,
                         draw: own,
+                        instances: n,
                     });
                 }
             };
@@ -300,24 +316,37 @@ impl<'a> FrameScene<'a> {
                 if count == 0 {
                     continue;
                 }
-                let material = colour_material.unwrap_or_else(|| {
-                    material
-                        .filter(|&m| m + 1 < geometry.materials.len())
-                        .map_or(geometry.default_material(), |m| m as u32)
-                });
-                let alpha = materials[material as usize].base_color[3];
-                let call = DrawCall {
-                    mesh,
-                    first,
-                    count,
-                    draw: draws.len() as u32,
-                };
-                if alpha < 0.999 {
-                    transparent.push(call);
-                } else {
-                    calls.push(call);
+                let own_material = material
+                    .filter(|&m| m + 1 < geometry.materials.len())
+                    .map_or(geometry.default_material(), |m| m as u32);
+                // Opaque instances first, then see-through ones, each a contiguous run.
+                let resolved: Vec<(Draw, bool)> = group
+                    .iter()
+                    .map(|&(d, colour)| {
+                        let m = colour.unwrap_or(own_material);
+                        let see_through = materials[m as usize].base_color[3] < 0.999;
+                        (Draw { material: m, ..d }, see_through)
+                    })
+                    .collect();
+                for (list, see_through) in [(&mut calls, false), (&mut transparent, true)] {
+                    let start = draws.len() as u32;
+                    draws.extend(
+                        resolved
+                            .iter()
+                            .filter(|(_, t)| *t == see_through)
+                            .map(|(d, _)| *d),
+                    );
+                    let instances = draws.len() as u32 - start;
+                    if instances > 0 {
+                        list.push(DrawCall {
+                            mesh,
+                            first,
+                            count,
+                            draw: start,
+                            instances,
+                        });
+                    }
                 }
-                draws.push(record(material));
             }
         }
         if draws.is_empty() {

@@ -300,7 +300,15 @@ impl App {
             self.session.hover = None;
         }
         if let Some((p, add)) = input.click {
-            let picked = self.pick_at(p);
+            let mut picked = self.pick_at(p);
+            // Alt + click: the part the item belongs to.
+            if input.part
+                && let Some(p) = &mut picked
+            {
+                p.pick = cadre_render::Pick::Part {
+                    instance: p.pick.instance(),
+                };
+            }
             let measured = self.session.measurements.len();
             self.session.clicked(picked, add);
             match picked {

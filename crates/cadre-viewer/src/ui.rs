@@ -51,6 +51,8 @@ pub(crate) struct ViewInput {
     pub zoom: f32,
     /// A click (no drag) at the pointer: select; `add` with ctrl or shift.
     pub click: Option<(Pos2, bool)>,
+    /// The click picks the whole part (alt held).
+    pub part: bool,
 }
 
 /// The viewer's state the interface shows and edits.
@@ -330,6 +332,7 @@ pub(crate) fn draw(
             input.click = response
                 .interact_pointer_pos()
                 .map(|p| (phys(p), shift || ctrl));
+            input.part = ui.input(|i| i.modifiers.alt);
         }
         if response.double_clicked() {
             actions.push(Action::FitSelection);

@@ -141,7 +141,7 @@ pub(crate) fn colour_pass<'e>(
     })
 }
 
-/// Draws every (primitive, instance) of `scene`, the draw record picked by the instance index.
+/// Draws `calls` of `scene`, each instanced over its draw records (picked by the instance index).
 pub(crate) fn draw_meshes(
     pass: &mut wgpu::RenderPass<'_>,
     scene: &FrameScene<'_>,
@@ -157,7 +157,7 @@ pub(crate) fn draw_meshes(
         pass.draw_indexed(
             call.first..call.first + call.count,
             0,
-            call.draw..call.draw + 1,
+            call.draw..call.draw + call.instances,
         );
     }
 }

@@ -76,7 +76,7 @@ impl EdgesPass {
         for call in &scene.edge_calls {
             pass.draw(
                 call.first * 6..(call.first + call.count) * 6,
-                call.draw..call.draw + 1,
+                call.draw..call.draw + call.instances,
             );
         }
     }

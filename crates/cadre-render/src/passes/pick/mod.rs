@@ -81,7 +81,7 @@ impl PickPass {
         for call in inputs.calls {
             pass.draw(
                 call.first * 6..(call.first + call.count) * 6,
-                call.draw..call.draw + 1,
+                call.draw..call.draw + call.instances,
             );
         }
     }
