@@ -3,59 +3,14 @@
 //! images are written to `target/golden/`; references are rewritten only when
 //! `CADRE_BLESS=1` is set, never because one is missing.
 
-use std::path::{Path, PathBuf};
+mod common;
 
 use cadre_mesh::export::Scene;
-use cadre_mesh::{MeshParams, mesh_model};
 use cadre_render::compare::compare;
 use cadre_render::{Camera, DisplayMode, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
+use common::{MAX_DIFFERING, TOLERANCE, check_golden, gpu, model_and_scene, scene};
 use glam::{DAffine3, DVec3};
 use image::RgbaImage;
-
-/// A pixel differs when a channel is more than this far off.
-const TOLERANCE: u8 = 24;
-/// At most this fraction of pixels may differ (edges of shapes move by a pixel between
-/// drivers).
-const MAX_DIFFERING: f64 = 0.01;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn gpu() -> Gpu {
-    Gpu::headless().unwrap_or_else(|e| {
-        panic!("{e}\nthe renderer tests need a GPU or Mesa's software Vulkan (lavapipe)")
-    })
-}
-
-/// A fixture: the bundled example, or a test model under `tests/data`.
-fn fixture(name: &str) -> PathBuf {
-    let example = root().join("examples").join(name);
-    if example.is_file() {
-        example
-    } else {
-        root().join("crates/cadre-render/tests/data").join(name)
-    }
-}
-
-/// The fixture's model and its tessellated scene (0.01 mm, 0.3 rad).
-fn model_and_scene(name: &str) -> (cadre_brep::Model, Scene) {
-    let file = cadre_step::syntax::StepFile::read(&fixture(name)).expect("fixture reads");
-    let model = cadre_step::map_file(&file);
-    let params = MeshParams {
-        deflection: 0.01,
-        angle: 0.3,
-        ..MeshParams::default()
-    };
-    let mesh = mesh_model(&model, &params, None);
-    let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
-    (model, scene)
-}
-
-/// The fixture's tessellated scene.
-fn scene(name: &str) -> Scene {
-    model_and_scene(name).1
-}
 
 fn options(width: u32, height: u32) -> FrameOptions {
     FrameOptions {
@@ -64,39 +19,6 @@ fn options(width: u32, height: u32) -> FrameOptions {
         supersample: 2,
         background: [1.0, 1.0, 1.0, 1.0],
         ..FrameOptions::default()
-    }
-}
-
-fn check_golden(name: &str, image: &RgbaImage) {
-    let reference = root().join("crates/cadre-render/tests/golden").join(name);
-    if std::env::var_os("CADRE_BLESS").is_some() {
-        image.save(&reference).expect("write reference");
-        return;
-    }
-    let expected = image::open(&reference)
-        .unwrap_or_else(|e| {
-            panic!(
-                "{}: {e} (render it with CADRE_BLESS=1 and review it before committing)",
-                reference.display()
-            )
-        })
-        .to_rgba8();
-    let c = compare(image, &expected, TOLERANCE);
-    if !c.passes(MAX_DIFFERING) {
-        let out = root().join("target/golden");
-        std::fs::create_dir_all(&out).expect("target/golden");
-        image
-            .save(out.join(format!("actual-{name}")))
-            .expect("write actual");
-        c.diff
-            .save(out.join(format!("diff-{name}")))
-            .expect("write diff");
-        panic!(
-            "{name}: {:.2} % of pixels differ (max channel delta {}); actual and diff in {}",
-            100.0 * c.differing,
-            c.max_delta,
-            out.display()
-        );
     }
 }
 

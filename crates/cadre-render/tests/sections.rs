@@ -4,48 +4,19 @@
 //! the model change nothing, three planes cut a corner, caps are hatched, and one golden
 //! image.
 
-use std::path::{Path, PathBuf};
+mod common;
 
 use cadre_mesh::export::Scene;
-use cadre_mesh::{MeshParams, mesh_model};
-use cadre_render::compare::compare;
 use cadre_render::{
     Camera, DisplayMode, FrameOptions, Gpu, PreparedScene, Renderer, SectionPlane, ViewPreset,
     ViewState, scene_bounds, section_cap,
 };
+use common::{check_golden, gpu, scene};
 use glam::{DAffine3, DVec3, DVec4};
 use image::RgbaImage;
 
 const W: u32 = 128;
 const H: u32 = 96;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn gpu() -> Gpu {
-    Gpu::headless().unwrap_or_else(|e| {
-        panic!("{e}\nthe renderer tests need a GPU or Mesa's software Vulkan (lavapipe)")
-    })
-}
-
-/// A fixture (the bundled example, or a test model under `tests/data`), tessellated.
-fn scene(name: &str) -> Scene {
-    let example = root().join("examples").join(name);
-    let path = if example.is_file() {
-        example
-    } else {
-        root().join("crates/cadre-render/tests/data").join(name)
-    };
-    let file = cadre_step::syntax::StepFile::read(&path).expect("fixture reads");
-    let model = cadre_step::map_file(&file);
-    let params = MeshParams {
-        deflection: 0.01,
-        angle: 0.3,
-        ..MeshParams::default()
-    };
-    cadre_mesh::assemble::build_scene(&model, &mesh_model(&model, &params, None))
-}
 
 /// The scene with every root placed by `t` first.
 fn placed(scene: &Scene, t: DAffine3) -> Scene {
@@ -449,34 +420,6 @@ fn caps_are_hatched() {
     assert!((0.04..0.3).contains(&dark), "dark fraction {dark}");
     // The rest of the cap is the part's colour, not black.
     assert!(median > 80.0, "median {median}");
-}
-
-/// Compares with (or, with `CADRE_BLESS=1`, writes) a golden image in `tests/golden`.
-fn check_golden(name: &str, image: &RgbaImage) {
-    let reference = root().join("crates/cadre-render/tests/golden").join(name);
-    if std::env::var_os("CADRE_BLESS").is_some() {
-        image.save(&reference).expect("write reference");
-        return;
-    }
-    let expected = image::open(&reference)
-        .unwrap_or_else(|e| panic!("{}: {e} (bless with CADRE_BLESS=1)", reference.display()))
-        .to_rgba8();
-    let c = compare(image, &expected, 24);
-    if !c.passes(0.01) {
-        let out = root().join("target/golden");
-        std::fs::create_dir_all(&out).expect("target/golden");
-        image
-            .save(out.join(format!("actual-{name}")))
-            .expect("write actual");
-        c.diff
-            .save(out.join(format!("diff-{name}")))
-            .expect("write diff");
-        panic!(
-            "{name}: {:.2} % of pixels differ; actual and diff in {}",
-            100.0 * c.differing,
-            out.display()
-        );
-    }
 }
 
 /// The dome and cone cut in half towards the iso eye, with edges, 256 × 192 (at 128 the

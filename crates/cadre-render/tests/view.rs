@@ -2,36 +2,22 @@
 //! prepared scene drawn into a kept viewport, picking faces, edges and vertices from it, and
 //! the view's styles (hidden, recoloured, see-through, highlighted parts).
 
-use std::path::Path;
+mod common;
 
 use cadre_mesh::export::Scene;
-use cadre_mesh::{MeshParams, mesh_model};
 use cadre_render::{
     Camera, DisplayMode, FrameOptions, Gpu, InstanceStyle, Pick, Renderer, ViewPreset, ViewState,
     Viewport, scene_bounds, wgpu,
 };
+use common::{gpu, scene};
 use glam::{DVec3, DVec4};
 
 const W: u32 = 200;
 const H: u32 = 150;
 
-fn gpu() -> Gpu {
-    Gpu::headless().unwrap_or_else(|e| {
-        panic!("{e}\nthe renderer tests need a GPU or Mesa's software Vulkan (lavapipe)")
-    })
-}
-
 /// The bundled pin assembly (two placed pins), tessellated.
 fn pin_assembly() -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pin-assembly.step");
-    let file = cadre_step::syntax::StepFile::read(&path).expect("example reads");
-    let model = cadre_step::map_file(&file);
-    let params = MeshParams {
-        deflection: 0.01,
-        angle: 0.3,
-        ..MeshParams::default()
-    };
-    cadre_mesh::assemble::build_scene(&model, &mesh_model(&model, &params, None))
+    scene("pin-assembly.step")
 }
 
 fn camera(scene: &Scene) -> Camera {

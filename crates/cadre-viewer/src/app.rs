@@ -294,11 +294,15 @@ impl App {
         if let Some(p) = input.drag_started {
             self.pivot = self.pick_at(p).map(|h| h.point);
         }
-        if let Some(p) = input.hover {
-            self.session.hover = self.pick_at(p);
-        } else {
-            self.session.hover = None;
-        }
+        // Hover picking costs a pass and a readback: not while the camera moves (the item
+        // under a moving cursor changes every frame), except for the zoom's own point.
+        let moving = input.orbit != egui::Vec2::ZERO
+            || input.pan != egui::Vec2::ZERO
+            || self.session.nav.as_ref().is_some_and(|n| n.animating());
+        self.session.hover = match input.hover {
+            Some(p) if !moving || input.zoom != 0.0 => self.pick_at(p),
+            _ => None,
+        };
         if let Some((p, add)) = input.click {
             let mut picked = self.pick_at(p);
             // Alt + click: the part the item belongs to.

@@ -99,7 +99,7 @@ pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
             rows.push(("Face".into(), format!("#{face}")));
             if let Some(f) = doc.index.face(u64::from(face)) {
                 if let Some(p) = face_properties(&doc.model, f) {
-                    rows.extend(p.rows());
+                    rows.extend(face_in_world(p, doc, instance as usize).rows());
                 }
                 if let Some(Some(fm)) = doc.mesh.faces.get(f.index()) {
                     let area = cadre_mesh::measure::face_area(&doc.model, f, fm);
@@ -108,12 +108,12 @@ pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
                 }
             }
         }
-        Pick::Edge { edge, .. } => {
+        Pick::Edge { instance, edge } => {
             rows.push(("Edge".into(), format!("#{edge}")));
             if let Some(e) = doc.index.edge(u64::from(edge))
                 && let Some(p) = edge_properties(&doc.model, e)
             {
-                rows.extend(p.rows());
+                rows.extend(edge_in_world(p, doc, instance as usize).rows());
             }
         }
         Pick::Vertex { vertex, .. } => {
@@ -136,6 +136,85 @@ pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
         }
     }
     rows
+}
+
+/// A placement's maps for points, directions and lengths.
+struct Placement {
+    world: glam::DAffine3,
+    scale: f64,
+}
+
+impl Placement {
+    fn of(doc: &Document, instance: usize) -> Placement {
+        Placement {
+            world: doc
+                .instances
+                .get(instance)
+                .map_or(glam::DAffine3::IDENTITY, |i| i.world),
+            scale: scale_of(doc, instance),
+        }
+    }
+
+    fn point(&self, p: DVec3) -> DVec3 {
+        self.world.transform_point3(p)
+    }
+
+    fn direction(&self, d: DVec3) -> DVec3 {
+        self.world.transform_vector3(d).normalize_or_zero()
+    }
+
+    /// Normals turn by the inverse transpose (a mirror keeps them outward).
+    fn normal(&self, n: DVec3) -> DVec3 {
+        (self.world.matrix3.inverse().transpose() * n).normalize_or_zero()
+    }
+
+    fn axis(&self, a: cadre_brep::measure::Axis) -> cadre_brep::measure::Axis {
+        cadre_brep::measure::Axis {
+            origin: self.point(a.origin),
+            direction: self.direction(a.direction),
+        }
+    }
+}
+
+/// A face's properties placed by `instance`: points, axes and normals in world coordinates,
+/// lengths scaled (the panel shows what the user sees, not the part's own frame).
+fn face_in_world(
+    mut p: cadre_brep::measure::FaceProperties,
+    doc: &Document,
+    instance: usize,
+) -> cadre_brep::measure::FaceProperties {
+    let t = Placement::of(doc, instance);
+    p.radius = p.radius.map(|r| r * t.scale);
+    p.major_radius = p.major_radius.map(|r| r * t.scale);
+    p.minor_radius = p.minor_radius.map(|r| r * t.scale);
+    p.offset = p.offset.map(|o| o * t.scale);
+    p.apex = p.apex.map(|a| t.point(a));
+    p.centre = p.centre.map(|c| t.point(c));
+    p.axis = p.axis.map(|a| t.axis(a));
+    p.direction = p.direction.map(|d| t.world.transform_vector3(d));
+    p.plane = p.plane.map(|pl| cadre_brep::measure::Plane {
+        origin: t.point(pl.origin),
+        normal: t.normal(pl.normal),
+    });
+    p
+}
+
+/// An edge's properties placed by `instance` (see [`face_in_world`]).
+fn edge_in_world(
+    mut p: cadre_brep::measure::EdgeProperties,
+    doc: &Document,
+    instance: usize,
+) -> cadre_brep::measure::EdgeProperties {
+    let t = Placement::of(doc, instance);
+    p.length = p.length.map(|l| l * t.scale);
+    p.radius = p.radius.map(|r| r * t.scale);
+    p.semi_axes = p.semi_axes.map(|(a, b)| (a * t.scale, b * t.scale));
+    p.start = t.point(p.start);
+    p.end = t.point(p.end);
+    p.centre = p.centre.map(|c| t.point(c));
+    p.axis = p.axis.map(|a| t.axis(a));
+    p.direction = p.direction.map(|d| t.direction(d));
+    p
 }
 
 /// Uniform scale of an instance's placement (1 for rigid placements).
@@ -332,6 +411,50 @@ mod tests {
             "{} vs {expected}",
             m.value
         );
+    }
+
+    #[test]
+    fn properties_are_shown_where_the_instance_places_them() {
+        let doc = doc("pin-assembly.step");
+        assert!(doc.instances.len() >= 2);
+        let (a, b) = (doc.instances[0].world, doc.instances[1].world);
+        assert!(
+            (a.translation - b.translation).length() > 1e-6,
+            "the pins are apart"
+        );
+        let face = doc
+            .model
+            .faces
+            .iter()
+            .find(|f| {
+                face_properties(&doc.model, doc.index.face(f.step_id).unwrap())
+                    .is_some_and(|p| p.axis.is_some() && p.radius.is_some())
+            })
+            .expect("a cylinder");
+        let rows = |instance| {
+            properties(
+                &doc,
+                Pick::Face {
+                    instance,
+                    face: face.step_id as u32,
+                },
+            )
+        };
+        let get = |rows: &[(String, String)], key: &str| {
+            rows.iter().find(|(k, _)| k == key).map(|(_, v)| v.clone())
+        };
+        let (r0, r1) = (rows(0), rows(1));
+        assert_eq!(get(&r0, "Radius"), get(&r1, "Radius"));
+        assert!(get(&r0, "Axis origin").is_some(), "{r0:?}");
+        assert_ne!(
+            get(&r0, "Axis origin"),
+            get(&r1, "Axis origin"),
+            "{r0:?} {r1:?}"
+        );
+        // The shown origin is the part's axis origin placed by the instance.
+        let p = face_properties(&doc.model, doc.index.face(face.step_id).unwrap()).unwrap();
+        let placed = face_in_world(p.clone(), &doc, 1).axis.unwrap().origin;
+        assert!((placed - b.transform_point3(p.axis.unwrap().origin)).length() < 1e-12);
     }
 
     #[test]
