@@ -436,9 +436,13 @@ impl App {
                 height,
                 path,
             } => {
-                let (width, height, path) = if width == 0 {
-                    // F12: the 3D view's size and a numbered file.
-                    let (w, h) = self.view_size();
+                let (width, height, path) = if path.as_os_str().is_empty() {
+                    // F12: the 3D view's size (or the asked one) and a numbered file.
+                    let (w, h) = if width == 0 {
+                        self.view_size()
+                    } else {
+                        (width, height)
+                    };
                     self.screenshots += 1;
                     let dir = self.options.screenshot_dir.clone().unwrap_or_default();
                     (

@@ -85,6 +85,8 @@ pub(crate) struct Session {
     pub view_texture: Option<egui::TextureId>,
     /// Section planes (at most [`cadre_render::MAX_SECTIONS`]).
     pub sections: Vec<Section>,
+    /// Text the model tree is filtered by (part names containing it).
+    pub tree_filter: String,
 }
 
 /// A section plane as the user sets it.
@@ -146,6 +148,7 @@ impl Session {
             spacemouse: None,
             view_texture: None,
             sections: Vec::new(),
+            tree_filter: String::new(),
         }
     }
 
@@ -501,12 +504,53 @@ fn tree_panel(ui: &mut egui::Ui, s: &mut Session) {
             s.isolate();
         }
     });
+    ui.horizontal(|ui| {
+        ui.label("Find");
+        ui.text_edit_singleline(&mut s.tree_filter);
+    });
     ui.separator();
+    let filter = s.tree_filter.trim().to_lowercase();
     egui::ScrollArea::vertical().show(ui, |ui| {
         let Some(doc) = &s.doc else { return };
-        let roots = doc.scene.roots.clone();
-        for root in roots {
-            node_ui(ui, s, root, 0);
+        if filter.is_empty() {
+            let roots = doc.scene.roots.clone();
+            for root in roots {
+                node_ui(ui, s, root, 0);
+            }
+            return;
+        }
+        // A flat list of the parts whose name matches (large assemblies: no digging).
+        let matches: Vec<usize> = doc
+            .instances
+            .iter()
+            .enumerate()
+            .filter(|(_, info)| info.name.to_lowercase().contains(&filter))
+            .map(|(i, _)| i)
+            .take(2000)
+            .collect();
+        if matches.is_empty() {
+            ui.label("No part matches");
+        }
+        for i in matches {
+            let Some(doc) = &s.doc else { return };
+            let node = doc.instances[i].node;
+            let name = doc.instances[i].name.clone();
+            ui.horizontal(|ui| {
+                let mut visible = !s.hidden.get(node).copied().unwrap_or(false);
+                if ui.checkbox(&mut visible, "").changed()
+                    && let Some(h) = s.hidden.get_mut(node)
+                {
+                    *h = !visible;
+                }
+                let pick = Pick::Part { instance: i as u32 };
+                let selected = s.selection.iter().any(|p| p.pick == pick);
+                if ui.selectable_label(selected, name).clicked() {
+                    s.selection = vec![Picked {
+                        pick,
+                        point: glam::DVec3::ZERO,
+                    }];
+                }
+            });
         }
     });
 }
@@ -1037,12 +1081,29 @@ fn keyboard(ui: &mut egui::Ui, s: &mut Session, actions: &mut Vec<Action>) {
                 s.tool_message = Some(format!("{}: pick {} item(s)", tool.name(), tool.picks()));
             }
         }
-        if i.key_pressed(Key::F12) {
-            actions.push(Action::Screenshot {
-                width: 0,
-                height: 0,
-                path: PathBuf::new(),
-            });
+        // F12: the view's size; Shift + F12: the Screenshot dialog's size (4K by default),
+        // both numbered files in the screenshot folder. The key event's own modifiers: the
+        // frame's may already have seen Shift released.
+        for event in &i.events {
+            if let egui::Event::Key {
+                key: Key::F12,
+                pressed: true,
+                repeat: false,
+                modifiers,
+                ..
+            } = event
+            {
+                let [width, height] = if modifiers.shift {
+                    s.screenshot_size
+                } else {
+                    [0, 0]
+                };
+                actions.push(Action::Screenshot {
+                    width,
+                    height,
+                    path: PathBuf::new(),
+                });
+            }
         }
     });
 }

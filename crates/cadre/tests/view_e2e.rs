@@ -86,10 +86,13 @@ impl Viewer {
                         return line;
                     }
                 }
-                Err(RecvTimeoutError::Timeout) => panic!(
-                    "no '{prefix}' from the viewer in 120 s; it said: {:?}",
-                    self.seen.borrow()
-                ),
+                Err(RecvTimeoutError::Timeout) => {
+                    let seen = self.seen.borrow();
+                    panic!(
+                        "no '{prefix}' from the viewer in 120 s; its last lines: {:?}",
+                        &seen[seen.len().saturating_sub(8)..]
+                    )
+                }
                 Err(RecvTimeoutError::Disconnected) => {
                     panic!("the viewer exited before '{prefix}'")
                 }
@@ -313,6 +316,16 @@ fn the_viewer_opens_a_model_and_follows_mouse_keyboard_and_3d_mouse() {
     viewer.mouse(x, y);
     viewer.xdotool(&["click", "1"]);
     viewer.wait_for("selected ");
+
+    // Shift + F12: a screenshot larger than the window (the dialog's 3840 × 2160).
+    viewer.key("shift+F12");
+    let line = viewer.wait_for("screenshot ");
+    let big = image::open(line.trim_start_matches("screenshot ").trim()).expect("4K screenshot");
+    assert_eq!((big.width(), big.height()), (3840, 2160));
+    assert!(
+        coverage(&big.to_rgba8()) > 3840 * 2160 / 50,
+        "the 4K screenshot shows the model"
+    );
 
     // A section across the middle (key S) cuts the pins open: their caps show.
     viewer.key("Escape");
