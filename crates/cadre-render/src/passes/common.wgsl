@@ -134,3 +134,20 @@ fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32) -> LineOut {
 fn scene_depth_at(ids: vec4<u32>) -> f32 {
     return select(0.0, bitcast<f32>(ids.w), ids.y != 0u);
 }
+
+// A mesh vertex placed by draw record `d`: clip position, camera-relative world position
+// (for the section planes) and view-space normal; the mesh passes' vertex shaders share it.
+struct PlacedVertex {
+    clip: vec4<f32>,
+    world: vec3<f32>,
+    normal: vec3<f32>,
+}
+
+fn place_vertex(d: Draw, position: vec3<f32>, normal: vec3<f32>) -> PlacedVertex {
+    let world = d.model * vec4<f32>(position, 1.0);
+    var out: PlacedVertex;
+    out.clip = frame.view_proj * world;
+    out.world = world.xyz;
+    out.normal = mat3x3<f32>(d.normal0.xyz, d.normal1.xyz, d.normal2.xyz) * normal;
+    return out;
+}

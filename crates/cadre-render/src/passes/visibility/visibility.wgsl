@@ -31,12 +31,11 @@ fn vs_main(
     @location(3) uv: vec2<f32>,
     @builtin(instance_index) draw_index: u32,
 ) -> VertexOut {
-    let d = draws[draw_index];
+    let placed = place_vertex(draws[draw_index], position, normal);
     var out: VertexOut;
-    let world = d.model * vec4<f32>(position, 1.0);
-    out.clip = frame.view_proj * world;
-    out.world = world.xyz;
-    out.normal = mat3x3<f32>(d.normal0.xyz, d.normal1.xyz, d.normal2.xyz) * normal;
+    out.clip = placed.clip;
+    out.world = placed.world;
+    out.normal = placed.normal;
     out.face = face;
     out.draw = draw_index;
     out.uv = uv;
