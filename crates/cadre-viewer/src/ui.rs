@@ -87,6 +87,9 @@ pub(crate) struct Session {
     pub sections: Vec<Section>,
     /// Text the model tree is filtered by (part names containing it).
     pub tree_filter: String,
+    /// Properties rows of picked items, worked out once per item (exact areas and lengths
+    /// are integrals: not every frame).
+    pub properties: std::collections::HashMap<Pick, Vec<(String, String)>>,
 }
 
 /// A section plane as the user sets it.
@@ -149,6 +152,7 @@ impl Session {
             view_texture: None,
             sections: Vec::new(),
             tree_filter: String::new(),
+            properties: std::collections::HashMap::new(),
         }
     }
 
@@ -165,6 +169,7 @@ impl Session {
         self.tool_picks.clear();
         self.measurements.clear();
         self.sections.clear();
+        self.properties.clear();
         self.status = format!(
             "{}: {} parts, {} faces, loaded in {:.2} s",
             doc.title(),
@@ -608,6 +613,14 @@ fn properties_panel(ui: &mut egui::Ui, s: &mut Session, actions: &mut Vec<Action
     ui.set_min_width(ui.available_width());
     ui.heading("Properties");
     let Some(doc) = &s.doc else { return };
+    if s.properties.len() > 1024 {
+        s.properties.clear();
+    }
+    for p in &s.selection {
+        s.properties
+            .entry(p.pick)
+            .or_insert_with(|| inspect::properties(doc, p.pick));
+    }
     if s.selection.is_empty() {
         ui.label("Click a face, edge or vertex (vertices first, then edges, within a few pixels); Ctrl+click adds.");
     }
@@ -622,7 +635,7 @@ fn properties_panel(ui: &mut egui::Ui, s: &mut Session, actions: &mut Vec<Action
                     ui.separator();
                 }
                 egui::Grid::new(("props", k)).striped(true).show(ui, |ui| {
-                    for (label, value) in inspect::properties(doc, p.pick) {
+                    for (label, value) in s.properties.get(&p.pick).into_iter().flatten() {
                         ui.label(label);
                         ui.label(value);
                         ui.end_row();
