@@ -279,9 +279,6 @@ impl App {
             .is_some_and(|v| v.repaint_delay.is_zero());
         // A transition started by this frame's input runs from the next frame on.
         busy |= self.session.nav.as_ref().is_some_and(|n| n.animating());
-        if std::env::var_os("CADRE_DEBUG_REPAINT").is_some() && repaint {
-            eprintln!("repaint: {:?}", ctx.repaint_causes());
-        }
         if busy || repaint || self.session.loading.is_some() {
             window.request_redraw();
         }
