@@ -7,6 +7,7 @@
 
 pub mod assemble;
 pub mod bbox;
+pub mod defects;
 pub mod deviation;
 pub mod edges;
 pub mod export;
@@ -19,7 +20,8 @@ pub mod stats;
 pub mod weld;
 
 pub use bbox::{deflection_diagonal, quick_bbox};
-pub use model::{FaceFailure, ModelMesh, mesh_face, mesh_model};
+pub use defects::{ShellDefect, shell_defects};
+pub use model::{FaceFailure, FaceRepair, ModelMesh, mesh_face, mesh_model};
 pub use params::{Deflection, MeshParams};
 pub use stats::{MeshStats, mesh_stats};
 pub use weld::{EdgeCensus, WeldedMesh};

@@ -22,6 +22,18 @@ pub struct FaceFailure {
     pub reason: String,
 }
 
+/// A face that was meshed after a repair of its trim (sense turned over, loops reversed,
+/// crossing loops cut, …): meshed, but not as the file wrote it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceRepair {
+    /// The face.
+    pub face: FaceId,
+    /// Its STEP instance id.
+    pub step_id: u64,
+    /// What was repaired.
+    pub note: String,
+}
+
 /// The tessellation of every face of a model.
 #[derive(Clone, Debug, Default)]
 pub struct ModelMesh {
@@ -31,6 +43,8 @@ pub struct ModelMesh {
     pub failures: Vec<FaceFailure>,
     /// Faces whose refinement stopped at the point budget.
     pub truncated: Vec<FaceId>,
+    /// Faces meshed after a repair of their trim, one entry per repair.
+    pub repairs: Vec<FaceRepair>,
     /// The shared edge samples.
     pub edges: EdgeDiscretisation,
     /// The tolerances the model was meshed with (wire curves are sampled with them too).
@@ -73,13 +87,13 @@ pub fn mesh_model(
         keep_exact: false,
     };
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let results: Vec<Result<FaceMesh, String>> = (0..model.faces.len())
+    let results: Vec<(Result<FaceMesh, String>, Vec<String>)> = (0..model.faces.len())
         .into_par_iter()
         .map(|i| {
             let id = FaceId(i as u32);
             tracing::debug!(face = model.faces[i].step_id, "meshing face");
             let started = std::time::Instant::now();
-            let r = mesh_face(model, id, &edges, &tol, params);
+            let (r, notes) = mesh_face_noted(model, id, &edges, &tol, params);
             let seconds = started.elapsed().as_secs_f64();
             tracing::debug!(
                 face = model.faces[i].step_id,
@@ -99,18 +113,25 @@ pub fn mesh_model(
             if let Some(f) = progress {
                 f(n);
             }
-            r
+            (r, notes)
         })
         .collect();
     let mut out = ModelMesh {
         faces: Vec::with_capacity(results.len()),
         failures: Vec::new(),
         truncated: Vec::new(),
+        repairs: Vec::new(),
         edges,
         params: *params,
     };
-    for (i, r) in results.into_iter().enumerate() {
+    for (i, (r, notes)) in results.into_iter().enumerate() {
         let id = FaceId(i as u32);
+        let step_id = model.faces[i].step_id;
+        out.repairs.extend(notes.into_iter().map(|note| FaceRepair {
+            face: id,
+            step_id,
+            note,
+        }));
         match r {
             Ok(m) => {
                 if m.truncated {
@@ -139,13 +160,36 @@ pub fn mesh_face(
     tol: &TrimTolerance,
     params: &MeshParams,
 ) -> Result<FaceMesh, String> {
+    mesh_face_noted(model, id, edges, tol, params).0
+}
+
+/// [`mesh_face`], with the repairs its trim and triangulation needed.
+fn mesh_face_noted(
+    model: &Model,
+    id: FaceId,
+    edges: &EdgeDiscretisation,
+    tol: &TrimTolerance,
+    params: &MeshParams,
+) -> (Result<FaceMesh, String>, Vec<String>) {
     let face = &model.faces[id.index()];
     let surface = &model.surfaces[face.surface.index()];
-    let trim = face_trim(model, id, edges, tol).map_err(|e| format!("trim: {e}"))?;
+    let trim = match face_trim(model, id, edges, tol) {
+        Ok(t) => t,
+        Err(e) => return (Err(format!("trim: {e}")), Vec::new()),
+    };
+    let mut notes = trim.notes.clone();
     let domain = face_domain(&trim);
     let (lo, hi) = uv_bounds(domain.loops.iter().flatten().map(|p| p.uv));
     let extended = unwrapped_surface(surface, lo, hi);
     let surface = extended.as_ref().unwrap_or(surface);
-    triangulate_face(surface, trim.reversed, &domain, params)
-        .map_err(|e| format!("triangulation: {e}"))
+    let r = triangulate_face(surface, trim.reversed, &domain, params)
+        .map_err(|e| format!("triangulation: {e}"));
+    if r.as_ref().is_ok_and(|m| m.repaired) {
+        notes.push(
+            "conflicting trim loops (crossing or touching segments, repeated points) were \
+             repaired; the face may not weld to its neighbours there"
+                .into(),
+        );
+    }
+    (r, notes)
 }

@@ -257,3 +257,70 @@ fn straight_edge_missing_its_vertices_is_healed() {
         "the healed edge stays on the cube: {b:?}"
     );
 }
+
+#[test]
+fn an_unbounded_surface_alone_in_a_set_is_construction_geometry() {
+    // tr8_ha1_db.stp: a bare plane in a geometric curve set beside a solid. It has no extent
+    // to draw: no face is made, and a warning says so (before: a face that failed to mesh).
+    let m = model(&format!(
+        "{MM_CONTEXT}{CUBE}
+#301=CARTESIAN_POINT('',(0.,0.,0.));#302=DIRECTION('',(0.,0.,1.));#303=DIRECTION('',(1.,0.,0.));
+#304=AXIS2_PLACEMENT_3D('',#301,#302,#303);#305=PLANE('',#304);
+#306=GEOMETRIC_CURVE_SET('',(#305));
+#200=SHAPE_REPRESENTATION('cube and plane',(#80,#306),#900);"
+    ));
+    assert_eq!(m.counts().faces, 6, "only the cube's faces");
+    assert_eq!(m.warnings.len(), 1, "{:?}", m.warnings);
+    let w = m.warnings[0].to_string();
+    assert!(
+        w.contains("#305") && w.contains("construction geometry"),
+        "{w}"
+    );
+}
+
+/// A cube product placed 5 mm along x in an assembly product; `relating` is what the usage
+/// names as its parent: the assembly's product definition `#312` or its shape `#313`.
+fn cube_assembly(relating: &str) -> String {
+    format!(
+        "{MM_CONTEXT}{CUBE}
+#300=PRODUCT_DEFINITION_CONTEXT('',#301,'design');#301=APPLICATION_CONTEXT('');
+#310=PRODUCT('asm','asm','',());#311=PRODUCT_DEFINITION_FORMATION('','',#310);
+#312=PRODUCT_DEFINITION('','',#311,#300);#313=PRODUCT_DEFINITION_SHAPE('','',#312);
+#320=PRODUCT('cube','cube','',());#321=PRODUCT_DEFINITION_FORMATION('','',#320);
+#322=PRODUCT_DEFINITION('','',#321,#300);#323=PRODUCT_DEFINITION_SHAPE('','',#322);
+#200=ADVANCED_BREP_SHAPE_REPRESENTATION('cube',(#80,#60),#900);
+#324=SHAPE_DEFINITION_REPRESENTATION(#323,#200);
+#341=CARTESIAN_POINT('',(5.,0.,0.));#340=AXIS2_PLACEMENT_3D('',#341,#22,#20);
+#330=SHAPE_REPRESENTATION('asm',(#60,#340),#900);
+#331=SHAPE_DEFINITION_REPRESENTATION(#313,#330);
+#350=NEXT_ASSEMBLY_USAGE_OCCURRENCE('1','','',{relating},#322,$);
+#351=PRODUCT_DEFINITION_SHAPE('','',#350);
+#352=(REPRESENTATION_RELATIONSHIP('','',#200,#330) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#353) SHAPE_REPRESENTATION_RELATIONSHIP());
+#353=ITEM_DEFINED_TRANSFORMATION('','',#60,#340);
+#354=CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#352,#351);"
+    )
+}
+
+#[test]
+fn assembly_usage_naming_a_product_definition_shape_is_followed_to_its_definition() {
+    // bug25167.stp: 4 of 9 usages name the parent's PRODUCT_DEFINITION_SHAPE; they were
+    // skipped, and their parts lost (30 % of the area, with a warning only).
+    let m = model(&cube_assembly("#313"));
+    assert_eq!(m.warnings.len(), 1, "{:?}", m.warnings);
+    let w = m.warnings[0].to_string();
+    assert!(
+        w.contains("#350") && w.contains("#313") && w.contains("#312"),
+        "{w}"
+    );
+    let b = m.bbox(Accuracy::default());
+    assert!(close(b.min.x, 5.0) && close(b.max.x, 6.0), "placed: {b:?}");
+    assert_eq!(m.counts().solids, 1);
+    // Control: the same assembly written right places the cube the same, without a warning.
+    let right = model(&cube_assembly("#312"));
+    assert!(right.warnings.is_empty(), "{:?}", right.warnings);
+    let rb = right.bbox(Accuracy::default());
+    assert!(
+        close(rb.min.x, 5.0) && close(rb.max.x, 6.0),
+        "placed: {rb:?}"
+    );
+}

@@ -3,6 +3,7 @@
 mod commands;
 mod load;
 mod progress;
+mod report;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -34,6 +35,7 @@ enum Command {
 
 fn main() -> Result<()> {
     quiet_on_broken_pipe();
+    quiet_device_selection();
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_env("CADRE_LOG")
@@ -48,6 +50,26 @@ fn main() -> Result<()> {
         Command::Render(args) => commands::render::run(&args),
         Command::View(args) => commands::view::run(&args),
         Command::Bench(args) => commands::bench::run(&args),
+    }
+}
+
+/// Mesa's Vulkan device-selection layer (installed with lavapipe) asks the Wayland compositor
+/// for the default GPU, and without `XDG_RUNTIME_DIR` libwayland prints
+/// "error: XDG_RUNTIME_DIR is invalid or not set in the environment." twice on every run,
+/// which a user of `cadre render` reads as a failure. There is no compositor to ask then, so
+/// the layer can do nothing but print: it is turned off (`NODEVICE_SELECT=1`, Mesa's own
+/// switch), unless the user set that variable. cadre picks its adapter itself.
+fn quiet_device_selection() {
+    let runtime_dir_ok =
+        std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| std::path::Path::new(&d).is_absolute());
+    if runtime_dir_ok || std::env::var_os("NODEVICE_SELECT").is_some() {
+        return;
+    }
+    // SAFETY: called first thing in `main`, before any thread is started (the tracing
+    // subscriber and rayon's pool come later), so nothing reads the environment concurrently.
+    #[allow(unsafe_code)]
+    unsafe {
+        std::env::set_var("NODEVICE_SELECT", "1");
     }
 }
 

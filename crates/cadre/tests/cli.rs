@@ -193,3 +193,47 @@ fn render_writes_a_png_of_the_asked_size_and_refuses_bad_options() {
     assert!(dir.join("empty.png").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn render_without_a_session_prints_no_error_lines() {
+    // Without XDG_RUNTIME_DIR (CI, cron, ssh), Mesa's device-selection layer made libwayland
+    // print "error: XDG_RUNTIME_DIR is invalid or not set" twice per run (issue 12). A clean
+    // render of the example prints only its "wrote" line and no warning.
+    let dir = std::env::temp_dir().join(format!("cadre-quiet-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("pin.png");
+    let run = cadre()
+        .args(["render", EXAMPLE, "--size", "32x24", "-o"])
+        .arg(&out)
+        .env_remove("XDG_RUNTIME_DIR")
+        .env_remove("NODEVICE_SELECT")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(
+        !stderr.to_lowercase().contains("error"),
+        "a successful render printed an error line: {stderr}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn mesh_json_lists_warnings_and_what_the_mesh_lost() {
+    let run = cadre().args(["mesh", EXAMPLE, "--json"]).output().unwrap();
+    assert!(run.status.success());
+    let j: serde_json::Value = serde_json::from_slice(&run.stdout).expect("one JSON object");
+    for key in [
+        "warnings",
+        "mesh_warnings",
+        "failed_faces",
+        "repaired_faces",
+        "truncated_faces",
+        "open_shells",
+    ] {
+        assert!(j[key].is_array(), "{key} missing: {j}");
+    }
+    // The bundled assembly meshes whole and closed.
+    assert_eq!(j["open_shells"].as_array().unwrap().len(), 0, "{j}");
+    assert_eq!(j["failed_faces"].as_array().unwrap().len(), 0, "{j}");
+}

@@ -170,6 +170,7 @@ pub(super) fn close_loops(
     vertex_loops: &[(Vec3, u64)],
     tol: &TrimTolerance,
     notes: &mut Vec<String>,
+    sense_flipped: &mut bool,
 ) -> Result<Vec<TrimLoop>, TrimError> {
     let periods = periods(surface);
     let ((u0, u1), (v0, v1)) = surface.domain();
@@ -225,11 +226,31 @@ pub(super) fn close_loops(
     let mut loops: Vec<TrimLoop> = Vec::new();
     if wrapping.is_empty() {
         let area: f64 = contractible.iter().map(|c| polygon_area(&c.points())).sum();
+        // A cone closes at its apex on one side only: the other side runs to infinity (asked
+        // without a range, `closing` offers the apex on both sides).
+        let cone = matches!(surface, Surface::Cone { .. });
         let closed_all_around = (0..2).all(|k| {
             periods[k].is_some()
-                || (closing(surface, 1 - k, 1.0, None).is_some_and(|c| c.1)
+                || (!cone
+                    && closing(surface, 1 - k, 1.0, None).is_some_and(|c| c.1)
                     && closing(surface, 1 - k, -1.0, None).is_some_and(|c| c.1))
         });
+        if area < 0.0 && !closed_all_around {
+            // Loops running clockwise would leave the face the rest of an unbounded surface.
+            // The neighbours use the loop's edges the other way round, as a closed shell
+            // should, so it is the face's sense that is wrong (trj6_b1-ec-214.stp: 9 cone
+            // faces): the face is the bounded side, its normal turned over. CAD kernels
+            // read such faces the same way.
+            for c in &mut contractible {
+                c.reverse();
+            }
+            *sense_flipped = true;
+            notes.push(
+                "the loops run clockwise about the face normal, which leaves an unbounded \
+                 region: the face's sense is taken as reversed"
+                    .into(),
+            );
+        }
         if contractible.is_empty() || (area < 0.0 && closed_all_around) {
             // The whole surface, minus the holes; its seams run through the widest gap
             // between the holes, so no hole straddles them (bug28414: a hole across both

@@ -20,7 +20,7 @@ mod uv;
 
 use cadre_geom::{Accuracy, Curve2, Surface, Vec2, Vec3};
 
-use crate::{EdgeId, FaceId, Model};
+use crate::{EdgeId, Face, FaceId, Model};
 
 pub use key::TrimKey;
 pub use uv::periods;
@@ -203,7 +203,8 @@ pub struct FaceTrim {
     /// The loops; the face is what they enclose by the even-odd rule.
     pub loops: Vec<TrimLoop>,
     /// Whether the face normal is opposite to the surface normal `Su × Sv` (face
-    /// `same_sense` false). The loops are already oriented for (u, v).
+    /// `same_sense` false, unless the loops show the file's sense to be wrong; then a note
+    /// says so). The loops are already oriented for (u, v).
     pub reversed: bool,
     /// Repairs made (a loop reversed, …), for reports.
     pub notes: Vec<String>,
@@ -227,6 +228,12 @@ pub enum TrimError {
 }
 
 /// Builds the trim of face `face_id`.
+///
+/// A face whose loops cannot be closed into a bounded region as the file orients it (a loop
+/// that goes around a cone and runs into its open side) is read again with its sense turned
+/// over: files from some writers state the sense of a face wrong while its loops and its
+/// neighbours agree with each other (PRO7071.stp: two half cones through their apex), and CAD
+/// kernels take the bounded side. The trim's notes say so.
 pub fn face_trim(
     model: &Model,
     face_id: FaceId,
@@ -234,14 +241,52 @@ pub fn face_trim(
     tol: &TrimTolerance,
 ) -> Result<FaceTrim, TrimError> {
     let face = &model.faces[face_id.index()];
+    match oriented_trim(model, face_id, face, edges, tol) {
+        Err(e @ (TrimError::Wrapping(_) | TrimError::Unbounded)) if !face.loops.is_empty() => {
+            let turned = Face {
+                same_sense: !face.same_sense,
+                ..face.clone()
+            };
+            match oriented_trim(model, face_id, &turned, edges, tol) {
+                Ok(mut trim) => {
+                    trim.notes.push(format!(
+                        "as written the face cannot be bounded ({e}); its sense is taken as \
+                         reversed"
+                    ));
+                    Ok(trim)
+                }
+                Err(_) => Err(e),
+            }
+        }
+        other => other,
+    }
+}
+
+/// The trim of `face` (the model's face `face_id`, or a copy with its sense turned over).
+fn oriented_trim(
+    model: &Model,
+    face_id: FaceId,
+    face: &Face,
+    edges: &impl EdgeSamples,
+    tol: &TrimTolerance,
+) -> Result<FaceTrim, TrimError> {
     let surface = &model.surfaces[face.surface.index()];
     let (chains, vertex_loops) = uv::face_chains(model, face, surface, edges, tol)?;
     let mut notes = Vec::new();
-    let mut loops = close::close_loops(surface, face_id, chains, &vertex_loops, tol, &mut notes)?;
+    let mut sense_flipped = false;
+    let mut loops = close::close_loops(
+        surface,
+        face_id,
+        chains,
+        &vertex_loops,
+        tol,
+        &mut notes,
+        &mut sense_flipped,
+    )?;
     recentre(surface, &mut loops);
     Ok(FaceTrim {
         loops,
-        reversed: !face.same_sense,
+        reversed: !face.same_sense ^ sense_flipped,
         notes,
     })
 }

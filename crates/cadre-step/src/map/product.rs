@@ -91,7 +91,11 @@ fn read_graph(m: &mut Mapper<'_>) -> ProductGraph {
             Ok((a.r#ref(3)?, a.r#ref(4)?, name))
         });
         match r {
-            Ok((parent, child, name)) => g.usages.push((id, parent, child, name)),
+            Ok((parent, child, name)) => {
+                let parent = usage_end(m, &pds_def, id, parent, "relating");
+                let child = usage_end(m, &pds_def, id, child, "related");
+                g.usages.push((id, parent, child, name))
+            }
             Err(e) => m.report(&e),
         }
     }
@@ -156,6 +160,32 @@ fn read_graph(m: &mut Mapper<'_>) -> ProductGraph {
         g.included_reps.insert(child);
     }
     g
+}
+
+/// The product definition an assembly usage names as its `role` end. Some writers name the
+/// product definition's `PRODUCT_DEFINITION_SHAPE` instead (bug25167.stp: 4 of 9 usages);
+/// CAD kernels follow it to the definition it characterises, and so does this, with a warning.
+fn usage_end(
+    m: &mut Mapper<'_>,
+    pds_def: &HashMap<u64, u64>,
+    nauo: u64,
+    end: u64,
+    role: &str,
+) -> u64 {
+    if m.is(end, "PRODUCT_DEFINITION_SHAPE")
+        && let Some(&def) = pds_def.get(&end)
+        && !m.is(def, "NEXT_ASSEMBLY_USAGE_OCCURRENCE")
+    {
+        m.warn(
+            nauo,
+            format!(
+                "assembly usage names the product definition shape #{end} as its {role} \
+                 product definition; read as the definition it characterises, #{def}"
+            ),
+        );
+        return def;
+    }
+    end
 }
 
 /// Every representation reachable from `start` through relationships without transforms.

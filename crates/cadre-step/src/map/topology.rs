@@ -430,8 +430,22 @@ impl Mapper<'_> {
             return Ok(f);
         }
         let surface = self.surface_id(id)?;
+        let bounded_by_curves = self.is(id, "CURVE_BOUNDED_SURFACE");
+        let s = &self.model.surfaces[surface.index()];
+        let ((u0, u1), (v0, v1)) = s.domain();
+        if !bounded_by_curves && (!(u1 - u0).is_finite() || !(v1 - v0).is_finite()) {
+            // An unbounded surface alone in a set is construction geometry (a datum plane):
+            // it has no extent to draw, and CAD kernels make no face of it (tr8_ha1_db.stp).
+            return Err(MapError::new(
+                id,
+                format!(
+                    "unbounded {} placed alone in a set is construction geometry: no face made",
+                    s.type_name().to_lowercase()
+                ),
+            ));
+        }
         let mut loops = Vec::new();
-        if self.is(id, "CURVE_BOUNDED_SURFACE") {
+        if bounded_by_curves {
             let inst = self.inst(id)?;
             let a = Attrs::first(&inst)?;
             for b in a.refs(2)? {

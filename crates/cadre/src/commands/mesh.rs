@@ -85,13 +85,10 @@ pub fn run(args: &MeshArgs) -> Result<()> {
     // Import + tessellation, the figure comparable with OCCT's read + BRepMesh.
     let seconds = mesh_seconds;
     let total_seconds = t0.elapsed().as_secs_f64();
-    let failed: Vec<_> = mesh
-        .failures
-        .iter()
-        .map(|f| json!({"face": f.step_id, "reason": f.reason}))
-        .collect();
+    let report = crate::report::MeshReport::new(model, &mesh);
+    let lost = report.warnings(&loaded.file);
     if args.json {
-        let j = json!({
+        let mut j = json!({
             "file": args.file.display().to_string(),
             "triangles": stats.triangles,
             "unique_triangles": stats.unique_triangles,
@@ -103,14 +100,17 @@ pub fn run(args: &MeshArgs) -> Result<()> {
             "misoriented_edges": stats.misoriented_edges,
             "open_boundary_edges": stats.open_boundary_edges,
             "faces": model.faces.len(),
-            "failed_faces": failed,
-            "truncated_faces": mesh.truncated.len(),
             "deflection": params.deflection,
             "angle": params.angle,
             "seconds": seconds,
             "total_seconds": total_seconds,
             "load_seconds": loaded.parse_seconds + loaded.map_seconds,
+            "warnings": model.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
+            "mesh_warnings": lost,
         });
+        for (key, value) in report.json() {
+            j[key] = value;
+        }
         println!("{j}");
     } else {
         println!(
@@ -131,8 +131,8 @@ pub fn run(args: &MeshArgs) -> Result<()> {
             stats.misoriented_edges,
             total_seconds
         );
-        for f in &mesh.failures {
-            eprintln!("warning: face #{} not meshed: {}", f.step_id, f.reason);
+        for w in &lost {
+            eprintln!("warning: {w}");
         }
         if let Some(out) = &args.output {
             println!("wrote {}", out.display());

@@ -221,6 +221,9 @@ fn write_sheet(
         .with_context(|| format!("writing the index beside {}", sheet.display()))
 }
 
+/// Mesh warnings printed per rendered file; the rest are counted.
+const MAX_PRINTED_WARNINGS: usize = 20;
+
 /// Loads, meshes and renders one file.
 fn render_file(
     gpu: &Gpu,
@@ -236,6 +239,19 @@ fn render_file(
         ..MeshParams::default()
     };
     let mesh = mesh_model(model, &params, None);
+    // What the tessellation lost or repaired, as `cadre mesh` reports it: an image with a
+    // face missing must not look like a faithful one.
+    let lost = crate::report::MeshReport::new(model, &mesh).warnings(&loaded.file);
+    for w in lost.iter().take(MAX_PRINTED_WARNINGS) {
+        eprintln!("warning: {}: {w}", input.display());
+    }
+    if lost.len() > MAX_PRINTED_WARNINGS {
+        eprintln!(
+            "warning: {}: … and {} more (cadre mesh --json lists them all)",
+            input.display(),
+            lost.len() - MAX_PRINTED_WARNINGS
+        );
+    }
     let scene = cadre_mesh::assemble::build_scene(model, &mesh);
     let (w, h) = args.size;
     // A model with nothing to draw (no face, mesh or curve: 6 corpus files, OCCT finds nothing
