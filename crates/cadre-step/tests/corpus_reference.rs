@@ -50,6 +50,10 @@ const KNOWN_COUNT_DIFFERENCES: &[(&str, &str)] = &[
     ),
 ];
 
+/// Files whose OCCT box is left out of the box tally: OCCT returns their parts unplaced (see
+/// `KNOWN_COUNT_DIFFERENCES`), so its box is not the assembly's.
+const OCCT_BOX_UNPLACED: &[&str] = &["trj4_s1-ai-214.stp"];
+
 fn corpus_dir() -> Option<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
     dir.join("reference.jsonl").exists().then_some(dir)
@@ -176,7 +180,11 @@ fn corpus_matches_occt_reference() {
     }
     let total = outcomes.len();
     let counts_ok = outcomes.iter().filter(|o| o.counts_ok).count();
-    let bbox_cmp: Vec<&Outcome> = outcomes.iter().filter(|o| o.bbox_ok.is_some()).collect();
+    // OCCT's box of a file whose assembly it does not read is not the model's box.
+    let bbox_cmp: Vec<&Outcome> = outcomes
+        .iter()
+        .filter(|o| o.bbox_ok.is_some() && !OCCT_BOX_UNPLACED.contains(&o.file.as_str()))
+        .collect();
     let bbox_ok = bbox_cmp.iter().filter(|o| o.bbox_ok == Some(true)).count();
     for o in &outcomes {
         if !o.counts_ok {
