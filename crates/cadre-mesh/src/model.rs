@@ -173,11 +173,11 @@ fn mesh_face_noted(
 ) -> (Result<FaceMesh, String>, Vec<String>) {
     let face = &model.faces[id.index()];
     let surface = &model.surfaces[face.surface.index()];
-    let trim = match face_trim(model, id, edges, tol) {
+    let mut trim = match face_trim(model, id, edges, tol) {
         Ok(t) => t,
         Err(e) => return (Err(format!("trim: {e}")), Vec::new()),
     };
-    let mut notes = trim.notes.clone();
+    let mut notes = std::mem::take(&mut trim.notes);
     let domain = face_domain(&trim);
     let (lo, hi) = uv_bounds(domain.loops.iter().flatten().map(|p| p.uv));
     let extended = unwrapped_surface(surface, lo, hi);

@@ -92,3 +92,49 @@ fn cone_patch_whose_loop_runs_clockwise_meshes_reversed() {
     // About 25 mm high and 0.25 rad around the 500 mm radius: the patch, not the cone.
     assert!(area > 1000.0 && area < 2000.0, "area {area}");
 }
+
+/// The unit cube with one edit, meshed: (volume, boundary and misoriented edges, notes).
+fn cube_with(from: &str, to: &str) -> (f64, u64, u64, Vec<String>) {
+    let text = data("unit_cube.step");
+    let edited = text.replace(from, to);
+    assert_ne!(edited, text, "the edit must change the cube");
+    let file = StepFile::parse(edited.into_bytes()).expect("parses");
+    let model = cadre_step::map_file(&file);
+    let params = MeshParams {
+        deflection: 0.01,
+        ..MeshParams::default()
+    };
+    let mesh = mesh_model(&model, &params, None);
+    assert!(mesh.failures.is_empty(), "{:?}", mesh.failures);
+    let s = mesh_stats(&model, &mesh);
+    let notes = mesh.repairs.iter().map(|r| r.note.clone()).collect();
+    (s.volume, s.boundary_edges, s.misoriented_edges, notes)
+}
+
+#[test]
+fn the_neighbours_tell_a_wrong_sense_from_a_wrong_bound() {
+    // The cube's bottom face with its bound's orientation flipped: its loop runs clockwise and
+    // its neighbours use its edges the same way it does, so the bound is wrong and the sense
+    // right (trj9_ap209-mp.stp's planes).
+    let (volume, open, misoriented, notes) = cube_with(
+        "#106=FACE_OUTER_BOUND('',#105,.T.)",
+        "#106=FACE_OUTER_BOUND('',#105,.F.)",
+    );
+    assert!((volume - 1.0).abs() < 1e-9, "volume {volume}");
+    assert_eq!((open, misoriented), (0, 0));
+    assert_eq!(notes.len(), 1, "{notes:?}");
+    assert!(
+        notes[0].contains("bounds are taken as reversed"),
+        "{notes:?}"
+    );
+    // The same face with its sense flipped instead: the loop again runs clockwise, but now the
+    // neighbours use its edges the other way round, so it is the sense that is wrong.
+    let (volume, open, misoriented, notes) = cube_with(
+        "#107=ADVANCED_FACE('bottom',(#106),#61,.F.)",
+        "#107=ADVANCED_FACE('bottom',(#106),#61,.T.)",
+    );
+    assert!((volume - 1.0).abs() < 1e-9, "volume {volume}");
+    assert_eq!((open, misoriented), (0, 0));
+    assert_eq!(notes.len(), 1, "{notes:?}");
+    assert!(notes[0].contains("sense is taken as reversed"), "{notes:?}");
+}

@@ -6,6 +6,13 @@ fn cadre() -> Command {
     Command::new(env!("CARGO_BIN_EXE_cadre"))
 }
 
+/// An empty folder of this test process's own under the system's temporary folder.
+fn scratch_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 const EXAMPLE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../../examples/pin-assembly.step"
@@ -61,8 +68,7 @@ fn missing_and_non_step_files_fail_with_a_message() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/file.step"));
 
-    let dir = std::env::temp_dir().join(format!("cadre-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("cadre-cli");
     let junk = dir.join("junk.step");
     std::fs::write(&junk, b"this is not an exchange structure").unwrap();
     let out = cadre().arg("info").arg(&junk).output().unwrap();
@@ -102,8 +108,7 @@ fn closed_output_pipe_ends_quietly() {
 
 #[test]
 fn render_writes_a_png_of_the_asked_size_and_refuses_bad_options() {
-    let dir = std::env::temp_dir().join(format!("cadre-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("cadre-render");
     let out = dir.join("pin.png");
     let run = cadre()
         .args(["render", EXAMPLE, "-o"])
@@ -199,8 +204,7 @@ fn render_without_a_session_prints_no_error_lines() {
     // Without XDG_RUNTIME_DIR (CI, cron, ssh), Mesa's device-selection layer made libwayland
     // print "error: XDG_RUNTIME_DIR is invalid or not set" twice per run (issue 12). A clean
     // render of the example prints only its "wrote" line and no warning.
-    let dir = std::env::temp_dir().join(format!("cadre-quiet-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("cadre-quiet");
     let out = dir.join("pin.png");
     let run = cadre()
         .args(["render", EXAMPLE, "--size", "32x24", "-o"])

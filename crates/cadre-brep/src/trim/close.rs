@@ -170,7 +170,6 @@ pub(super) fn close_loops(
     vertex_loops: &[(Vec3, u64)],
     tol: &TrimTolerance,
     notes: &mut Vec<String>,
-    sense_flipped: &mut bool,
 ) -> Result<Vec<TrimLoop>, TrimError> {
     let periods = periods(surface);
     let ((u0, u1), (v0, v1)) = surface.domain();
@@ -236,20 +235,10 @@ pub(super) fn close_loops(
                     && closing(surface, 1 - k, -1.0, None).is_some_and(|c| c.1))
         });
         if area < 0.0 && !closed_all_around {
-            // Loops running clockwise would leave the face the rest of an unbounded surface.
-            // The neighbours use the loop's edges the other way round, as a closed shell
-            // should, so it is the face's sense that is wrong (trj6_b1-ec-214.stp: 9 cone
-            // faces): the face is the bounded side, its normal turned over. CAD kernels
-            // read such faces the same way.
-            for c in &mut contractible {
-                c.reverse();
-            }
-            *sense_flipped = true;
-            notes.push(
-                "the loops run clockwise about the face normal, which leaves an unbounded \
-                 region: the face's sense is taken as reversed"
-                    .into(),
-            );
+            // Loops running clockwise would leave the face the unbounded rest of its surface
+            // (trj6_b1-ec-214.stp: 9 cone patches); `face_trim` reads such a face again with
+            // its sense turned over.
+            return Err(TrimError::Clockwise);
         }
         if contractible.is_empty() || (area < 0.0 && closed_all_around) {
             // The whole surface, minus the holes; its seams run through the widest gap

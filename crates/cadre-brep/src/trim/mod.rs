@@ -204,7 +204,7 @@ pub struct FaceTrim {
     pub loops: Vec<TrimLoop>,
     /// Whether the face normal is opposite to the surface normal `Su × Sv` (face
     /// `same_sense` false, unless the loops show the file's sense to be wrong; then a note
-    /// says so). The loops are already oriented for (u, v).
+    /// says so, see [`face_trim`]). The loops are already oriented for (u, v).
     pub reversed: bool,
     /// Repairs made (a loop reversed, …), for reports.
     pub notes: Vec<String>,
@@ -213,6 +213,10 @@ pub struct FaceTrim {
 /// Why a face's trim could not be built.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum TrimError {
+    /// The loops run clockwise about the face normal on a surface open on that side: the
+    /// face would be the unbounded rest of its surface.
+    #[error("the loops run clockwise about the face normal, which leaves an unbounded region")]
+    Clockwise,
     /// The face's surface is unbounded and the face has no boundary.
     #[error("the face has no boundary and its surface is unbounded")]
     Unbounded,
@@ -230,10 +234,11 @@ pub enum TrimError {
 /// Builds the trim of face `face_id`.
 ///
 /// A face whose loops cannot be closed into a bounded region as the file orients it (a loop
-/// that goes around a cone and runs into its open side) is read again with its sense turned
-/// over: files from some writers state the sense of a face wrong while its loops and its
-/// neighbours agree with each other (PRO7071.stp: two half cones through their apex), and CAD
-/// kernels take the bounded side. The trim's notes say so.
+/// that goes around a cone and runs into its open side, loops clockwise about the rest of an
+/// open surface) is read again with its sense turned over: files from some writers state the
+/// sense of a face wrong while its loops and its neighbours agree with each other (PRO7071.stp:
+/// two half cones through their apex; trj6_b1-ec-214.stp: cone patches), and CAD kernels take
+/// the bounded side. The trim's notes say so.
 pub fn face_trim(
     model: &Model,
     face_id: FaceId,
@@ -242,16 +247,37 @@ pub fn face_trim(
 ) -> Result<FaceTrim, TrimError> {
     let face = &model.faces[face_id.index()];
     match oriented_trim(model, face_id, face, edges, tol) {
-        Err(e @ (TrimError::Wrapping(_) | TrimError::Unbounded)) if !face.loops.is_empty() => {
-            let turned = Face {
-                same_sense: !face.same_sense,
-                ..face.clone()
+        Err(e @ (TrimError::Wrapping(_) | TrimError::Unbounded | TrimError::Clockwise))
+            if !face.loops.is_empty() =>
+        {
+            // Which flag is wrong, the face's sense or its bounds' orientation, the neighbours
+            // tell: in a consistent shell they use each shared edge the other way round. If
+            // they do, the loops are right and the sense is wrong (trj6_b1-ec-214.stp's
+            // cones); if they use the edges the same way, the loops are wrong and the sense
+            // right (trj9_ap209-mp.stp's planes). A face with no neighbours keeps its loops.
+            let loops_right = loops_agree_with_neighbours(model, face_id).unwrap_or(true);
+            let turned = if loops_right {
+                Face {
+                    same_sense: !face.same_sense,
+                    ..face.clone()
+                }
+            } else {
+                let mut f = face.clone();
+                for l in &mut f.loops {
+                    l.orientation = !l.orientation;
+                }
+                f
             };
             match oriented_trim(model, face_id, &turned, edges, tol) {
                 Ok(mut trim) => {
+                    let what = if loops_right {
+                        "its sense is taken as reversed"
+                    } else {
+                        "its bounds are taken as reversed (its neighbours use its edges the same \
+                         way it does)"
+                    };
                     trim.notes.push(format!(
-                        "as written the face cannot be bounded ({e}); its sense is taken as \
-                         reversed"
+                        "as written the face cannot be bounded ({e}); {what}"
                     ));
                     Ok(trim)
                 }
@@ -260,6 +286,42 @@ pub fn face_trim(
         }
         other => other,
     }
+}
+
+/// Whether the faces sharing edges with `face_id` in its shell use them in the opposite
+/// direction, as a consistently oriented shell does (`None`: no shared edge to tell by). Edge
+/// directions are taken as the shell uses the faces (bound orientation, oriented faces).
+fn loops_agree_with_neighbours(model: &Model, face_id: FaceId) -> Option<bool> {
+    let shell = model
+        .shells
+        .iter()
+        .find(|s| s.faces.iter().any(|(f, _)| *f == face_id))?;
+    // Per edge, each use's face and direction.
+    let mut uses: std::collections::HashMap<EdgeId, Vec<(FaceId, bool)>> =
+        std::collections::HashMap::new();
+    for &(f, in_shell) in &shell.faces {
+        for lp in &model.faces[f.index()].loops {
+            if let crate::LoopKind::Edges(oes) = &lp.kind {
+                for oe in oes {
+                    let dir = oe.forward == lp.orientation;
+                    uses.entry(oe.edge).or_default().push((f, dir == in_shell));
+                }
+            }
+        }
+    }
+    let (mut opposite, mut same) = (0usize, 0usize);
+    for mine in uses.values() {
+        for &(_, d) in mine.iter().filter(|u| u.0 == face_id) {
+            for &(_, e) in mine.iter().filter(|u| u.0 != face_id) {
+                if d == e {
+                    same += 1;
+                } else {
+                    opposite += 1;
+                }
+            }
+        }
+    }
+    (opposite != same).then_some(opposite > same)
 }
 
 /// The trim of `face` (the model's face `face_id`, or a copy with its sense turned over).
@@ -273,20 +335,11 @@ fn oriented_trim(
     let surface = &model.surfaces[face.surface.index()];
     let (chains, vertex_loops) = uv::face_chains(model, face, surface, edges, tol)?;
     let mut notes = Vec::new();
-    let mut sense_flipped = false;
-    let mut loops = close::close_loops(
-        surface,
-        face_id,
-        chains,
-        &vertex_loops,
-        tol,
-        &mut notes,
-        &mut sense_flipped,
-    )?;
+    let mut loops = close::close_loops(surface, face_id, chains, &vertex_loops, tol, &mut notes)?;
     recentre(surface, &mut loops);
     Ok(FaceTrim {
         loops,
-        reversed: !face.same_sense ^ sense_flipped,
+        reversed: !face.same_sense,
         notes,
     })
 }
