@@ -185,6 +185,23 @@ impl StepTol {
         if !(slow > 1e-7 * fast && ln > 1e-12 * lu * lv && ln.is_finite()) {
             return None;
         }
+        // A side collapsed to within the deflection is a pole to the mesh (a quarter step of
+        // the parameter moves the point by less than the deflection, so no triangle can tell
+        // it from a point): t4mec.stp face #472, a B-spline quarter sphere whose pole sides
+        // are 0.003 mm long and folded, asked there for steps of 1e-5 and got a
+        // 100,000-point grid.
+        let ((u0, u1), (v0, v1)) = surface.domain();
+        let quarter = |a: f64, b: f64| {
+            if (b - a).is_finite() {
+                0.25 * (b - a)
+            } else {
+                1.0
+            }
+        };
+        let pole = self.deflection;
+        if lu * quarter(u0, u1) <= pole || lv * quarter(v0, v1) <= pole {
+            return None;
+        }
         let n = n / ln;
         let twist = (d.duv.dot(n) / (lu * lv)).abs();
         let ku = (d.duu.dot(n) / (lu * lu)).abs().max(twist);
@@ -323,6 +340,28 @@ mod tests {
             tol.steps(&s, 0.3, std::f64::consts::FRAC_PI_2 - 1e-9)
                 .is_none()
         );
+    }
+
+    #[test]
+    fn a_side_collapsed_within_the_deflection_counts_as_singular() {
+        // 1e-5 from a sphere's pole the parallel is 1e-5 of the meridian speed (the relative
+        // test lets it through) but a quarter turn moves the point 8e-5 mm.
+        let s = Surface::Sphere {
+            frame: Frame::WORLD,
+            radius: 5.0,
+        };
+        let v = std::f64::consts::FRAC_PI_2 - 1e-5;
+        let coarse = StepTol::new(&MeshParams {
+            deflection: 1.0,
+            ..MeshParams::default()
+        });
+        assert!(coarse.steps(&s, 0.3, v).is_none());
+        // Control: at a deflection far below that movement the point is an ordinary one.
+        let fine = StepTol::new(&MeshParams {
+            deflection: 1e-6,
+            ..MeshParams::default()
+        });
+        assert!(fine.steps(&s, 0.3, v).is_some());
     }
 
     #[test]
