@@ -103,6 +103,47 @@ struct Ctx<'a> {
     domain: [(f64, f64); 2],
 }
 
+/// Joins the pieces a loop falls into when its seams are taken out wherever one ends where
+/// another starts, so that a hole whose boundary touches the seam at two points becomes one
+/// closed chain again (trj4_pm2-ec-214.stp face #21376: a cut-out across a cylinder's seam,
+/// left as two open chains "closed with a straight segment" each). Each piece comes back
+/// with whether it was joined into a closed chain.
+fn stitch(pieces: impl Iterator<Item = Vec<TrimSegment>>) -> Vec<(Vec<TrimSegment>, bool)> {
+    let key = |p: &[TrimSegment], last: bool| {
+        let seg = if last { p.last() } else { p.first() };
+        seg.and_then(|s| {
+            if last {
+                s.points.last()
+            } else {
+                s.points.first()
+            }
+        })
+        .map(|pt| pt.key)
+    };
+    let mut out: Vec<(Vec<TrimSegment>, bool)> = pieces.map(|p| (p, false)).collect();
+    // Each join removes a piece, so this ends.
+    'join: loop {
+        for i in 0..out.len() {
+            let (start, end) = (key(&out[i].0, false), key(&out[i].0, true));
+            if start.is_none() || start == end {
+                continue;
+            }
+            let Some(j) = (0..out.len())
+                .find(|&j| j != i && key(&out[j].0, false) == end && key(&out[j].0, true) != end)
+            else {
+                continue;
+            };
+            let (next, _) = out.remove(j);
+            let i = if j < i { i - 1 } else { i };
+            out[i].0.extend(next);
+            out[i].1 = key(&out[i].0, false) == key(&out[i].0, true);
+            continue 'join;
+        }
+        break;
+    }
+    out
+}
+
 /// The face's loops as chains, seams removed, in (u, v), face on the left. Vertex loops are
 /// returned separately as (point, key).
 pub(super) fn face_chains(
@@ -173,8 +214,8 @@ pub(super) fn face_chains(
                         .expect("len > 1 before remove")
                         .extend(first);
                 }
-                for piece in pieces.into_iter().filter(|p| !p.is_empty()) {
-                    let mut chain = finish(&cx, piece, !cut, flip)?;
+                for (piece, joined) in stitch(pieces.into_iter().filter(|p| !p.is_empty())) {
+                    let mut chain = finish(&cx, piece, !cut || joined, flip)?;
                     if flip {
                         chain.reverse();
                     }
