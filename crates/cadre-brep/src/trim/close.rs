@@ -325,6 +325,14 @@ pub(super) fn close_loops(
             (lo, hi)
         })
         .collect();
+    // Everything a seam line must not cross: the chains as they lie (each line is tried
+    // against every period's copy of them).
+    let obstacles: Vec<Vec<Vec2>> = wrapping
+        .iter()
+        .map(|w| &w.0)
+        .chain(contractible.iter())
+        .map(|c| c.points().iter().map(|p| p.uv).collect())
+        .collect();
     let mut i = 0;
     while i < wrapping.len() {
         let (ref b_chain, _, b_sign) = wrapping[i];
@@ -332,8 +340,38 @@ pub(super) fn close_loops(
         let paired = b_side > 0.0 && i + 1 < wrapping.len() && side(wrapping[i + 1].2) < 0.0;
         let b_tagged = tagged_points(b_chain);
         let b_pts: Vec<TrimPoint> = b_tagged.iter().map(|t| t.0).collect();
-        let b_at = seam_point(&b_tagged, &holes_d, period, axis);
         let b_shift = b_sign * period * unit(axis);
+        let t_tagged = paired.then(|| tagged_points(&wrapping[i + 1].0));
+        // Where the seam line would end for a start at B's point `at`: on the partner's
+        // nearest point around (the T point and its shift), or on the closing side.
+        let closing_w = if paired {
+            None
+        } else {
+            let lo = b_pts.iter().map(|p| p.uv[w]).fold(f64::INFINITY, f64::min);
+            let hi = b_pts
+                .iter()
+                .map(|p| p.uv[w])
+                .fold(f64::NEG_INFINITY, f64::max);
+            closing(surface, axis, b_side, Some((lo, hi)))
+        };
+        let seam_line = |at: usize| -> Option<(Vec2, Vec2)> {
+            let end = b_pts[at].uv + b_shift;
+            match &t_tagged {
+                Some(t) => {
+                    let (t_at, by) = partner_point(t, end[axis], period, axis);
+                    Some((end, t[t_at].0.uv + unit(axis) * by))
+                }
+                None => {
+                    let (wc, _) = closing_w?;
+                    let mut q = end;
+                    q[w] = wc;
+                    Some((end, q))
+                }
+            }
+        };
+        let b_at = seam_start(&b_tagged, &holes_d, period, axis, |at| {
+            seam_line(at).is_some_and(|(p, q)| !crosses_any(p, q, &obstacles, period, axis))
+        });
         let b_segments = rotate(b_chain, &b_tagged, b_at, b_shift);
         let b_start = b_pts[b_at];
         let b_end = TrimPoint {
@@ -343,23 +381,14 @@ pub(super) fn close_loops(
         // The loop keeps the chains' edge segments (and their exact curves); the lines
         // added to close it are seam or boundary segments.
         let mut segments: Vec<TrimSegment> = b_segments;
-        if paired {
+        if let Some(t_tagged) = &t_tagged {
             let (ref t_chain, _, t_sign) = wrapping[i + 1];
-            let t_tagged = tagged_points(t_chain);
             // The T point nearest, in the wrapping direction, to where B ended.
-            let target = b_end.uv[axis];
-            let t_at = (0..t_tagged.len() - 1)
-                .min_by(|&a, &b| {
-                    let da = circ(t_tagged[a].0.uv[axis] - target, period);
-                    let db = circ(t_tagged[b].0.uv[axis] - target, period);
-                    da.total_cmp(&db)
-                })
-                .unwrap_or(0);
+            let (t_at, k) = partner_point(t_tagged, b_end.uv[axis], period, axis);
             let t_shift = t_sign * period * unit(axis);
-            let mut t_segments = rotate(t_chain, &t_tagged, t_at, t_shift);
+            let mut t_segments = rotate(t_chain, t_tagged, t_at, t_shift);
             let t_first = t_tagged[t_at].0;
-            let k = ((target - t_first.uv[axis]) / period).round();
-            let by = unit(axis) * (k * period);
+            let by = unit(axis) * k;
             shift_segments(&mut t_segments, by);
             let t_start = TrimPoint {
                 uv: t_first.uv + by,
@@ -381,15 +410,7 @@ pub(super) fn close_loops(
                     "a loop goes around a closed surface with no partner loop".into(),
                 ));
             }
-            let range = {
-                let lo = b_pts.iter().map(|p| p.uv[w]).fold(f64::INFINITY, f64::min);
-                let hi = b_pts
-                    .iter()
-                    .map(|p| p.uv[w])
-                    .fold(f64::NEG_INFINITY, f64::max);
-                (lo, hi)
-            };
-            let Some((wc, pole)) = closing(surface, axis, b_side, Some(range)) else {
+            let Some((wc, pole)) = closing_w else {
                 return Err(TrimError::Wrapping(
                     "the face goes around the surface and nothing closes it on one side".into(),
                 ));
@@ -447,7 +468,138 @@ fn circ(x: f64, period: f64) -> f64 {
     (x - (x / period).round() * period).abs()
 }
 
-/// Index of the chain point where the seam line starts: the one farthest, around the
+/// Most seam starts tried for one chain before the first choice is kept, crossing or not
+/// (each try costs a pass over every chain's points).
+const MAX_SEAM_TRIES: usize = 256;
+
+/// Index of the chain point where the seam line starts: the first, in the order of
+/// [`seam_point`]'s preference, whose line is `clear` (crosses no chain); the preferred one
+/// when none within [`MAX_SEAM_TRIES`] is. A line from a vertex at the foot of a slot runs up
+/// the slot's side or across its end (trj3_s1-md-214.stp face #1710, a cylinder band whose
+/// chain starts at such a corner): the loop would cross itself there.
+fn seam_start(
+    pts: &[(TrimPoint, usize)],
+    holes: &[(f64, f64)],
+    period: f64,
+    axis: usize,
+    clear: impl Fn(usize) -> bool,
+) -> usize {
+    let order = seam_points(pts, holes, period, axis);
+    order
+        .iter()
+        .take(MAX_SEAM_TRIES)
+        .copied()
+        .find(|&at| clear(at))
+        .unwrap_or(order.first().copied().unwrap_or(0))
+}
+
+/// The point of the partner chain `t` nearest, around the wrapping direction, to `target`
+/// (never its last point, which is its first one a period on), and the multiple of the
+/// period that brings it nearest.
+fn partner_point(t: &[(TrimPoint, usize)], target: f64, period: f64, axis: usize) -> (usize, f64) {
+    let at = (0..t.len().saturating_sub(1))
+        .min_by(|&a, &b| {
+            let da = circ(t[a].0.uv[axis] - target, period);
+            let db = circ(t[b].0.uv[axis] - target, period);
+            da.total_cmp(&db)
+        })
+        .unwrap_or(0);
+    let k = ((target - t[at].0.uv[axis]) / period).round();
+    (at, k * period)
+}
+
+/// Whether the (u, v) segment `p`–`q` crosses, touches or runs along any obstacle polyline,
+/// or a copy of one moved by whole periods in `axis`, anywhere but at `p` or `q` themselves.
+fn crosses_any(p: Vec2, q: Vec2, obstacles: &[Vec<Vec2>], period: f64, axis: usize) -> bool {
+    let eps = 1e-9 * (1.0 + p.abs().max_element().max(q.abs().max_element()));
+    let (lo, hi) = (p[axis].min(q[axis]), p[axis].max(q[axis]));
+    obstacles.iter().any(|poly| {
+        let min = poly.iter().map(|a| a[axis]).fold(f64::INFINITY, f64::min);
+        let max = poly
+            .iter()
+            .map(|a| a[axis])
+            .fold(f64::NEG_INFINITY, f64::max);
+        if !(min.is_finite() && max.is_finite()) {
+            return false;
+        }
+        // Copies of the polyline that can reach the segment's span.
+        let k0 = ((lo - max) / period).floor() as i64;
+        let k1 = ((hi - min) / period).ceil() as i64;
+        (k0..=k1.min(k0 + 8)).any(|k| {
+            let by = unit(axis) * (k as f64 * period);
+            poly.windows(2)
+                .any(|e| segment_conflict(p, q, e[0] + by, e[1] + by, eps))
+        })
+    })
+}
+
+/// Whether segment `a`–`b` meets segment `p`–`q` anywhere but at `p` or `q` (within `eps`),
+/// a collinear overlap longer than `eps` included.
+fn segment_conflict(p: Vec2, q: Vec2, a: Vec2, b: Vec2, eps: f64) -> bool {
+    let cross = |x: Vec2, y: Vec2| x.x * y.y - x.y * y.x;
+    let (d, e) = (q - p, b - a);
+    let (ld, le) = (d.length(), e.length());
+    if ld <= eps {
+        return false;
+    }
+    let denom = cross(d, e);
+    if denom.abs() > 1e-12 * ld * le.max(eps) {
+        let t = cross(a - p, e) / denom;
+        let s = cross(a - p, d) / denom;
+        let (tt, ts) = (eps / ld, eps / le.max(eps));
+        if t < -tt || t > 1.0 + tt || s < -ts || s > 1.0 + ts {
+            return false;
+        }
+        let x = p + d * t;
+        return (x - p).length() > eps && (x - q).length() > eps;
+    }
+    // Parallel: a conflict only when on the same line and overlapping by more than eps.
+    if cross(d, a - p).abs() / ld > eps {
+        return false;
+    }
+    let (ta, tb) = ((a - p).dot(d) / (ld * ld), (b - p).dot(d) / (ld * ld));
+    let (s0, s1) = (ta.min(tb).max(0.0), ta.max(tb).min(1.0));
+    (s1 - s0) * ld > eps
+}
+
+/// The chain's points in the order they are preferred as the start of a seam line: the
+/// farthest, around the wrapping direction, from every hole first, the starts of segments
+/// (vertices) before the points inside them so that no edge is cut and every edge keeps its
+/// exact curve.
+fn seam_points(
+    pts: &[(TrimPoint, usize)],
+    holes: &[(f64, f64)],
+    period: f64,
+    axis: usize,
+) -> Vec<usize> {
+    if pts.len() < 2 {
+        return vec![0];
+    }
+    let n = pts.len() - 1;
+    let score = |i: usize| {
+        let x = pts[i].0.uv[axis];
+        holes
+            .iter()
+            .map(|&(lo, hi)| {
+                let mid = 0.5 * (lo + hi);
+                (circ(x - mid, period) - 0.5 * (hi - lo)).max(0.0)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let first = seam_point(pts, holes, period, axis);
+    let is_vertex = |i: usize| i == 0 || pts[i].1 != pts[i - 1].1;
+    let mut vertices: Vec<usize> = (0..n).filter(|&i| is_vertex(i) && i != first).collect();
+    let mut inner: Vec<usize> = (0..n).filter(|&i| !is_vertex(i) && i != first).collect();
+    // Stable sorts: with no holes every score is infinite and the chain order stands.
+    vertices.sort_by(|&a, &b| score(b).total_cmp(&score(a)));
+    inner.sort_by(|&a, &b| score(b).total_cmp(&score(a)));
+    let mut order = vec![first];
+    order.extend(vertices);
+    order.extend(inner);
+    order
+}
+
+/// Index of the chain point preferred as the seam line's start: the one farthest, around the
 /// wrapping direction, from every hole, preferring the start of a segment (a vertex) so that
 /// no edge is cut and every edge keeps its exact curve.
 fn seam_point(pts: &[(TrimPoint, usize)], holes: &[(f64, f64)], period: f64, axis: usize) -> usize {
@@ -799,5 +951,70 @@ mod tests {
         assert!((s - 0.5 * (4.0 + 1.0 + tau)).abs() < 1e-12, "{s}");
         // A hole around the whole period leaves the default.
         assert_eq!(seam_between_holes(&[hole((0.0, 7.0))], 0, tau, 0.5), 0.5);
+    }
+
+    #[test]
+    fn seam_lines_see_crossings_overlaps_and_copies_a_period_on() {
+        let v = Vec2::new;
+        let eps = 1e-9;
+        // Sharing an end point is not a conflict; crossing, touching inside and running
+        // along are.
+        assert!(!segment_conflict(
+            v(0.0, 0.0),
+            v(0.0, 1.0),
+            v(0.0, 0.0),
+            v(1.0, 0.0),
+            eps
+        ));
+        assert!(segment_conflict(
+            v(0.0, 0.0),
+            v(0.0, 1.0),
+            v(-1.0, 0.5),
+            v(1.0, 0.5),
+            eps
+        ));
+        assert!(segment_conflict(
+            v(0.0, 0.0),
+            v(0.0, 1.0),
+            v(0.0, 0.5),
+            v(1.0, 0.5),
+            eps
+        ));
+        assert!(segment_conflict(
+            v(0.0, 0.0),
+            v(0.0, 1.0),
+            v(0.0, 0.0),
+            v(0.0, 0.3),
+            eps
+        ));
+        assert!(!segment_conflict(
+            v(0.0, 0.0),
+            v(0.0, 1.0),
+            v(0.1, 0.0),
+            v(0.1, 1.0),
+            eps
+        ));
+        assert!(!segment_conflict(
+            v(0.0, 0.0),
+            v(0.0, 1.0),
+            v(0.0, 1.0),
+            v(0.0, 2.0),
+            eps
+        ));
+        // The slot of trj3_s1-md-214.stp face #1710, its foot at u = -1.59, seen from a line
+        // starting one period on.
+        let tau = std::f64::consts::TAU;
+        let slot = vec![v(-1.6, 0.0), v(-1.6, 35.0), v(-1.55, 35.0), v(-1.55, 0.0)];
+        let obstacles = vec![slot];
+        let start = v(-1.6 + tau, 0.0);
+        assert!(crosses_any(start, v(-1.57 + tau, 68.0), &obstacles, tau, 0));
+        assert!(crosses_any(start, v(-1.6 + tau, 68.0), &obstacles, tau, 0));
+        assert!(!crosses_any(
+            v(-1.5 + tau, 0.0),
+            v(-1.5 + tau, 68.0),
+            &obstacles,
+            tau,
+            0
+        ));
     }
 }
