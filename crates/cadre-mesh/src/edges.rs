@@ -11,6 +11,8 @@ use crate::MeshParams;
 
 /// Deepest bisection of one curve span (2^18 pieces).
 const MAX_DEPTH: u32 = 18;
+/// Spans shorter than this fraction of the deflection are not split for their turning.
+const MIN_TURN_SPAN: f64 = 0.1;
 /// Most samples one edge may get, so a pathological curve cannot exhaust memory.
 const MAX_EDGE_SAMPLES: usize = 100_000;
 
@@ -114,11 +116,22 @@ pub fn sample_curve(curve: &Curve3, t0: f64, t1: f64, params: &MeshParams) -> Ve
     let d0 = curve.derivs(t0);
     out.push((t0, d0.point));
     let mut prev = (t0, d0.point, d0.d1);
-    for &t in &stops[1..] {
+    // A stop within a tenth of the deflection of the one before or of the end is left out:
+    // a knot a rounding away from an end (trj4_pm2-ec-214.stp edge #21483, knots at -1.6e-7
+    // and 0, its range starting at the first) made a sample 2e-7 mm from the vertex, which
+    // the face's triangulation merged with it, leaving the neighbour's edge open.
+    let gap = MIN_TURN_SPAN * params.deflection;
+    let end_point = curve.eval(t1);
+    let last = stops.len() - 1;
+    for (i, &t) in stops.iter().enumerate().skip(1) {
         if t <= prev.0 {
             continue;
         }
         let d = curve.derivs(t);
+        if i < last && ((d.point - prev.1).length() <= gap || (d.point - end_point).length() <= gap)
+        {
+            continue;
+        }
         let next = (t, d.point, d.d1);
         bisect(curve, prev, next, params, 0, &mut out);
         out.push((t, d.point));
@@ -164,8 +177,14 @@ fn bisect(
     // Total turning through the midpoint: an arc's end-to-end angle, and more for an S.
     let turn = angle(a.2, dm.d1) + angle(dm.d1, b.2);
     // A tiny chord cannot get better by splitting (and a zero one means a degenerate span).
-    let tiny = len2.sqrt().max((dm.point - a.1).length()) <= 1e-3 * params.deflection;
-    if (deviation > params.deflection || turn > params.angle) && !tiny {
+    let reach = len2.sqrt().max((dm.point - a.1).length());
+    let tiny = reach <= 1e-3 * params.deflection;
+    // Turning is not refined below a tenth of the deflection: the span is a point at that
+    // scale, and refining it anyway packs samples into a hook at a curve's end
+    // (trj4_pm2-ec-214.stp edge 453 turns within 0.001 mm of its vertex; the samples there
+    // landed on the next edge's pcurve and the face did not weld).
+    let short = reach <= MIN_TURN_SPAN * params.deflection;
+    if (deviation > params.deflection || (turn > params.angle && !short)) && !tiny {
         let m = (tm, dm.point, dm.d1);
         bisect(curve, a, m, params, depth + 1, out);
         out.push((tm, dm.point));
@@ -240,5 +259,79 @@ mod tests {
             direction: Vec3::X,
         };
         assert_eq!(sample_curve(&line, 0.0, 5.0, &params).len(), 2);
+    }
+
+    fn within_deflection(curve: &Curve3, samples: &[(f64, Vec3)], deflection: f64) {
+        for w in samples.windows(2) {
+            for k in 1..10 {
+                let t = w[0].0 + (w[1].0 - w[0].0) * k as f64 / 10.0;
+                let p = curve.eval(t);
+                let (a, b) = (w[0].1, w[1].1);
+                let d = (p - a) - (b - a) * ((p - a).dot(b - a) / (b - a).length_squared());
+                assert!(d.length() <= deflection * 1.01, "{}", d.length());
+            }
+        }
+    }
+
+    #[test]
+    fn a_knot_a_rounding_from_the_start_makes_no_sample() {
+        // Knots at 0 and 1e-7: the span between them is a point.
+        let s = cadre_geom::BSplineCurve::try_new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1e-7, 1.0, 1.0, 1.0, 1.0],
+            vec![
+                Vec3::ZERO,
+                Vec3::new(1e-7, 0.0, 0.0),
+                Vec3::new(3.0, 1.0, 0.0),
+                Vec3::new(6.0, 1.0, 0.0),
+                Vec3::new(9.0, 0.0, 0.0),
+            ],
+            None,
+        )
+        .unwrap();
+        let curve = Curve3::BSpline(s);
+        let params = MeshParams {
+            deflection: 0.01,
+            angle: 0.2,
+            ..MeshParams::default()
+        };
+        let samples = sample_curve(&curve, 0.0, 1.0, &params);
+        let first = samples[0].1;
+        for &(t, p) in &samples[1..] {
+            assert!((p - first).length() > 1e-5, "sample at t = {t}, {p:?}");
+        }
+        within_deflection(&curve, &samples, params.deflection);
+    }
+
+    #[test]
+    fn a_hook_below_the_deflection_at_the_end_is_not_refined() {
+        // Straight for 10 mm, then turning back within 1e-4 mm of the end.
+        let s = cadre_geom::BSplineCurve::bezier(
+            vec![
+                Vec3::ZERO,
+                Vec3::new(5.0, 0.0, 0.0),
+                Vec3::new(10.0, 0.0, 0.0),
+                Vec3::new(10.0 - 1e-4, 1e-4, 0.0),
+            ],
+            None,
+        )
+        .unwrap();
+        let curve = Curve3::BSpline(s);
+        let params = MeshParams {
+            deflection: 0.01,
+            angle: 0.1,
+            ..MeshParams::default()
+        };
+        let samples = sample_curve(&curve, 0.0, 1.0, &params);
+        let end = samples[samples.len() - 1].1;
+        let near_end = samples[..samples.len() - 1]
+            .iter()
+            .filter(|s| (s.1 - end).length() < 1e-3)
+            .count();
+        assert!(
+            near_end <= 1,
+            "{near_end} samples within 0.001 mm of the end"
+        );
+        within_deflection(&curve, &samples, params.deflection);
     }
 }
