@@ -60,6 +60,13 @@ pub(crate) fn prepare(domain: &FaceDomain) -> Result<Prepared, FaceMeshError> {
         hi = hi.max(p.uv);
     }
 
+    let extent = (hi - lo).max_element();
+    let loops: Vec<Vec<BoundaryPoint>> = domain
+        .loops
+        .iter()
+        .map(|lp| separate_coincident(lp, extent))
+        .collect();
+
     let mut ids: HashMap<(u64, u64), u32> = HashMap::with_capacity(total);
     let mut points = Vec::with_capacity(total);
     let mut counts: HashMap<(u32, u32), u32> = HashMap::with_capacity(total);
@@ -68,7 +75,7 @@ pub(crate) fn prepare(domain: &FaceDomain) -> Result<Prepared, FaceMeshError> {
     let mut collapsed = Vec::new();
     let mut loop_ids: Vec<u32> = Vec::new();
     let mut area2 = 0.0;
-    for lp in &domain.loops {
+    for lp in &loops {
         loop_ids.clear();
         for p in lp {
             let id = *ids.entry(uv_bits(p.uv)).or_insert_with(|| {
@@ -108,7 +115,6 @@ pub(crate) fn prepare(domain: &FaceDomain) -> Result<Prepared, FaceMeshError> {
         area2 += a.abs();
     }
 
-    let extent = (hi - lo).max_element();
     // Written so that a NaN area also counts as empty.
     if points.len() < 3
         || area2.partial_cmp(&(1e-24 * extent * extent)) != Some(std::cmp::Ordering::Greater)
@@ -129,6 +135,48 @@ pub(crate) fn prepare(domain: &FaceDomain) -> Result<Prepared, FaceMeshError> {
         lo,
         hi,
     })
+}
+
+/// Fraction of the way to the next distinct point a coincident point is moved.
+const NUDGE: f64 = 1e-6;
+
+/// The loop with each run of consecutive points at one (u, v) but with different weld keys
+/// spread out along the way to the next point: a surface's parameters can map two distinct
+/// vertices to one (u, v) (an edge a few micrometres long, both ends clamped onto a corner
+/// of the domain: trj7_b1-ec-214.stp face #3627), and merging them would drop the short
+/// edge from this face while its neighbour keeps it, leaving the solid open. Each keeps its
+/// position and key, so the triangles still weld to the neighbours; only its (u, v) moves,
+/// by a millionth of the way on (at least 1e-10 of the domain, at most half the way).
+fn separate_coincident(lp: &[BoundaryPoint], extent: f64) -> Vec<BoundaryPoint> {
+    let mut out = lp.to_vec();
+    let n = out.len();
+    let mut i = 0;
+    while i < n {
+        // The run starting at i: following points at i's (u, v).
+        let mut j = i + 1;
+        while j < n && uv_bits(lp[j].uv) == uv_bits(lp[i].uv) {
+            j += 1;
+        }
+        let distinct_keys = (i + 1..j).any(|k| lp[k].key != lp[i].key);
+        if distinct_keys && let Some(next) = (j..n).chain(0..i).find(|&k| lp[k].uv != lp[i].uv) {
+            let to = lp[next].uv - lp[i].uv;
+            let d = to.length();
+            let step = (NUDGE * d)
+                .max(1e-10 * extent)
+                .min(0.5 * d / (j - i) as f64);
+            let dir = to / d;
+            let mut moved = 0.0;
+            for k in i + 1..j {
+                // Equal keys stay together (a pole line's points).
+                if lp[k].key != lp[k - 1].key {
+                    moved += step;
+                }
+                out[k].uv = lp[i].uv + dir * moved;
+            }
+        }
+        i = j;
+    }
+    out
 }
 
 #[cfg(test)]
@@ -181,5 +229,40 @@ mod tests {
             loops: vec![vec![bp(0.0, 0.0, 0), bp(1.0, 0.0, 1), bp(2.0, 0.0, 2)]],
         };
         assert_eq!(prepare(&flat).unwrap_err(), FaceMeshError::EmptyDomain);
+    }
+
+    #[test]
+    fn coincident_points_with_different_keys_are_kept_apart() {
+        // A unit square whose corner (1, 0) holds two vertices (keys 1 and 5).
+        let domain = FaceDomain {
+            loops: vec![vec![
+                bp(0.0, 0.0, 0),
+                bp(1.0, 0.0, 1),
+                bp(1.0, 0.0, 5),
+                bp(1.0, 1.0, 2),
+                bp(0.0, 1.0, 3),
+            ]],
+        };
+        let p = prepare(&domain).unwrap();
+        let keys: Vec<u64> = p.points.iter().map(|b| b.key).collect();
+        assert_eq!(keys, [0, 1, 5, 2, 3]);
+        // The second moved a millionth of the way towards (1, 1); its position stayed.
+        let moved = p.points[2].uv - Vec2::new(1.0, 0.0);
+        assert!(
+            moved.x.abs() < 1e-15 && moved.y > 0.0 && moved.y < 1e-5,
+            "{moved:?}"
+        );
+        assert_eq!(p.points[2].xyz, Vec3::new(1.0, 0.0, 0.0));
+        assert_eq!(p.edges.len(), 5);
+        // Equal keys at one (u, v) are still one point.
+        let repeated = FaceDomain {
+            loops: vec![vec![
+                bp(0.0, 0.0, 0),
+                bp(1.0, 0.0, 1),
+                bp(1.0, 0.0, 1),
+                bp(1.0, 1.0, 2),
+            ]],
+        };
+        assert_eq!(prepare(&repeated).unwrap().points.len(), 3);
     }
 }
