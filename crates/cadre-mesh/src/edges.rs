@@ -29,12 +29,15 @@ impl EdgeSamples for EdgeDiscretisation {
 }
 
 impl EdgeDiscretisation {
-    /// Samples every edge of `model` (in parallel).
+    /// Samples every edge of `model` (in parallel). The two vertices of an edge shorter
+    /// than a tenth of the deflection become one point of the mesh (see
+    /// [`weld_micro_edges`]).
     pub fn new(model: &Model, params: &MeshParams, acc: Accuracy) -> Self {
-        let samples = (0..model.edges.len())
+        let mut samples: Vec<Vec<EdgeSample>> = (0..model.edges.len())
             .into_par_iter()
             .map(|i| discretise_edge(model, EdgeId(i as u32), params, acc))
             .collect();
+        weld_micro_edges(model, &mut samples, MIN_TURN_SPAN * params.deflection);
         Self { samples }
     }
 
@@ -46,6 +49,54 @@ impl EdgeDiscretisation {
     /// Whether no edge has samples.
     pub fn is_empty(&self) -> bool {
         self.samples.iter().all(Vec::is_empty)
+    }
+}
+
+/// Gives the vertices joined by an edge no longer than `gap` (its samples just its two
+/// vertices) one weld key and one position, the lowest vertex's: such an edge is a point at
+/// the mesh's scale, and files have them by the dozen where faces meet in a corner, a few
+/// micrometres long and with both ends clamped onto one (u, v) of a face
+/// (trj7_b1-ec-214.stp: vertices 7 um apart where four faces meet):
+/// meshed as edges they made slivers the faces' triangulations could not agree on.
+fn weld_micro_edges(model: &Model, samples: &mut [Vec<EdgeSample>], gap: f64) {
+    let n = model.vertices.len();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn root(parent: &mut [u32], mut v: u32) -> u32 {
+        while parent[v as usize] != v {
+            let up = parent[parent[v as usize] as usize];
+            parent[v as usize] = up;
+            v = up;
+        }
+        v
+    }
+    let mut any = false;
+    for (edge, s) in model.edges.iter().zip(samples.iter()) {
+        let (a, b) = (edge.start.index(), edge.end.index());
+        if a == b || a >= n || b >= n || s.len() != 2 || (s[0].xyz - s[1].xyz).length() > gap {
+            continue;
+        }
+        let (ra, rb) = (root(&mut parent, a as u32), root(&mut parent, b as u32));
+        if ra != rb {
+            parent[ra.max(rb) as usize] = ra.min(rb);
+            any = true;
+        }
+    }
+    if !any {
+        return;
+    }
+    for (edge, s) in model.edges.iter().zip(samples.iter_mut()) {
+        let last = s.len() - 1;
+        for (i, v) in [(0, edge.start), (last, edge.end)] {
+            if v.index() >= n {
+                continue;
+            }
+            let r = root(&mut parent, v.index() as u32);
+            if r as usize != v.index() {
+                let rep = cadre_brep::VertexId(r);
+                s[i].key = TrimKey::vertex(rep);
+                s[i].xyz = model.vertices[rep.index()].point;
+            }
+        }
     }
 }
 
@@ -76,6 +127,20 @@ pub fn discretise_edge(
     let mut params_along = sample_curve(curve, t0, t1, params);
     if !edge.same_sense {
         params_along.reverse();
+    }
+    // Samples within a tenth of the deflection of a vertex go: the chord from the one before
+    // to the vertex is as good at that scale, and where the curve hooks past its vertex
+    // (trj7_b1-ec-214.stp edge 603, 0.002 mm beyond it and back) such a sample falls on
+    // the far side of the next edge in (u, v), the loop crosses itself there and the
+    // repaired face no longer welds.
+    let gap = MIN_TURN_SPAN * params.deflection;
+    while params_along.len() > 2 && (params_along[1].1 - start.xyz).length() <= gap {
+        params_along.remove(1);
+    }
+    while params_along.len() > 2
+        && (params_along[params_along.len() - 2].1 - end.xyz).length() <= gap
+    {
+        params_along.remove(params_along.len() - 2);
     }
     let n = params_along.len();
     let mut out = Vec::with_capacity(n);
@@ -333,5 +398,59 @@ mod tests {
             "{near_end} samples within 0.001 mm of the end"
         );
         within_deflection(&curve, &samples, params.deflection);
+    }
+
+    #[test]
+    fn the_ends_of_an_edge_below_the_gap_weld_into_one_point() {
+        use cadre_brep::{CurveId, Edge, Vertex, VertexId};
+        // A 10 mm line from A to B, a 1 um line from B to C, a 10 mm line from C to D.
+        let mut model = Model::default();
+        let points = [
+            Vec3::ZERO,
+            Vec3::new(10.0, 0.0, 0.0),
+            Vec3::new(10.0, 1e-3, 0.0),
+            Vec3::new(10.0, 10.0, 0.0),
+        ];
+        for (i, p) in points.iter().enumerate() {
+            model.vertices.push(Vertex {
+                point: *p,
+                step_id: i as u64 + 1,
+            });
+        }
+        for (i, w) in [0u32, 1, 2, 3].windows(2).enumerate() {
+            let (a, b) = (points[w[0] as usize], points[w[1] as usize]);
+            model.curves.push(Curve3::Line {
+                origin: a,
+                direction: b - a,
+            });
+            model.edges.push(Edge {
+                curve: Some(CurveId(i as u32)),
+                start: VertexId(w[0]),
+                end: VertexId(w[1]),
+                same_sense: true,
+                pcurves: Vec::new(),
+                step_id: 10 + i as u64,
+            });
+        }
+        let at = |deflection: f64| {
+            let params = MeshParams {
+                deflection,
+                ..MeshParams::default()
+            };
+            EdgeDiscretisation::new(&model, &params, Accuracy::default())
+        };
+        // Deflection 0.1: the 0.001 mm edge is below its tenth; B and C are one point.
+        let d = at(0.1);
+        let short = d.samples(EdgeId(1));
+        assert_eq!(short[0].key, short[1].key);
+        assert_eq!(short[0].xyz, short[1].xyz);
+        let (ab, cd) = (d.samples(EdgeId(0)), d.samples(EdgeId(2)));
+        assert_eq!(ab[ab.len() - 1].key, cd[0].key);
+        assert_eq!(cd[0].xyz, points[1]);
+        // Deflection 0.001: the edge is ten times its tenth and keeps its two ends.
+        let d = at(0.001);
+        let short = d.samples(EdgeId(1));
+        assert_ne!(short[0].key, short[1].key);
+        assert_eq!(d.samples(EdgeId(2))[0].xyz, points[2]);
     }
 }
