@@ -576,16 +576,7 @@ fn seam_points(
         return vec![0];
     }
     let n = pts.len() - 1;
-    let score = |i: usize| {
-        let x = pts[i].0.uv[axis];
-        holes
-            .iter()
-            .map(|&(lo, hi)| {
-                let mid = 0.5 * (lo + hi);
-                (circ(x - mid, period) - 0.5 * (hi - lo)).max(0.0)
-            })
-            .fold(f64::INFINITY, f64::min)
-    };
+    let score = |i: usize| hole_clearance(pts[i].0.uv[axis], holes, period);
     let first = seam_point(pts, holes, period, axis);
     let is_vertex = |i: usize| i == 0 || pts[i].1 != pts[i - 1].1;
     let mut vertices: Vec<usize> = (0..n).filter(|&i| is_vertex(i) && i != first).collect();
@@ -599,6 +590,15 @@ fn seam_points(
     order
 }
 
+/// How far, around the wrapping direction, `x` lies from the nearest hole's range
+/// (infinite with no holes, 0 inside one).
+fn hole_clearance(x: f64, holes: &[(f64, f64)], period: f64) -> f64 {
+    holes
+        .iter()
+        .map(|&(lo, hi)| (circ(x - 0.5 * (lo + hi), period) - 0.5 * (hi - lo)).max(0.0))
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// Index of the chain point preferred as the seam line's start: the one farthest, around the
 /// wrapping direction, from every hole, preferring the start of a segment (a vertex) so that
 /// no edge is cut and every edge keeps its exact curve.
@@ -607,16 +607,7 @@ fn seam_point(pts: &[(TrimPoint, usize)], holes: &[(f64, f64)], period: f64, axi
         return 0;
     }
     let n = pts.len() - 1;
-    let score = |i: usize| {
-        let x = pts[i].0.uv[axis];
-        holes
-            .iter()
-            .map(|&(lo, hi)| {
-                let mid = 0.5 * (lo + hi);
-                (circ(x - mid, period) - 0.5 * (hi - lo)).max(0.0)
-            })
-            .fold(f64::INFINITY, f64::min)
-    };
+    let score = |i: usize| hole_clearance(pts[i].0.uv[axis], holes, period);
     let best = |candidates: &mut dyn Iterator<Item = usize>| {
         candidates.max_by(|&a, &b| score(a).total_cmp(&score(b)))
     };
