@@ -13,6 +13,7 @@
 mod curve;
 mod newton;
 mod surface;
+mod valley;
 
 /// Shifts a periodic parameter `t` by whole periods: nearest to `hint` when given, else into
 /// `[start, start + period)`.

@@ -1,5 +1,6 @@
 //! Newton minimisation of the distance from a point to a curve or surface.
 
+use super::valley::valley_newton;
 use crate::curve::Curve;
 use crate::point::GeomPoint;
 use crate::{Accuracy, Surface, Vec3};
@@ -19,7 +20,7 @@ impl Bounds {
     pub fn new(lo: f64, hi: f64) -> Self {
         Bounds { lo, hi }
     }
-    fn clamp(&self, t: f64) -> f64 {
+    pub(crate) fn clamp(&self, t: f64) -> f64 {
         t.clamp(self.lo, self.hi)
     }
 }
@@ -78,10 +79,40 @@ pub(crate) fn curve_newton<P: GeomPoint>(
 pub(crate) fn surface_newton(
     s: &Surface,
     p: Vec3,
+    start: (f64, f64),
+    bounds: (Bounds, Bounds),
+    acc: Accuracy,
+) -> Option<(f64, f64, f64)> {
+    let (u, v, dist, exhausted) = newton_2d(s, p, start, bounds, acc)?;
+    if !exhausted {
+        // A minimum, or a clamped bound the step cannot cross.
+        return Some((u, v, dist));
+    }
+    // The iterations ran out still moving: on a narrow curved valley (one partial
+    // thousands of times the other) follow its floor, within the domain: past a periodic
+    // B-spline's ends its polynomial extension is not the surface, and a walk along the
+    // floor would find feet there (trj1_t4m-ac.stp face #661, a rational sphere patch).
+    let ((u0, u1), (v0, v1)) = s.domain();
+    let within = |b: Bounds, lo: f64, hi: f64| {
+        let (lo, hi) = (b.lo.max(lo), b.hi.min(hi));
+        if lo <= hi { Bounds::new(lo, hi) } else { b }
+    };
+    let inside = (within(bounds.0, u0, u1), within(bounds.1, v0, v1));
+    match valley_newton(s, p, (u, v), inside, acc.max_iterations, acc.distance) {
+        Some(better) if better.2 < dist => Some(better),
+        _ => Some((u, v, dist)),
+    }
+}
+
+/// Newton in both parameters: `(u, v, distance, exhausted)`, `exhausted` when the
+/// iterations ran out before the step became small or stopped improving.
+pub(crate) fn newton_2d(
+    s: &Surface,
+    p: Vec3,
     (mut u, mut v): (f64, f64),
     (bu, bv): (Bounds, Bounds),
     acc: Accuracy,
-) -> Option<(f64, f64, f64)> {
+) -> Option<(f64, f64, f64, bool)> {
     u = bu.clamp(u);
     v = bv.clamp(v);
     let mut d = s.derivs(u, v);
@@ -89,6 +120,7 @@ pub(crate) fn surface_newton(
     if !dist.is_finite() {
         return None;
     }
+    let mut exhausted = true;
     for _ in 0..acc.max_iterations {
         let r = d.point - p;
         let (gu, gv) = (r.dot(d.du), r.dot(d.dv));
@@ -102,19 +134,28 @@ pub(crate) fn surface_newton(
             (det > 0.0 && a > 0.0).then(|| ((b * gv - c * gu) / det, (b * gu - a * gv) / det))
         };
         let Some((mut du, mut dv)) = solve(ha, hb, hc).or_else(|| solve(a, b, c)) else {
+            exhausted = false;
             break;
         };
         let mut improved = false;
-        for _ in 0..30 {
+        for halvings in 0..30 {
             let (nu, nv) = (bu.clamp(u + du), bv.clamp(v + dv));
             let nd = s.derivs(nu, nv);
             let ndist = (nd.point - p).length();
             if ndist.is_finite() && ndist <= dist {
                 let moved = (nd.point - d.point).length();
+                let gained = dist - ndist;
                 (u, v, d, dist) = (nu, nv, nd, ndist);
                 improved = moved > 0.0;
-                if moved <= 0.1 * acc.distance {
-                    return Some((u, v, dist));
+                // Converged when the move is small and either the whole step was taken or
+                // the distance no longer falls. A step the line search had to cut, still
+                // gaining, is small because the valley curves (a strongly anisotropic
+                // parametrisation: trj6_b1-ec-214.stp's face #6387 changes 35,000 mm per
+                // unit v): stopping there left edge points 0.3 mm from their foot instead
+                // of 2e-5. At a pole, where the distance does not depend on one parameter,
+                // the cut steps gain nothing and stop as before.
+                if moved <= 0.1 * acc.distance && (halvings == 0 || gained <= 0.1 * acc.distance) {
+                    return Some((u, v, dist, false));
                 }
                 break;
             }
@@ -122,8 +163,9 @@ pub(crate) fn surface_newton(
             dv *= 0.5;
         }
         if !improved {
+            exhausted = false;
             break;
         }
     }
-    Some((u, v, dist))
+    Some((u, v, dist, exhausted))
 }
