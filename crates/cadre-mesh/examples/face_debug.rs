@@ -1,5 +1,5 @@
 //! Meshes one face of a STEP file and prints its figures: `cargo run --release -p cadre-mesh
-//! --example face_debug -- FILE STEP_ID [DEFLECTION]`. For diagnosing faces that mesh badly.
+//! --example face_debug -- FILE STEP_ID [DEFLECTION [ANGLE]]`. For diagnosing faces that mesh badly.
 
 #[path = "common/mod.rs"]
 mod common;
@@ -14,7 +14,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let (Some(path), Some(id)) = (args.get(1), args.get(2).and_then(|s| s.parse::<u64>().ok()))
     else {
-        eprintln!("usage: face_debug FILE STEP_ID [DEFLECTION]");
+        eprintln!("usage: face_debug FILE STEP_ID [DEFLECTION [ANGLE]]");
         std::process::exit(2);
     };
     let deflection = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(0.1);
@@ -23,10 +23,13 @@ fn main() {
         eprintln!("no face #{id}");
         std::process::exit(1);
     };
-    let params = MeshParams {
+    let mut params = MeshParams {
         deflection,
         ..MeshParams::default()
     };
+    if let Some(angle) = args.get(4).and_then(|s| s.parse().ok()) {
+        params.angle = angle;
+    }
     let acc = Accuracy::default();
     let edges = EdgeDiscretisation::new(&model, &params, acc);
     let tol = TrimTolerance {

@@ -15,6 +15,7 @@ mod refine;
 mod repair;
 #[cfg(test)]
 mod repair_tests;
+mod sliver;
 #[cfg(test)]
 mod tests;
 
@@ -235,6 +236,14 @@ fn mesh_in_plane(
         Err(FaceMeshError::Triangulation(reason)) => reason,
         done => return done,
     };
+    // A thin face whose chords cross needs no split point: its boundary alone, clipped
+    // into ears, welds to the neighbours (see `sliver`).
+    if let Ok(Some(m)) = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        sliver::triangulate(surface, reversed, prep, &job.pts, &job.metric, &tol)
+    })) {
+        tracing::debug!(%reason, triangles = m.triangles.len(), "crossing trim loop clipped from its boundary alone");
+        return Ok(m);
+    }
     // Splitting keeps the whole boundary in the mesh; skipping cannot fail on crossings; no
     // refinement is the last resort should refinement trip over the repaired triangulation.
     let mut last = Err(FaceMeshError::Triangulation(reason.clone()));

@@ -18,13 +18,36 @@ pub(crate) fn assemble(
     truncated: bool,
     repaired: bool,
 ) -> FaceMesh {
+    let ids: Vec<usize> = cdt.vertices().map(|v| v.data().id as usize).collect();
+    let triangles: Vec<[usize; 3]> = cdt
+        .inner_faces()
+        .filter(|f| inside[f.fix().index()])
+        .map(|f| f.vertices().map(|v| v.data().id as usize))
+        .collect();
+    assemble_ids(
+        surface, reversed, &ids, &triangles, pts, truncated, repaired,
+    )
+}
+
+/// The face mesh of the points `ids` (indices into `pts`, in output order) and the
+/// triangles over them (also indices into `pts`, counter-clockwise in (u, v)): triangles
+/// with two corners of one key are left out, triangles and normals flipped for a reversed
+/// face, missing normals filled in.
+pub(crate) fn assemble_ids(
+    surface: &Surface,
+    reversed: bool,
+    ids: &[usize],
+    tris: &[[usize; 3]],
+    pts: &Points,
+    truncated: bool,
+    repaired: bool,
+) -> FaceMesh {
     let sign = if reversed { -1.0 } else { 1.0 };
 
     let mut remap = vec![u32::MAX; pts.len()];
-    let mut points = Vec::with_capacity(cdt.num_vertices());
+    let mut points = Vec::with_capacity(ids.len());
     let mut missing = false;
-    for v in cdt.vertices() {
-        let id = v.data().id as usize;
+    for &id in ids {
         remap[id] = points.len() as u32;
         let normal = pts.normal[id].map_or(Vec3::ZERO, |n| n * sign);
         missing |= pts.normal[id].is_none();
@@ -36,12 +59,8 @@ pub(crate) fn assemble(
         });
     }
 
-    let mut triangles = Vec::with_capacity(cdt.num_inner_faces());
-    for f in cdt.inner_faces() {
-        if !inside[f.fix().index()] {
-            continue;
-        }
-        let ids = f.vertices().map(|v| v.data().id as usize);
+    let mut triangles = Vec::with_capacity(tris.len());
+    for &ids in tris {
         let keys = ids.map(|i| pts.key[i]);
         // Two corners welded to one vertex: the triangle has no area in 3D.
         if (0..3).any(|i| keys[i].is_some() && keys[i] == keys[(i + 1) % 3]) {

@@ -30,7 +30,7 @@ pub(crate) fn sample(surface: &Surface, uv: Vec2) -> (Vec3, Option<Vec3>) {
 /// Distance between surface point `p` (normal `n`) and the chord or facet point `q`,
 /// measured along the surface normal so that a drift of the parameterisation along the
 /// surface is not mistaken for deviation.
-fn normal_gap(p: Vec3, n: Option<Vec3>, q: Vec3) -> f64 {
+pub(crate) fn normal_gap(p: Vec3, n: Option<Vec3>, q: Vec3) -> f64 {
     match n {
         Some(n) => (p - q).dot(n).abs(),
         None => (p - q).length(),
