@@ -7,6 +7,7 @@
 
 pub mod assemble;
 pub mod bbox;
+mod crack;
 pub mod defects;
 pub mod deviation;
 pub mod edges;
@@ -17,6 +18,7 @@ pub mod model;
 pub mod params;
 pub mod periodic;
 pub mod stats;
+mod strip;
 pub mod weld;
 
 pub use bbox::{deflection_diagonal, quick_bbox};

@@ -149,6 +149,8 @@ pub fn mesh_model(
             }
         }
     }
+    let closed = crate::crack::close_cracks(model, &mut out);
+    out.repairs.extend(closed);
     out
 }
 
