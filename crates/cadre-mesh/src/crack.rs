@@ -354,8 +354,8 @@ fn fill(
         face: FaceId(owner),
         step_id: owner_face.step_id,
         note: format!(
-            "a crack of {} boundary edges{with} ({width:.2e} wide, below the deflection) was \
-             closed with {} triangles",
+            "a crack of {} boundary edges{with} ({width:.2e} mm wide, below the deflection) \
+             was closed with {} triangle(s)",
             crack.vertices.len(),
             tris.len()
         ),
