@@ -66,9 +66,11 @@ pub struct InstanceVisit {
     pub depth: usize,
 }
 
-/// Assembly trees deeper than this are cut (with a warning from the mapper); real assemblies
-/// are a few dozen levels deep at most.
-pub const MAX_ASSEMBLY_DEPTH: usize = 256;
+/// Assembly trees deeper than this are cut by the mapper, with a warning naming the part
+/// where the cut is; real assemblies are a few dozen levels deep at most, and every walk of
+/// the tree is iterative, so the cap only bounds pathological files (a 300-level chain
+/// loads whole).
+pub const MAX_ASSEMBLY_DEPTH: usize = 1024;
 
 impl Model {
     /// Visits every part instance reachable from the roots, depth first, with its world

@@ -8,6 +8,7 @@ use std::collections::{HashMap, HashSet};
 use super::access::Attrs;
 use super::context::Mapper;
 use super::error::{MapError, MapResult};
+use cadre_brep::assembly::MAX_ASSEMBLY_DEPTH;
 use cadre_brep::topology::Wire;
 use cadre_brep::{Body, Occurrence, Part, PartId};
 use cadre_geom::Transform;
@@ -354,6 +355,7 @@ pub fn map_products(m: &mut Mapper<'_>) {
     m.model.roots = roots;
     break_cycles(m);
     limit_instances(m);
+    limit_depth(m);
 }
 
 /// Whether product part `parent` places one of `child_pd`'s representations through a
@@ -803,8 +805,30 @@ fn break_cycles(m: &mut Mapper<'_>) {
 /// cuts the offending children with a warning so walking the tree stays bounded.
 fn limit_instances(m: &mut Mapper<'_>) {
     let n = m.model.parts.len();
-    // After break_cycles the graph is acyclic: memoised counts, iteratively.
+    let order = post_order(m);
     let mut count: Vec<Option<u64>> = vec![None; n];
+    for &p in &order {
+        let mut total: u64 = 1;
+        for o in &m.model.parts[p].children {
+            total = total.saturating_add(count[o.part.index()].unwrap_or(1));
+        }
+        if total > MAX_INSTANCES {
+            let step_id = m.model.parts[p].step_id;
+            m.model.parts[p].children.clear();
+            m.warn(
+                step_id,
+                format!("assembly expands to more than {MAX_INSTANCES} instances; its children are dropped"),
+            );
+            total = 1;
+        }
+        count[p] = Some(total);
+    }
+}
+
+/// Part indices with every part after all the parts it places (the graph is acyclic after
+/// `break_cycles`), iteratively.
+fn post_order(m: &Mapper<'_>) -> Vec<usize> {
+    let n = m.model.parts.len();
     let mut order = Vec::with_capacity(n);
     let mut visited = vec![false; n];
     for start in 0..n {
@@ -829,20 +853,35 @@ fn limit_instances(m: &mut Mapper<'_>) {
             }
         }
     }
-    for &p in &order {
-        let mut total: u64 = 1;
-        for o in &m.model.parts[p].children {
-            total = total.saturating_add(count[o.part.index()].unwrap_or(1));
-        }
-        if total > MAX_INSTANCES {
+    order
+}
+
+/// Cuts assemblies nesting deeper than [`MAX_ASSEMBLY_DEPTH`] levels at the part where the
+/// cap is reached, with a warning: the walks of the tree stop there, and a tree cut without
+/// one loaded 300 nested levels as nothing at all, silently.
+fn limit_depth(m: &mut Mapper<'_>) {
+    let n = m.model.parts.len();
+    let mut height: Vec<usize> = vec![0; n];
+    for p in post_order(m) {
+        let h = m.model.parts[p]
+            .children
+            .iter()
+            .map(|o| height[o.part.index()] + 1)
+            .max()
+            .unwrap_or(0);
+        if h > MAX_ASSEMBLY_DEPTH {
             let step_id = m.model.parts[p].step_id;
             m.model.parts[p].children.clear();
             m.warn(
                 step_id,
-                format!("assembly expands to more than {MAX_INSTANCES} instances; its children are dropped"),
+                format!(
+                    "assembly nests deeper than {MAX_ASSEMBLY_DEPTH} levels; the parts below \
+                     this one are dropped"
+                ),
             );
-            total = 1;
+            height[p] = 0;
+        } else {
+            height[p] = h;
         }
-        count[p] = Some(total);
     }
 }
