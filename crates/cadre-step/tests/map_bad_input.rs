@@ -45,6 +45,23 @@ fn dangling_reference_is_named() {
     cube_still_loads(&m);
 }
 
+/// A missing instance reached with no referrer in hand (a representation's context, read
+/// apart from the items) used to be reported as `#9998: …` with no line; it is reported at
+/// the first instance that references it.
+#[test]
+fn dangling_reference_outside_an_item_names_its_referrer() {
+    let m = model(&format!(
+        "{MM_CONTEXT}{CUBE}#200=ADVANCED_BREP_SHAPE_REPRESENTATION('cube',(#80),#900);
+#600=ADVANCED_BREP_SHAPE_REPRESENTATION('other',(#80),#9998);"
+    ));
+    assert!(
+        m.warnings.iter().all(|w| w.line.is_some()),
+        "{:?}",
+        m.warnings
+    );
+    assert!(warned(&m, 600, "#9998: reference"), "{:?}", m.warnings);
+}
+
 #[test]
 fn unknown_entity_is_named() {
     let m = cube_and(

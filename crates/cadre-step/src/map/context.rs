@@ -61,6 +61,9 @@ pub struct Mapper<'f> {
     pub rep_parts: HashMap<u64, PartId>,
     /// Parts made for product definitions.
     pub product_parts: HashMap<u64, PartId>,
+    /// Failures about instances the file lacks, met with no referrer in hand: reported in
+    /// [`Mapper::finish`] at the first instance that references them.
+    pub unreferred: Vec<MapError>,
 }
 
 impl<'f> Mapper<'f> {
@@ -87,6 +90,7 @@ impl<'f> Mapper<'f> {
             failed: HashSet::new(),
             rep_parts: HashMap::new(),
             product_parts: HashMap::new(),
+            unreferred: Vec::new(),
         }
     }
 
@@ -139,7 +143,45 @@ impl<'f> Mapper<'f> {
                     self.model
                         .warn(Some(ctx), line, format!("#{}: {}", e.id, e.message));
                 }
+                (None, None) => self.unreferred.push(e.clone()),
                 (line, _) => self.model.warn(Some(e.id), line, e.message.clone()),
+            }
+        }
+    }
+
+    /// Reports each failure of [`Mapper::unreferred`] at the first instance (in file order)
+    /// whose text references the missing id, so that every warning names a line: one pass
+    /// over the file for all of them.
+    fn report_unreferred(&mut self) {
+        if self.unreferred.is_empty() {
+            return;
+        }
+        let missing: HashSet<u64> = self.unreferred.iter().map(|e| e.id).collect();
+        let mut referrer: HashMap<u64, (u32, u64)> = HashMap::new();
+        for id in self.file.ids() {
+            let (Some(src), Some(line)) = (self.file.source(id), self.file.line(id)) else {
+                continue;
+            };
+            for r in references(src) {
+                if missing.contains(&r) {
+                    let e = referrer.entry(r).or_insert((line, id));
+                    if line < e.0 {
+                        *e = (line, id);
+                    }
+                }
+            }
+        }
+        for e in std::mem::take(&mut self.unreferred) {
+            match referrer.get(&e.id) {
+                Some(&(line, by)) => {
+                    self.model
+                        .warn(Some(by), Some(line), format!("#{}: {}", e.id, e.message))
+                }
+                None => self.model.warn(
+                    Some(e.id),
+                    None,
+                    format!("{} (and no instance references it)", e.message),
+                ),
             }
         }
     }
@@ -157,8 +199,18 @@ impl<'f> Mapper<'f> {
 
     /// The finished model.
     pub fn finish(mut self) -> Model {
+        self.report_unreferred();
         // Bounds looked at while mapping cached the edge ranges of a partial model.
         self.model.forget_edge_ranges();
         self.model
     }
+}
+
+/// The `#id` references in an instance's text (ids inside strings included: a rare false
+/// referrer only moves where a warning points).
+fn references(src: &[u8]) -> impl Iterator<Item = u64> + '_ {
+    src.split(|&b| b == b'#').skip(1).filter_map(|rest| {
+        let digits = rest.iter().take_while(|b| b.is_ascii_digit()).count();
+        std::str::from_utf8(&rest[..digits]).ok()?.parse().ok()
+    })
 }
