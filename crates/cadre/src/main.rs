@@ -33,7 +33,26 @@ enum Command {
     Bench(commands::bench::BenchArgs),
 }
 
-fn main() -> Result<()> {
+fn main() -> std::process::ExitCode {
+    match run() {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            // As anyhow's own report, without the backtrace it adds when RUST_BACKTRACE is
+            // set (common on developer machines): a user's mistake is not a crash.
+            eprintln!("Error: {e}");
+            let causes: Vec<String> = e.chain().skip(1).map(|c| c.to_string()).collect();
+            if !causes.is_empty() {
+                eprintln!("\nCaused by:");
+                for c in causes {
+                    eprintln!("    {c}");
+                }
+            }
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<()> {
     quiet_on_broken_pipe();
     quiet_device_selection();
     tracing_subscriber::fmt()

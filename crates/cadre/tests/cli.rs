@@ -77,6 +77,44 @@ fn missing_and_non_step_files_fail_with_a_message() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// With `RUST_BACKTRACE=1` (common on developer machines) a user's mistake is still one
+/// message, not a 20-frame backtrace; the error and its causes, exit status 1.
+#[test]
+fn user_errors_print_no_backtrace() {
+    let out = cadre()
+        .env("RUST_BACKTRACE", "1")
+        .args(["info", "/nonexistent/file.step"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.starts_with("Error: "), "{err}");
+    assert!(
+        !err.contains("Stack backtrace") && !err.contains("backtrace"),
+        "{err}"
+    );
+}
+
+/// `--supersample` takes 1 to 4, as its help says; 0 and 9 are refused before any work.
+#[test]
+fn supersample_outside_its_range_is_refused() {
+    for bad in ["0", "9"] {
+        let out = cadre()
+            .args([
+                "render",
+                EXAMPLE,
+                "-o",
+                "/tmp/never.png",
+                "--supersample",
+                bad,
+            ])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "--supersample {bad}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("supersample"));
+    }
+}
+
 /// A reader that stops early (`cadre info … | head`) must not make cadre print a panic.
 #[test]
 fn closed_output_pipe_ends_quietly() {

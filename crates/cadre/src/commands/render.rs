@@ -38,7 +38,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "white", value_parser = parse_colour)]
     background: [f32; 4],
     /// Supersampling per side (1 to 4; 2 = four samples per pixel).
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
     supersample: u32,
     /// Tessellation deflection relative to the model's bounding-box diagonal.
     #[arg(long, default_value_t = 0.0005)]
