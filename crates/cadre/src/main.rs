@@ -2,6 +2,7 @@
 
 mod commands;
 mod load;
+mod output;
 mod progress;
 mod report;
 

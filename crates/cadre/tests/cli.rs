@@ -115,6 +115,38 @@ fn supersample_outside_its_range_is_refused() {
     }
 }
 
+/// A wrong output path fails before any work and leaves no file: an unsupported extension
+/// (`x.jpg` used to be left as a 0-byte file), a folder that does not exist.
+#[test]
+fn bad_output_paths_fail_first_and_leave_nothing() {
+    let dir = scratch_dir("cadre-out");
+    let jpg = dir.join("x.jpg");
+    let out = cadre()
+        .args(["render", EXAMPLE, "-o"])
+        .arg(&jpg)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains(".png"));
+    assert!(!jpg.exists());
+    let nowhere = dir.join("missing/x.glb");
+    let out = cadre()
+        .args(["mesh", EXAMPLE, "-o"])
+        .arg(&nowhere)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("does not exist"));
+    let out = cadre()
+        .args(["mesh", EXAMPLE, "-o"])
+        .arg(dir.join("x.ply"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(!dir.join("x.ply").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A reader that stops early (`cadre info … | head`) must not make cadre print a panic.
 #[test]
 fn closed_output_pipe_ends_quietly() {

@@ -59,6 +59,9 @@ pub fn run(args: &MeshArgs) -> Result<()> {
             args.angle
         );
     }
+    if let Some(out) = &args.output {
+        crate::output::check(out, &["glb", "gltf", "stl", "obj"])?;
+    }
     let t0 = Instant::now();
     let loaded = load_step(&args.file)?;
     let model = &loaded.model;
@@ -80,6 +83,7 @@ pub fn run(args: &MeshArgs) -> Result<()> {
     if let Some(out) = &args.output {
         let scene = cadre_mesh::assemble::build_scene(model, &mesh);
         cadre_mesh::export::write_scene(&scene, out)
+            .inspect_err(|_| crate::output::discard(out))
             .with_context(|| format!("writing {}", out.display()))?;
     }
     // Import + tessellation, the figure comparable with OCCT's read + BRepMesh.

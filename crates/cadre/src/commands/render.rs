@@ -102,6 +102,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if !(args.deflection_rel.is_finite() && args.deflection_rel > 0.0) {
         bail!("--deflection-rel must be a positive number");
     }
+    if !args.input.is_dir() {
+        crate::output::check(&args.output, &["png"])?;
+    }
+    if let Some(sheet) = &args.sheet {
+        crate::output::check(sheet, &["png"])?;
+    }
     let gpu = Gpu::headless()?;
     let renderer = Renderer::new(&gpu)?;
     if args.input.is_dir() {
@@ -114,9 +120,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 }
 
 fn save(image: &RgbaImage, path: &Path) -> Result<()> {
-    image
-        .save(path)
-        .with_context(|| format!("writing {}", path.display()))
+    image.save(path).map_err(|e| {
+        crate::output::discard(path);
+        anyhow::Error::new(e).context(format!("writing {}", path.display()))
+    })
 }
 
 /// Renders every STEP file of a folder into PNGs of the same names, and the contact sheet.
