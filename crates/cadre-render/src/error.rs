@@ -33,4 +33,17 @@ pub enum RenderError {
     /// The GPU reported a validation or out-of-memory error.
     #[error("the GPU reported an error: {0}")]
     Gpu(String),
+    /// A buffer the frame needs is larger than the adapter allows.
+    #[error(
+        "the scene is too large for this GPU: its {what} take {bytes} bytes, over the \
+         adapter's limit of {limit} bytes for one buffer"
+    )]
+    TooLarge {
+        /// What the buffer holds.
+        what: String,
+        /// Its size.
+        bytes: u64,
+        /// The adapter's limit for it.
+        limit: u64,
+    },
 }

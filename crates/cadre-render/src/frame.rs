@@ -378,7 +378,14 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let with_edges = edge_mode.is_some() && readback.shaded();
-        let frame_scene = FrameScene::new(device, scene, camera, state, with_edges);
+        let frame_scene = match FrameScene::new(device, scene, camera, state, with_edges) {
+            Ok(f) => f,
+            Err(e) => {
+                // The scope must come off the device's stack before leaving.
+                let _ = pollster::block_on(scope.pop());
+                return Err(e);
+            }
+        };
         // Wire bodies are drawn in every mode; B-Rep edges only in the modes with edges.
         let draw_lines = readback.shaded() && !frame_scene.edge_calls.is_empty();
         let fresh;

@@ -8,6 +8,7 @@ use wgpu::util::DeviceExt;
 
 use crate::Camera;
 use crate::edges::feature_edges;
+use crate::error::RenderError;
 use crate::layout::{DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Segment, Vertex};
 use crate::solid::closed_orientation;
 use crate::view::{InstanceStyle, ViewState};
@@ -243,7 +244,7 @@ impl<'a> FrameScene<'a> {
         camera: &Camera,
         state: &ViewState,
         with_edges: bool,
-    ) -> FrameScene<'a> {
+    ) -> Result<FrameScene<'a>, RenderError> {
         let mut materials = geometry.materials.clone();
         let rotation = DMat3::from_mat4(camera.view_rotation());
         let mut draws = Vec::new();
@@ -353,25 +354,25 @@ impl<'a> FrameScene<'a> {
             // Storage bindings may not be empty.
             draws.push(Draw::default());
         }
-        FrameScene {
+        Ok(FrameScene {
             geometry,
-            draws: buffer(
+            draws: checked_buffer(
                 device,
-                "draws",
+                "draw records",
                 bytemuck::cast_slice(&draws),
                 wgpu::BufferUsages::STORAGE,
-            ),
-            materials: buffer(
+            )?,
+            materials: checked_buffer(
                 device,
                 "materials",
                 bytemuck::cast_slice(&materials),
                 wgpu::BufferUsages::STORAGE,
-            ),
+            )?,
             calls,
             transparent,
             edge_calls,
             pick_calls,
-        }
+        })
     }
 }
 
@@ -414,6 +415,40 @@ fn placement(
     }
 }
 
+/// The largest buffer of `usage` the adapter's `limits` allow, in bytes: storage and
+/// uniform buffers are bound whole, so their binding limit applies too.
+pub(crate) fn buffer_limit(limits: &wgpu::Limits, usage: wgpu::BufferUsages) -> u64 {
+    let mut limit = limits.max_buffer_size;
+    if usage.contains(wgpu::BufferUsages::STORAGE) {
+        limit = limit.min(u64::from(limits.max_storage_buffer_binding_size));
+    }
+    if usage.contains(wgpu::BufferUsages::UNIFORM) {
+        limit = limit.min(u64::from(limits.max_uniform_buffer_binding_size));
+    }
+    limit
+}
+
+/// [`buffer`], or [`RenderError::TooLarge`] when `bytes` exceed what the device allows for
+/// `usage`: wgpu would make an invalid buffer and panic when filling it (2·10⁶ instances'
+/// draw records, issue 13's `wide6.step`).
+pub(crate) fn checked_buffer(
+    device: &wgpu::Device,
+    label: &str,
+    bytes: &[u8],
+    usage: wgpu::BufferUsages,
+) -> Result<wgpu::Buffer, RenderError> {
+    let limit = buffer_limit(&device.limits(), usage);
+    let len = bytes.len() as u64;
+    if len > limit {
+        return Err(RenderError::TooLarge {
+            what: label.to_string(),
+            bytes: len,
+            limit,
+        });
+    }
+    Ok(buffer(device, label, bytes, usage))
+}
+
 /// A buffer initialised with `bytes` (at least 16 bytes, as wgpu requires non-empty buffers).
 pub(crate) fn buffer(
     device: &wgpu::Device,
@@ -433,4 +468,26 @@ pub(crate) fn buffer(
         contents,
         usage,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::buffer_limit;
+
+    /// Storage buffers are bound whole: the binding limit, not the buffer limit, caps them
+    /// (wgpu's defaults: 128 MiB against 256 MiB), so 2·10⁶ draw records of 128 bytes are
+    /// refused before wgpu makes an invalid buffer.
+    #[test]
+    fn storage_buffers_are_capped_by_their_binding_limit() {
+        let limits = wgpu::Limits::default();
+        let storage = buffer_limit(&limits, wgpu::BufferUsages::STORAGE);
+        assert_eq!(storage, u64::from(limits.max_storage_buffer_binding_size));
+        assert!(storage < limits.max_buffer_size);
+        assert_eq!(
+            buffer_limit(&limits, wgpu::BufferUsages::VERTEX),
+            limits.max_buffer_size
+        );
+        let records = 2_000_000 * std::mem::size_of::<crate::layout::Draw>() as u64;
+        assert!(records > storage, "{records}");
+    }
 }
