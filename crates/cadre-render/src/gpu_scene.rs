@@ -420,10 +420,10 @@ fn placement(
 pub(crate) fn buffer_limit(limits: &wgpu::Limits, usage: wgpu::BufferUsages) -> u64 {
     let mut limit = limits.max_buffer_size;
     if usage.contains(wgpu::BufferUsages::STORAGE) {
-        limit = limit.min(u64::from(limits.max_storage_buffer_binding_size));
+        limit = limit.min(limits.max_storage_buffer_binding_size);
     }
     if usage.contains(wgpu::BufferUsages::UNIFORM) {
-        limit = limit.min(u64::from(limits.max_uniform_buffer_binding_size));
+        limit = limit.min(limits.max_uniform_buffer_binding_size);
     }
     limit
 }
@@ -481,7 +481,7 @@ mod tests {
     fn storage_buffers_are_capped_by_their_binding_limit() {
         let limits = wgpu::Limits::default();
         let storage = buffer_limit(&limits, wgpu::BufferUsages::STORAGE);
-        assert_eq!(storage, u64::from(limits.max_storage_buffer_binding_size));
+        assert_eq!(storage, limits.max_storage_buffer_binding_size);
         assert!(storage < limits.max_buffer_size);
         assert_eq!(
             buffer_limit(&limits, wgpu::BufferUsages::VERTEX),
