@@ -242,7 +242,8 @@ fn render_writes_a_png_of_the_asked_size_and_refuses_bad_options() {
         index.starts_with("row 1 column 1: ") && index.contains("a.step"),
         "{index}"
     );
-    // A file with nothing to draw still gets its (blank) image, with a warning.
+    // A file with nothing to draw is an error, with the reason, and leaves no image (a
+    // blank one looked like a result); `cadre mesh` of it writes no empty GLB either.
     let empty = dir.join("empty.step");
     std::fs::write(
         &empty,
@@ -259,13 +260,22 @@ fn render_writes_a_png_of_the_asked_size_and_refuses_bad_options() {
         .args(["--size", "16x16"])
         .output()
         .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    assert_eq!(run.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&run.stderr).contains("nothing to draw"));
-    assert!(dir.join("empty.png").is_file());
+    assert!(!dir.join("empty.png").exists());
+    let run = cadre()
+        .args(["mesh", "--json"])
+        .arg(&empty)
+        .arg("-o")
+        .arg(dir.join("empty.glb"))
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("nothing to write"));
+    assert!(!dir.join("empty.glb").exists());
+    let report: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    assert_eq!(report["empty"], true);
+    assert_eq!(report["triangles"], 0);
     std::fs::remove_dir_all(&dir).ok();
 }
 

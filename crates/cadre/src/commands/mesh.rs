@@ -80,11 +80,17 @@ pub fn run(args: &MeshArgs) -> Result<()> {
     bar.finish_and_clear();
     let mesh_seconds = t0.elapsed().as_secs_f64();
     let stats = mesh_stats(model, &mesh);
+    // An output with nothing in it is not written: the run fails, saying why (after the JSON
+    // report, which still describes the file).
+    let mut empty = false;
     if let Some(out) = &args.output {
         let scene = cadre_mesh::assemble::build_scene(model, &mesh);
-        cadre_mesh::export::write_scene(&scene, out)
-            .inspect_err(|_| crate::output::discard(out))
-            .with_context(|| format!("writing {}", out.display()))?;
+        empty = cadre_render::scene_bounds(&scene).is_none();
+        if !empty {
+            cadre_mesh::export::write_scene(&scene, out)
+                .inspect_err(|_| crate::output::discard(out))
+                .with_context(|| format!("writing {}", out.display()))?;
+        }
     }
     // Import + tessellation, the figure comparable with OCCT's read + BRepMesh.
     let seconds = mesh_seconds;
@@ -111,6 +117,7 @@ pub fn run(args: &MeshArgs) -> Result<()> {
             "load_seconds": loaded.parse_seconds + loaded.map_seconds,
             "warnings": model.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
             "mesh_warnings": lost,
+            "empty": empty,
         });
         for (key, value) in report.json() {
             j[key] = value;
@@ -138,9 +145,19 @@ pub fn run(args: &MeshArgs) -> Result<()> {
         for w in &lost {
             eprintln!("warning: {w}");
         }
-        if let Some(out) = &args.output {
+        if let Some(out) = &args.output
+            && !empty
+        {
             println!("wrote {}", out.display());
         }
+    }
+    if empty {
+        bail!(
+            "{}: nothing to write (no face, mesh or curve placed; {} warning(s) while reading); \
+             no file written",
+            args.file.display(),
+            model.warnings.len()
+        );
     }
     Ok(())
 }

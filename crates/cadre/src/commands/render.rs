@@ -262,14 +262,15 @@ fn render_file(
     let scene = cadre_mesh::assemble::build_scene(model, &mesh);
     let (w, h) = args.size;
     // A model with nothing to draw (no face, mesh or curve: 6 corpus files, OCCT finds nothing
-    // in them either) still gets its image, blank, with a warning, so batches stay complete.
-    let (lo, hi) = scene_bounds(&scene).unwrap_or_else(|| {
-        eprintln!(
-            "warning: {}: nothing to draw (no face, mesh or curve); the image is blank",
-            input.display()
+    // in them either) is an error, not a blank image that looks like a result; a folder run
+    // reports the file and goes on.
+    let Some((lo, hi)) = scene_bounds(&scene) else {
+        bail!(
+            "{}: nothing to draw (no face, mesh or curve placed; {} warning(s) while reading);              no image written",
+            input.display(),
+            model.warnings.len()
         );
-        (glam::DVec3::splat(-1.0), glam::DVec3::splat(1.0))
-    });
+    };
     let camera = Camera::fit(lo, hi, args.view, args.ortho, f64::from(w) / f64::from(h));
     let options = FrameOptions {
         width: w,
