@@ -62,6 +62,18 @@ fn dangling_reference_outside_an_item_names_its_referrer() {
     assert!(warned(&m, 600, "#9998: reference"), "{:?}", m.warnings);
 }
 
+/// An empty `CLOSED_SHELL` made a solid that bounded nothing, counted and unreported.
+#[test]
+fn solid_of_an_empty_shell_is_left_out_and_named() {
+    let m = cube_and(
+        "#500=MANIFOLD_SOLID_BREP('',#501);\n#501=CLOSED_SHELL('',());",
+        "#500",
+    );
+    assert!(warned(&m, 500, "has no faces"), "{:?}", m.warnings);
+    cube_still_loads(&m);
+    assert_eq!(m.counts().solids, 1, "only the cube");
+}
+
 #[test]
 fn unknown_entity_is_named() {
     let m = cube_and(

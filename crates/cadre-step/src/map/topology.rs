@@ -22,6 +22,13 @@ impl Mapper<'_> {
         let a = Attrs::first(&inst)?;
         let outer_id = a.r#ref(1)?;
         let outer = self.nested(id, |m| m.shell(outer_id))?.0;
+        if self.model.shells[outer.index()].faces.is_empty() {
+            // Counted as a solid, it bounded nothing and said nothing.
+            return Err(MapError::new(
+                id,
+                format!("its outer shell #{outer_id} has no faces; the solid is left out"),
+            ));
+        }
         let mut voids = Vec::new();
         if inst.has("BREP_WITH_VOIDS") {
             let list = match inst.record("BREP_WITH_VOIDS") {
