@@ -147,6 +147,49 @@ fn bad_output_paths_fail_first_and_leave_nothing() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Negative numbers reach cadre's own checks (clap took `-5` for a flag and said
+/// "unexpected argument"), which name the option and what it takes.
+#[test]
+fn negative_numbers_get_the_options_own_message() {
+    let cases: [(&[&str], &str); 3] = [
+        (
+            &["render", EXAMPLE, "-o", "/tmp/never.png", "--size", "-5x5"],
+            "1 to 16384",
+        ),
+        (
+            &[
+                "render",
+                EXAMPLE,
+                "-o",
+                "/tmp/never.png",
+                "--edge-width",
+                "-2",
+            ],
+            "--edge-width",
+        ),
+        (
+            &[
+                "mesh",
+                EXAMPLE,
+                "-o",
+                "/tmp/never.glb",
+                "--deflection",
+                "-1",
+            ],
+            "positive",
+        ),
+    ];
+    for (args, needle) in cases {
+        let out = cadre().args(args).output().unwrap();
+        assert!(!out.status.success(), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains(needle) && !err.contains("unexpected argument"),
+            "{err}"
+        );
+    }
+}
+
 /// A reader that stops early (`cadre info … | head`) must not make cadre print a panic.
 #[test]
 fn closed_output_pipe_ends_quietly() {

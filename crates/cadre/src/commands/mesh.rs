@@ -18,13 +18,13 @@ pub struct MeshArgs {
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// Linear deflection in mm (largest distance from the exact surface).
-    #[arg(long, conflicts_with = "deflection_rel")]
+    #[arg(long, conflicts_with = "deflection_rel", allow_negative_numbers = true)]
     deflection: Option<f64>,
     /// Linear deflection relative to the model's bounding-box diagonal (default 0.001).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     deflection_rel: Option<f64>,
     /// Angular deflection in radians (largest angle between normals of a triangle).
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
     angle: f64,
     /// Print the trim loops of the face with this STEP id as JSON ((u, v), key per point) and
     /// stop: for diagnosing a face that does not mesh.

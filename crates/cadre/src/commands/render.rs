@@ -20,7 +20,7 @@ pub struct RenderArgs {
     #[arg(short, long)]
     output: PathBuf,
     /// Image size, WIDTHxHEIGHT.
-    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    #[arg(long, default_value = "800x600", value_parser = parse_size, allow_hyphen_values = true)]
     size: (u32, u32),
     /// View: iso, front, back, top, bottom, left or right.
     #[arg(long, default_value = "iso", value_parser = parse_view)]
@@ -29,7 +29,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "shaded", value_parser = parse_mode)]
     mode: DisplayMode,
     /// Edge width in pixels (modes with edges).
-    #[arg(long, default_value_t = 1.5)]
+    #[arg(long, default_value_t = 1.5, allow_negative_numbers = true)]
     edge_width: f32,
     /// Orthographic projection (default perspective).
     #[arg(long)]
@@ -41,7 +41,7 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
     supersample: u32,
     /// Tessellation deflection relative to the model's bounding-box diagonal.
-    #[arg(long, default_value_t = 0.0005)]
+    #[arg(long, default_value_t = 0.0005, allow_negative_numbers = true)]
     deflection_rel: f64,
     /// With a folder: also write every image into one contact sheet (a grid of tiles, row by
     /// row in file-name order; SHEET.txt lists which file each tile is).
@@ -101,6 +101,12 @@ fn parse_colour(s: &str) -> Result<[f32; 4], String> {
 pub fn run(args: &RenderArgs) -> Result<()> {
     if !(args.deflection_rel.is_finite() && args.deflection_rel > 0.0) {
         bail!("--deflection-rel must be a positive number");
+    }
+    if !(args.edge_width.is_finite() && args.edge_width > 0.0) {
+        bail!(
+            "--edge-width must be a positive number of pixels, got {}",
+            args.edge_width
+        );
     }
     if !args.input.is_dir() {
         crate::output::check(&args.output, &["png"])?;
