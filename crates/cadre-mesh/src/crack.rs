@@ -17,7 +17,7 @@ use cadre_geom::{Accuracy, Vec3};
 
 use crate::face::{FaceMesh, MeshPoint};
 use crate::model::{FaceRepair, ModelMesh};
-use crate::strip::zip_strip;
+use crate::strip::{height, zip_strip};
 
 /// Largest hole filled, in boundary edges: a crack between two faces, not a missing face.
 const MAX_CRACK_EDGES: usize = 64;
@@ -222,10 +222,8 @@ fn fits(t: &[usize; 3], crack: &Crack, xyz: &[Vec3], edges: &ShellEdges, deflect
             }
         }
     }
-    let [a, b, c] = t.map(|i| xyz[i]);
-    let longest = (b - a).length().max((c - b).length()).max((a - c).length());
-    let height2 = (b - a).cross(c - a).length();
-    !height2.is_nan() && height2 <= deflection * longest
+    let h = height(xyz[t[0]], xyz[t[1]], xyz[t[2]]);
+    !h.is_nan() && h <= deflection
 }
 
 /// Fills `crack` with a strip when every triangle of it is no higher than `deflection` and
@@ -338,11 +336,7 @@ fn fill(
     others.sort_unstable();
     let width = tris
         .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| xyz[i]);
-            let longest = (b - a).length().max((c - b).length()).max((a - c).length());
-            (b - a).cross(c - a).length() / longest.max(f64::MIN_POSITIVE)
-        })
+        .map(|t| height(xyz[t[0]], xyz[t[1]], xyz[t[2]]))
         .fold(0.0, f64::max);
     let with = if others.is_empty() {
         String::new()

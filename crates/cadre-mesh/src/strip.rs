@@ -52,3 +52,15 @@ pub(crate) fn zip_strip(xyz: &[Vec3]) -> Vec<[usize; 3]> {
     }
     out
 }
+
+/// Height of the triangle `abc` over its longest side (0 for a point, NaN for NaN input):
+/// how thin a strip or fold triangle is.
+pub(crate) fn height(a: Vec3, b: Vec3, c: Vec3) -> f64 {
+    let longest = (b - a).length().max((c - b).length()).max((a - c).length());
+    let twice_area = (b - a).cross(c - a).length();
+    if longest == 0.0 {
+        0.0
+    } else {
+        twice_area / longest
+    }
+}

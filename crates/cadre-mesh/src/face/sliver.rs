@@ -21,7 +21,7 @@ use super::domain::Prepared;
 use super::metric::{Metric, StepTol};
 use super::refine::{normal_gap, sample};
 use super::{FaceMesh, Points, output};
-use crate::strip::zip_strip;
+use crate::strip::{height, zip_strip};
 
 /// Largest loop clipped: the ear search is quadratic in the points, and slivers have a few
 /// hundred at most.
@@ -164,15 +164,11 @@ fn within_tolerance(
         if !up {
             // A fold where two chains cross is as thin as the sliver; a fat one means the
             // loop really crosses itself and the face is not a sliver.
-            let area = 0.5 * (xyz[1] - xyz[0]).cross(xyz[2] - xyz[0]).length();
-            let longest = (0..3)
-                .map(|k| (xyz[(k + 1) % 3] - xyz[k]).length())
-                .fold(0.0, f64::max);
-            let height2 = 2.0 * area;
-            if height2.is_nan() || height2 > deflection * longest {
+            let h = height(xyz[0], xyz[1], xyz[2]);
+            if h.is_nan() || h > deflection {
                 return false;
             }
-            folded += area;
+            folded += 0.5 * (xyz[1] - xyz[0]).cross(xyz[2] - xyz[0]).length();
         }
     }
     folded <= deflection * perimeter
