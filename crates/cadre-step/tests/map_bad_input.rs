@@ -199,3 +199,84 @@ fn truncated_file_keeps_what_is_complete() {
     let c = m.counts();
     assert_eq!((c.solids, c.faces), (1, 6), "{:?}", m.warnings);
 }
+
+/// Geometry that the mapper can read but only by guessing is accepted with a warning naming
+/// the instance: a 2-coordinate point used as a 3D point (z = 0 assumed) and a placement whose
+/// reference direction is parallel to its axis (an arbitrary perpendicular is used).
+#[test]
+fn guessed_geometry_is_named() {
+    let cube = CUBE
+        .replace(
+            "#1=CARTESIAN_POINT('',(0.,0.,0.));",
+            "#1=CARTESIAN_POINT('',(0.,0.));",
+        )
+        .replace(
+            "#60=AXIS2_PLACEMENT_3D('',#1,#22,#20);",
+            "#60=AXIS2_PLACEMENT_3D('',#1,#22,#22);",
+        );
+    assert_ne!(cube, CUBE, "the cube text changed");
+    let m = model(&format!(
+        "{MM_CONTEXT}{cube}#200=ADVANCED_BREP_SHAPE_REPRESENTATION('cube',(#80),#900);"
+    ));
+    assert!(warned(&m, 1, "2 coordinate(s)"), "{:?}", m.warnings);
+    assert!(warned(&m, 60, "parallel to the axis"), "{:?}", m.warnings);
+    // Each instance is read several times (point #1 bounds three edges) but warned once.
+    let about = |id| m.warnings.iter().filter(|w| w.step_id == Some(id)).count();
+    assert_eq!((about(1), about(60)), (1, 1), "{:?}", m.warnings);
+    cube_still_loads(&m);
+
+    // Negative control: the well-formed cube raises neither warning.
+    let clean = model(&format!(
+        "{MM_CONTEXT}{CUBE}#200=ADVANCED_BREP_SHAPE_REPRESENTATION('cube',(#80),#900);"
+    ));
+    assert!(
+        !warned(&clean, 1, "coordinate") && !warned(&clean, 60, "parallel"),
+        "{:?}",
+        clean.warnings
+    );
+}
+
+/// A file cut before its shell (the shell, solid and representation were in the lost tail)
+/// used to load nothing although every face was complete: faces that no shell uses, and
+/// shells that no solid uses, are loaded as loose geometry, with a warning saying so.
+#[test]
+fn truncated_file_keeps_faces_whose_shell_was_cut_off() {
+    let text = common::step(&format!(
+        "{MM_CONTEXT}{CUBE}#200=ADVANCED_BREP_SHAPE_REPRESENTATION('cube',(#80),#900);"
+    ));
+    let load = |cut: usize| {
+        let file = cadre_step::syntax::StepFile::parse(text.as_bytes()[..cut].to_vec()).unwrap();
+        cadre_step::map_file(&file)
+    };
+    // Cut before the shell: six loose faces.
+    let m = load(text.find("#160=CLOSED_SHELL").unwrap());
+    assert_eq!(m.counts().faces, 6, "{:?}", m.warnings);
+    assert!(
+        m.warnings
+            .iter()
+            .any(|w| w.line.is_some() && w.message.contains("6 faces in no shell")),
+        "{:?}",
+        m.warnings
+    );
+    // Cut before the solid: one loose shell holding the six faces (not six faces besides it).
+    let m = load(text.find("#80=MANIFOLD_SOLID_BREP").unwrap());
+    assert_eq!(m.counts().faces, 6, "{:?}", m.warnings);
+    assert!(
+        m.warnings.iter().any(|w| w
+            .message
+            .contains("1 shells in no solid, 0 faces in no shell")),
+        "{:?}",
+        m.warnings
+    );
+    // Negative control: the complete file has no loose geometry to report.
+    let whole = load(text.len());
+    assert!(
+        !whole
+            .warnings
+            .iter()
+            .any(|w| w.message.contains("in no shell")),
+        "{:?}",
+        whole.warnings
+    );
+    assert_eq!(whole.counts().faces, 6);
+}

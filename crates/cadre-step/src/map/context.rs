@@ -64,6 +64,10 @@ pub struct Mapper<'f> {
     /// Failures about instances the file lacks, met with no referrer in hand: reported in
     /// [`Mapper::finish`] at the first instance that references them.
     pub unreferred: Vec<MapError>,
+    /// Warnings raised where the mapper is only borrowed (points, directions, placements),
+    /// by instance id: moved into the model's warnings in [`Mapper::finish`], one per instance
+    /// however often it is read.
+    pub notes: std::cell::RefCell<std::collections::BTreeMap<u64, String>>,
 }
 
 impl<'f> Mapper<'f> {
@@ -91,6 +95,7 @@ impl<'f> Mapper<'f> {
             rep_parts: HashMap::new(),
             product_parts: HashMap::new(),
             unreferred: Vec::new(),
+            notes: std::cell::RefCell::new(std::collections::BTreeMap::new()),
         }
     }
 
@@ -192,6 +197,15 @@ impl<'f> Mapper<'f> {
         self.model.warn(Some(id), line, message);
     }
 
+    /// Records a warning about `id` from code that only borrows the mapper; the first note
+    /// about an instance is kept (geometry read many times warns once).
+    pub fn note(&self, id: u64, message: impl Into<String>) {
+        self.notes
+            .borrow_mut()
+            .entry(id)
+            .or_insert_with(|| message.into());
+    }
+
     /// Whether instance `id` has a record with this keyword.
     pub fn is(&self, id: u64, keyword: &str) -> bool {
         self.file.has_keyword(id, keyword)
@@ -200,6 +214,9 @@ impl<'f> Mapper<'f> {
     /// The finished model.
     pub fn finish(mut self) -> Model {
         self.report_unreferred();
+        for (id, message) in std::mem::take(self.notes.get_mut()) {
+            self.warn(id, message);
+        }
         // Bounds looked at while mapping cached the edge ranges of a partial model.
         self.model.forget_edge_ranges();
         self.model
@@ -208,7 +225,7 @@ impl<'f> Mapper<'f> {
 
 /// The `#id` references in an instance's text (ids inside strings included: a rare false
 /// referrer only moves where a warning points).
-fn references(src: &[u8]) -> impl Iterator<Item = u64> + '_ {
+pub(crate) fn references(src: &[u8]) -> impl Iterator<Item = u64> + '_ {
     src.split(|&b| b == b'#').skip(1).filter_map(|rest| {
         let digits = rest.iter().take_while(|b| b.is_ascii_digit()).count();
         std::str::from_utf8(&rest[..digits]).ok()?.parse().ok()

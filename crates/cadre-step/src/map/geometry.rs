@@ -32,6 +32,8 @@ pub trait Space {
         + std::ops::Mul<f64, Output = Self::P>
         + std::ops::Add<Output = Self::P>
         + std::ops::Sub<Output = Self::P>;
+    /// How many coordinates a point of this space has.
+    const DIM: usize;
     /// The point from a coordinate list (2 or 3 values).
     fn from_coords(c: &[f64]) -> Option<Self::P>;
     /// Length unit conversion applied to coordinates and distances.
@@ -49,6 +51,7 @@ pub struct S2;
 
 impl Space for S3 {
     type P = Vec3;
+    const DIM: usize = 3;
     fn from_coords(c: &[f64]) -> Option<Vec3> {
         match *c {
             [x, y, z, ..] => Some(Vec3::new(x, y, z)),
@@ -78,6 +81,7 @@ impl Space for S3 {
 
 impl Space for S2 {
     type P = Vec2;
+    const DIM: usize = 2;
     fn from_coords(c: &[f64]) -> Option<Vec2> {
         match *c {
             [x, y, ..] => Some(Vec2::new(x, y)),
@@ -118,6 +122,23 @@ pub fn point<S: Space>(m: &Mapper<'_>, id: u64) -> MapResult<S::P> {
     let a = Attrs::of(&inst, "CARTESIAN_POINT")?;
     let c = a.f64s(1)?;
     let p = S::from_coords(&c).ok_or_else(|| a.err("has no coordinates"))?;
+    if c.len() < S::DIM {
+        // Read as lying in z = 0 (or v = 0), which is what a 2D point placed in a 3D context
+        // most likely means, but the geometry may not be where its author meant it.
+        let missing = if S::DIM - c.len() == 1 {
+            "z"
+        } else {
+            "y and z"
+        };
+        m.note(
+            id,
+            format!(
+                "CARTESIAN_POINT has {} coordinate(s) where {} are needed; {missing} = 0 assumed",
+                c.len(),
+                S::DIM
+            ),
+        );
+    }
     Ok(p * S::length(m))
 }
 
@@ -158,6 +179,18 @@ impl Mapper<'_> {
             }
             other => return Err(a.err(format!("{other} is not an axis placement"))),
         };
+        if let Some(r) = ref_dir
+            && let Some(z) = axis.try_normalize()
+            && (r - z * r.dot(z)).try_normalize().is_none()
+        {
+            // ISO 10303-42 requires them not to be parallel; `from_axis` then picks an
+            // arbitrary perpendicular, so whatever the placement orients (a cylinder's seam,
+            // a part's rotation) may not be what the author meant.
+            self.note(
+                id,
+                "reference direction is parallel to the axis (or has zero length); an arbitrary perpendicular direction is used",
+            );
+        }
         Frame::from_axis(origin, axis, ref_dir).ok_or_else(|| a.err("axis has zero length"))
     }
 

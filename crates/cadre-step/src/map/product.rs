@@ -392,8 +392,10 @@ fn has_geometry_below(m: &Mapper<'_>, roots: &[PartId]) -> bool {
     false
 }
 
-/// Solid-level items that no representation brought in (a truncated file, or geometry written
-/// without any representation), gathered into one part so valid geometry is never lost.
+/// Geometry that no representation brought in (a truncated file whose representations and
+/// product structure were in the lost tail, or geometry written without any representation),
+/// gathered into one part so valid geometry is never lost: solid-level items, then shells that
+/// no solid in the file uses, then faces that no shell in the file uses.
 fn loose_geometry(m: &mut Mapper<'_>, g: &ProductGraph) -> Option<PartId> {
     const TOP_LEVEL: &[&str] = &[
         "MANIFOLD_SOLID_BREP",
@@ -403,12 +405,46 @@ fn loose_geometry(m: &mut Mapper<'_>, g: &ProductGraph) -> Option<PartId> {
         "TESSELLATED_SOLID",
         "TESSELLATED_SHELL",
     ];
-    let mut ids = Vec::new();
-    for k in TOP_LEVEL {
-        ids.extend(m.file.ids_with_keyword(k));
-    }
-    ids.sort_unstable();
-    ids.dedup();
+    const SHELLS: &[&str] = &[
+        "CLOSED_SHELL",
+        "OPEN_SHELL",
+        "ORIENTED_CLOSED_SHELL",
+        "ORIENTED_OPEN_SHELL",
+    ];
+    const FACES: &[&str] = &["ADVANCED_FACE", "FACE_SURFACE"];
+    let with_keywords = |keywords: &[&str]| -> Vec<u64> {
+        let mut ids: Vec<u64> = keywords
+            .iter()
+            .flat_map(|k| m.file.ids_with_keyword(k))
+            .collect();
+        ids.sort_unstable();
+        ids.dedup();
+        ids
+    };
+    // What the instances of one level reference: a shell is loose when no solid-level item
+    // and no other shell (an oriented shell, a void) names it, a face when no shell does.
+    let referenced_by = |ids: &[u64]| -> HashSet<u64> {
+        ids.iter()
+            .filter_map(|&id| Some((id, m.file.source(id)?)))
+            .flat_map(|(id, src)| super::context::references(src).filter(move |&r| r != id))
+            .collect()
+    };
+    let top = with_keywords(TOP_LEVEL);
+    let shells = with_keywords(SHELLS);
+    let in_solids = referenced_by(&top);
+    let in_shells = referenced_by(&shells);
+    let loose_shells: Vec<u64> = shells
+        .iter()
+        .copied()
+        .filter(|s| !in_solids.contains(s) && !in_shells.contains(s))
+        .collect();
+    let loose_faces: Vec<u64> = with_keywords(FACES)
+        .into_iter()
+        .filter(|f| !in_shells.contains(f))
+        .collect();
+    let mut ids = top;
+    ids.extend(&loose_shells);
+    ids.extend(&loose_faces);
     if ids.is_empty() {
         return None;
     }
@@ -433,8 +469,11 @@ fn loose_geometry(m: &mut Mapper<'_>, g: &ProductGraph) -> Option<PartId> {
     m.warn(
         ids[0],
         format!(
-            "{} solid-level items are not in any shape representation; loaded as one part",
-            bodies.len()
+            "{} bodies ({} solid-level items, {} shells in no solid, {} faces in no shell) are not in any shape representation; loaded as one part",
+            bodies.len(),
+            ids.len() - loose_shells.len() - loose_faces.len(),
+            loose_shells.len(),
+            loose_faces.len(),
         ),
     );
     let pid = PartId(m.model.parts.len() as u32);
