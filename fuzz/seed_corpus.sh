@@ -1,6 +1,6 @@
 #!/bin/sh
 # Copies the shared STEP corpus (../shared/corpus/step next to the repository) into each
-# fuzz target's corpus directory (step_parse, step_map) as seeds.
+# fuzz target's corpus directory (step_parse, step_map, pipeline) as seeds.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 src="$here/../../shared/corpus/step"
@@ -8,7 +8,7 @@ if [ ! -d "$src" ]; then
     echo "skipping: ../shared/corpus not found ($src)" >&2
     exit 0
 fi
-for target in step_parse step_map; do
+for target in step_parse step_map pipeline; do
     dst="$here/corpus/$target"
     mkdir -p "$dst"
     cp "$src"/* "$dst"/
