@@ -246,6 +246,17 @@ fn render_file(
 ) -> Result<RgbaImage> {
     let loaded = load_step(input)?;
     let model = &loaded.model;
+    // Refused before meshing: the scene's draw records would not fit the device's largest
+    // buffer, and meshing and assembling 2·10⁶ instances first took 1.9 GB (issue 13).
+    let placed = model.placed_body_instances();
+    if placed > gpu.max_draw_records() {
+        bail!(
+            "{}: the scene is too large for this GPU: {placed} placed part instances, over the {} one frame can draw (one {}-byte draw record each in one buffer); nothing was meshed",
+            input.display(),
+            gpu.max_draw_records(),
+            std::mem::size_of::<cadre_render::layout::Draw>()
+        );
+    }
     let params = MeshParams {
         deflection: Deflection::Relative(args.deflection_rel).resolve(deflection_diagonal(model)),
         angle: 0.35,
