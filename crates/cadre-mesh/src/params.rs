@@ -36,6 +36,10 @@ pub enum Deflection {
     Relative(f64),
 }
 
+/// The finest deflection a relative one resolves to, in mm: the kernel's accuracy
+/// (`Accuracy::default().distance`).
+pub const MIN_RELATIVE_DEFLECTION: f64 = 1e-7;
+
 impl Deflection {
     /// The absolute deflection for a model whose bounding-box diagonal is `diagonal`.
     /// A degenerate (zero or non-finite) diagonal falls back to 1 mm so the result is usable.
@@ -48,8 +52,30 @@ impl Deflection {
                 } else {
                     1.0
                 };
-                r * diag
+                // Never finer than the kernel's accuracy: a degenerate box (a model whose
+                // extent is not known from its vertices) must not ask for a deflection no
+                // geometry is exact to, which only runs refinement into its point budget.
+                (r * diag).max(MIN_RELATIVE_DEFLECTION)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod floor_tests {
+    use super::{Deflection, MIN_RELATIVE_DEFLECTION};
+
+    /// A relative deflection of a degenerate diagonal stops at the kernel's accuracy; an
+    /// ordinary one is untouched, and an absolute one is the user's to choose.
+    #[test]
+    fn relative_deflection_is_never_finer_than_the_accuracy() {
+        let r = Deflection::Relative(0.001);
+        assert_eq!(r.resolve(5e-15), MIN_RELATIVE_DEFLECTION);
+        assert_eq!(r.resolve(100.0), 0.1);
+        assert_eq!(Deflection::Absolute(1e-9).resolve(5e-15), 1e-9);
+        assert_eq!(
+            MIN_RELATIVE_DEFLECTION,
+            cadre_geom::Accuracy::default().distance
+        );
     }
 }
