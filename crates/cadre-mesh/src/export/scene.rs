@@ -4,8 +4,11 @@
 use glam::{DAffine3, DVec3};
 
 /// Deepest node nesting that is followed: nodes deeper than this (roots are at depth 0) are
-/// skipped with their subtrees by [`Scene::instances`] and every writer.
-pub const MAX_DEPTH: usize = 256;
+/// skipped with their subtrees by [`Scene::instances`] and every writer. Above the STEP
+/// mapper's own cap ([`cadre_brep::assembly::MAX_ASSEMBLY_DEPTH`], which warns where it cuts)
+/// with room for the body nodes under the deepest part: an assembly the model keeps is never
+/// cut here silently (at 256, a 300-level chain loaded whole and exported nothing).
+pub const MAX_DEPTH: usize = cadre_brep::assembly::MAX_ASSEMBLY_DEPTH + 4;
 
 /// Most node visits (one per node per path from a root) a scene may need; a deeper or wider
 /// node graph (e.g. a long chain of shared sub-assemblies) is rejected by
@@ -631,12 +634,16 @@ mod tests {
 
     #[test]
     fn depth_is_capped() {
-        // A chain of 300 distinct nodes: only the first MAX_DEPTH are visited.
-        let nodes: Vec<_> = (0..300)
-            .map(|i| node(if i + 1 < 300 { vec![i + 1] } else { vec![] }, Some(0)))
-            .collect();
-        let s = scene_with(nodes, vec![0]);
-        assert_eq!(s.instances().count(), MAX_DEPTH);
+        // A chain of distinct nodes longer than MAX_DEPTH: only the first MAX_DEPTH are
+        // visited; a 300-level chain (negative control) is visited whole.
+        let chain = |n: usize| {
+            let nodes: Vec<_> = (0..n)
+                .map(|i| node(if i + 1 < n { vec![i + 1] } else { vec![] }, Some(0)))
+                .collect();
+            scene_with(nodes, vec![0])
+        };
+        assert_eq!(chain(MAX_DEPTH + 50).instances().count(), MAX_DEPTH);
+        assert_eq!(chain(300).instances().count(), 300);
     }
 
     #[test]

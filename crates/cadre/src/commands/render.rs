@@ -283,7 +283,8 @@ fn render_file(
     // reports the file and goes on.
     let Some((lo, hi)) = scene_bounds(&scene) else {
         bail!(
-            "{}: nothing to draw (no face, mesh or curve placed; {} warning(s) while reading);              no image written",
+            "{}: nothing to draw (no face, mesh or curve placed; {} warning(s) while reading); \
+             no image written",
             input.display(),
             model.warnings.len()
         );

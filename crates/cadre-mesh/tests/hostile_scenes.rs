@@ -1,0 +1,47 @@
+//! Hostile assemblies (`../shared/tools/bad_inputs.py`'s deep and wide chains, built at test
+//! time from the corpus cube) carried through meshing to the assembled scene: every instance
+//! the model keeps is in the scene the writers and the renderer walk. A 300-level chain once
+//! loaded whole and then exported nothing, because the scene walk stopped at 256 levels.
+//! Skipped when `../shared` is absent.
+
+#[path = "../../cadre-step/tests/common/hostile.rs"]
+mod hostile;
+
+use cadre_mesh::{MeshParams, deflection_diagonal, mesh_model};
+use cadre_step::syntax::StepFile;
+
+/// Instances in the assembled scene, and placed body instances in the model.
+fn scene_and_model_instances(bytes: Vec<u8>) -> (u64, u64) {
+    let model = cadre_step::map_file(&StepFile::parse(bytes).expect("parses"));
+    let params = MeshParams {
+        deflection: cadre_mesh::Deflection::Relative(0.001).resolve(deflection_diagonal(&model)),
+        ..MeshParams::default()
+    };
+    let mesh = mesh_model(&model, &params, None);
+    let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
+    (
+        scene.instances().count() as u64,
+        model.placed_body_instances(),
+    )
+}
+
+#[test]
+fn a_300_level_chain_reaches_the_scene() {
+    let Some(deep) = hostile::chain(300, 1) else {
+        return;
+    };
+    let (scene, model) = scene_and_model_instances(deep);
+    assert!(model >= 1, "the model places the cube");
+    assert!(scene >= model, "scene {scene}, model {model}");
+}
+
+#[test]
+fn a_wide_assembly_reaches_the_scene_whole() {
+    let Some(wide) = hostile::chain(3, 10) else {
+        return;
+    };
+    let (scene, model) = scene_and_model_instances(wide);
+    // Negative control of the count itself: three levels of ten uses place 10³ cubes.
+    assert!(model >= 1000, "{model}");
+    assert!(scene >= model, "scene {scene}, model {model}");
+}
