@@ -2,6 +2,9 @@
 
 use std::process::Command;
 
+#[path = "../../cadre-step/tests/common/hostile.rs"]
+mod hostile;
+
 fn cadre() -> Command {
     Command::new(env!("CARGO_BIN_EXE_cadre"))
 }
@@ -363,4 +366,50 @@ fn mesh_json_lists_warnings_and_what_the_mesh_lost() {
     // The bundled assembly meshes whole and closed.
     assert_eq!(j["open_shells"].as_array().unwrap().len(), 0, "{j}");
     assert_eq!(j["failed_faces"].as_array().unwrap().len(), 0, "{j}");
+}
+
+/// `wide6.step` of issue 13 (six levels of ten uses: 2·10⁶ cube instances in 42 KB) is more
+/// than one frame's draw records can hold on Mesa's software drivers: `render` refuses it
+/// before meshing (it took 1.9 GB first), with the reason, and writes no image; three levels
+/// (10³ instances) render (negative control). Skipped when `../shared` is absent.
+#[test]
+fn render_refuses_an_undrawable_instance_count_before_meshing() {
+    let (Some(wide), Some(small)) = (hostile::chain(6, 10), hostile::chain(3, 10)) else {
+        return;
+    };
+    let dir = scratch_dir("cadre-wide");
+    std::fs::write(dir.join("wide6.step"), wide).unwrap();
+    std::fs::write(dir.join("wide3.step"), small).unwrap();
+    let render = |name: &str| {
+        cadre()
+            .arg("render")
+            .arg(dir.join(format!("{name}.step")))
+            .arg("-o")
+            .arg(dir.join(format!("{name}.png")))
+            .args(["--size", "32x24"])
+            .output()
+            .unwrap()
+    };
+    let run = render("wide6");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    if run.status.success() {
+        // A device whose storage binding holds 256 MB of draw records (a large GPU asked for
+        // its own limits) may draw it; Mesa's software drivers (128 MiB) may not.
+        assert!(dir.join("wide6.png").is_file(), "{stderr}");
+    } else {
+        assert_eq!(run.status.code(), Some(1), "{stderr}");
+        assert!(
+            stderr.contains("2000000 placed part instances")
+                && stderr.contains("nothing was meshed"),
+            "{stderr}"
+        );
+        assert!(!dir.join("wide6.png").exists());
+    }
+    let run = render("wide3");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(dir.join("wide3.png").is_file());
 }
