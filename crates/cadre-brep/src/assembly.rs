@@ -109,6 +109,18 @@ impl Model {
     /// count is computed once, so 2·10⁶ instances are counted in microseconds. Saturates at
     /// `u64::MAX`; a cycle (which the STEP mapper breaks) counts as nothing below it.
     pub fn placed_body_instances(&self) -> u64 {
+        self.count_instances(|part| u64::from(!part.bodies.is_empty()))
+    }
+
+    /// How many part instances (with bodies or not: every node an exported tree has) the
+    /// roots expand to, counted like [`Model::placed_body_instances`].
+    pub fn placed_instances(&self) -> u64 {
+        self.count_instances(|_| 1)
+    }
+
+    /// Sum over every instance reachable from the roots of `weight` of its part, computed
+    /// once per part.
+    fn count_instances(&self, weight: impl Fn(&Part) -> u64) -> u64 {
         // Per part: None = not visited, Some(None) = being counted, Some(Some(n)) = done.
         let mut count: Vec<Option<Option<u64>>> = vec![None; self.parts.len()];
         let mut total: u64 = 0;
@@ -119,7 +131,7 @@ impl Model {
                     continue;
                 };
                 if children_done {
-                    let own = u64::from(!part.bodies.is_empty());
+                    let own = weight(part);
                     let below = part.children.iter().fold(own, |acc, o| {
                         let c = count.get(o.part.index()).copied().flatten().flatten();
                         acc.saturating_add(c.unwrap_or(0))
@@ -207,6 +219,11 @@ mod tests {
         let mut walked = 0;
         m.visit_instances(|v| walked += u64::from(!m.part(v.part).bodies.is_empty()));
         assert_eq!((m.placed_body_instances(), walked), (2, 2));
+        assert_eq!(
+            m.placed_instances(),
+            5,
+            "root, two of part 1, two of part 2"
+        );
 
         // Negative control: a part placed but without bodies counts nothing.
         let mut bare = tree();

@@ -10,8 +10,10 @@ use cadre_brep::{Body, EdgeId, FaceId, LoopKind, Model, PartId, ShellId, SolidId
 use crate::ModelMesh;
 use crate::export::{Material, Primitive, Scene, SceneEdge, SceneMesh, SceneNode, SceneVertex};
 
-/// Most nodes the scene may get; deeper or wider assembly expansions are cut.
-const MAX_NODES: usize = 4_000_000;
+/// Most nodes the scene may get (about 1 GB of scene and 2 GB of glTF at the most); wider
+/// assembly expansions are cut. Commands check [`cadre_brep::Model::placed_instances`]
+/// against it before meshing and refuse, so the cut is never silent there.
+pub const MAX_NODES: usize = 4_000_000;
 
 /// sRGB-encoded component (as CAD colours are given) to linear (as glTF wants).
 fn linear(c: f32) -> f32 {

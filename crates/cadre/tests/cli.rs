@@ -399,8 +399,7 @@ fn render_refuses_an_undrawable_instance_count_before_meshing() {
     } else {
         assert_eq!(run.status.code(), Some(1), "{stderr}");
         assert!(
-            stderr.contains("2000000 placed part instances")
-                && stderr.contains("nothing was meshed"),
+            stderr.contains("part instances, over the") && stderr.contains("nothing was meshed"),
             "{stderr}"
         );
         assert!(!dir.join("wide6.png").exists());
@@ -412,4 +411,43 @@ fn render_refuses_an_undrawable_instance_count_before_meshing() {
         String::from_utf8_lossy(&run.stderr)
     );
     assert!(dir.join("wide3.png").is_file());
+}
+
+/// Six levels of 13 uses expand to 9.7·10⁶ part instances (under the mapper's 5·10⁷ cap), more than the 4·10⁶ nodes a
+/// scene holds: `mesh -o` refuses before meshing (the scene was cut there silently) and
+/// writes nothing; `mesh --json` (no scene) still measures. Skipped when `../shared` is absent.
+#[test]
+fn mesh_refuses_an_assembly_wider_than_a_scene_holds() {
+    let Some(wide) = hostile::chain(6, 13) else {
+        return;
+    };
+    let dir = scratch_dir("cadre-wide13");
+    let input = dir.join("wide13.step");
+    std::fs::write(&input, wide).unwrap();
+    let out = dir.join("wide13.glb");
+    let run = cadre()
+        .arg("mesh")
+        .arg(&input)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("over the 4000000 one export holds"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    // Negative control: measuring needs no scene and goes through.
+    let run = cadre()
+        .args(["mesh", "--json"])
+        .arg(&input)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
 }
