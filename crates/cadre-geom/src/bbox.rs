@@ -55,12 +55,23 @@ impl BoundingBox {
         }
     }
 
-    /// Length of the diagonal (0 for an empty box).
+    /// Length of the diagonal (0 for an empty box). Finite whenever the box's sides are: a
+    /// side past 1e154 mm (a corrupt coordinate) would overflow the squared sum, so such a box
+    /// is measured scaled by its longest side.
     pub fn diagonal(&self) -> f64 {
         if self.is_empty() {
-            0.0
+            return 0.0;
+        }
+        let d = self.max - self.min;
+        let length = d.length();
+        if length.is_finite() {
+            return length;
+        }
+        let longest = d.abs().max_element();
+        if longest.is_finite() && longest > 0.0 {
+            longest * (d / longest).length()
         } else {
-            (self.max - self.min).length()
+            length
         }
     }
 
@@ -92,5 +103,23 @@ impl BoundingBox {
         [
             self.min.x, self.min.y, self.min.z, self.max.x, self.max.y, self.max.z,
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::BoundingBox;
+    use crate::Vec3;
+
+    /// A corrupt 1e202 coordinate made the diagonal infinite, and a relative deflection of it
+    /// fell back to a unit diagonal (0.001 mm on a 700 mm part, 7·10⁵ triangles); it is
+    /// finite and about the longest side. An ordinary box is measured as before.
+    #[test]
+    fn diagonal_of_a_huge_box_is_finite() {
+        let huge = BoundingBox::from_points([Vec3::ZERO, Vec3::new(700.0, 200.0, 1e202)]);
+        let d = huge.diagonal();
+        assert!(d.is_finite() && (d / 1e202 - 1.0).abs() < 1e-12, "{d}");
+        let plain = BoundingBox::from_points([Vec3::ZERO, Vec3::new(3.0, 4.0, 0.0)]);
+        assert_eq!(plain.diagonal(), 5.0);
     }
 }
