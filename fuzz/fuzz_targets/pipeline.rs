@@ -8,7 +8,7 @@
 
 #![no_main]
 
-use cadre_mesh::{MeshParams, deflection_diagonal, mesh_model};
+use cadre_mesh::{MeshParams, mesh_model};
 use cadre_step::syntax::StepFile;
 use libfuzzer_sys::fuzz_target;
 
@@ -18,11 +18,7 @@ fuzz_target!(|data: &[u8]| {
     };
     let model = cadre_step::map_file(&file);
     // The CLI's default tolerances (`cadre mesh`): relative deflection and 0.5 rad.
-    let params = MeshParams {
-        deflection: cadre_mesh::Deflection::Relative(0.001).resolve(deflection_diagonal(&model)),
-        angle: 0.5,
-        ..MeshParams::default()
-    };
+    let params = MeshParams::relative(&model, 0.001, 0.5);
     let mesh = mesh_model(&model, &params, None);
     let _ = cadre_mesh::mesh_stats(&model, &mesh);
     let scene = cadre_mesh::assemble::build_scene(&model, &mesh);

@@ -36,6 +36,19 @@ pub enum Deflection {
     Relative(f64),
 }
 
+impl MeshParams {
+    /// Tolerances of a deflection `relative` to `model`'s diagonal
+    /// ([`crate::deflection_diagonal`]) and an `angle` in radians, as `cadre mesh
+    /// --deflection-rel` resolves them.
+    pub fn relative(model: &cadre_brep::Model, relative: f64, angle: f64) -> MeshParams {
+        MeshParams {
+            deflection: Deflection::Relative(relative).resolve(crate::deflection_diagonal(model)),
+            angle,
+            ..MeshParams::default()
+        }
+    }
+}
+
 /// The finest deflection a relative one resolves to, in mm: the kernel's accuracy
 /// (`Accuracy::default().distance`).
 pub const MIN_RELATIVE_DEFLECTION: f64 = 1e-7;

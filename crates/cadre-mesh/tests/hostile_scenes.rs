@@ -7,16 +7,13 @@
 #[path = "../../cadre-step/tests/common/hostile.rs"]
 mod hostile;
 
-use cadre_mesh::{MeshParams, deflection_diagonal, mesh_model};
+use cadre_mesh::{MeshParams, mesh_model};
 use cadre_step::syntax::StepFile;
 
 /// Instances in the assembled scene, and placed body instances in the model.
 fn scene_and_model_instances(bytes: Vec<u8>) -> (u64, u64) {
     let model = cadre_step::map_file(&StepFile::parse(bytes).expect("parses"));
-    let params = MeshParams {
-        deflection: cadre_mesh::Deflection::Relative(0.001).resolve(deflection_diagonal(&model)),
-        ..MeshParams::default()
-    };
+    let params = MeshParams::relative(&model, 0.001, MeshParams::default().angle);
     let mesh = mesh_model(&model, &params, None);
     let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
     (

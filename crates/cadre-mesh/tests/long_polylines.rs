@@ -9,7 +9,7 @@
 use std::path::Path;
 
 use cadre_mesh::export::Scene;
-use cadre_mesh::{MeshParams, ModelMesh, deflection_diagonal, mesh_model};
+use cadre_mesh::{MeshParams, ModelMesh, mesh_model};
 use cadre_step::syntax::StepFile;
 
 const TAIL: &str = "ENDSEC;\nEND-ISO-10303-21;";
@@ -68,11 +68,7 @@ fn polyset(cube: &str, n: usize) -> String {
 fn mesh(text: String) -> (cadre_brep::Model, ModelMesh, Scene) {
     let file = StepFile::parse(text.into_bytes()).expect("parses");
     let model = cadre_step::map_file(&file);
-    let params = MeshParams {
-        deflection: cadre_mesh::Deflection::Relative(0.001).resolve(deflection_diagonal(&model)),
-        angle: 0.5,
-        ..MeshParams::default()
-    };
+    let params = MeshParams::relative(&model, 0.001, 0.5);
     let mesh = mesh_model(&model, &params, None);
     let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
     (model, mesh, scene)

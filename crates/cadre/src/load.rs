@@ -3,7 +3,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use cadre_brep::Model;
 use cadre_step::syntax::StepFile;
 
@@ -32,4 +32,20 @@ pub fn load_step(path: &Path) -> Result<Loaded> {
         parse_seconds,
         map_seconds: t1.elapsed().as_secs_f64(),
     })
+}
+
+/// Refuses, before any meshing, a model whose assembly expands to more part instances than
+/// one scene holds ([`cadre_mesh::assemble::MAX_NODES`], one node each): the scene builder
+/// would cut the tree there. `holder` names what holds the nodes ("export", "scene") and
+/// `nothing` says what was not done, for the message.
+pub fn check_scene_nodes(model: &Model, input: &Path, holder: &str, nothing: &str) -> Result<()> {
+    let nodes = model.placed_instances();
+    let cap = cadre_mesh::assemble::MAX_NODES;
+    if nodes > cap as u64 {
+        bail!(
+            "{}: the assembly expands to {nodes} part instances, over the {cap} one {holder}; {nothing}",
+            input.display()
+        );
+    }
+    Ok(())
 }

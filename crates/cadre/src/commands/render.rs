@@ -248,14 +248,7 @@ fn render_file(
     let model = &loaded.model;
     // Refused before meshing: the scene's draw records would not fit the device's largest
     // buffer, and meshing and assembling 2·10⁶ instances first took 1.9 GB (issue 13).
-    let nodes = model.placed_instances();
-    if nodes > cadre_mesh::assemble::MAX_NODES as u64 {
-        bail!(
-            "{}: the assembly expands to {nodes} part instances, over the {} one scene holds; nothing was meshed",
-            input.display(),
-            cadre_mesh::assemble::MAX_NODES
-        );
-    }
+    crate::load::check_scene_nodes(model, input, "scene holds", "nothing was meshed")?;
     let placed = model.placed_body_instances();
     if placed > gpu.max_draw_records() {
         bail!(
