@@ -53,8 +53,17 @@ pub(crate) type Cdt =
 pub(crate) fn build(verts: Vec<Vert>, edges: Vec<[usize; 2]>) -> Result<Cdt, FaceMeshError> {
     let n = verts.len();
     let mut conflicts = 0usize;
-    let cdt = Cdt::try_bulk_load_cdt(verts, edges.clone(), |_| conflicts += 1)
-        .map_err(|e| FaceMeshError::Triangulation(format!("{e:?}")))?;
+    let (cdt, handles) = match non_collinear_seed(&verts) {
+        Some(seed) if bulk_load_starts_on_a_line(&verts) => {
+            insert_one_by_one(verts, &edges, seed, &mut conflicts)?
+        }
+        _ => {
+            let cdt = Cdt::try_bulk_load_cdt(verts, edges.clone(), |_| conflicts += 1)
+                .map_err(|e| FaceMeshError::Triangulation(format!("{e:?}")))?;
+            // The bulk loader keeps the vertices in their given order.
+            (cdt, (0..n).map(FixedVertexHandle::from_index).collect())
+        }
+    };
     if conflicts > 0 {
         return Err(FaceMeshError::Triangulation(format!(
             "{conflicts} trim segment(s) cross other trim segments"
@@ -65,9 +74,8 @@ pub(crate) fn build(verts: Vec<Vert>, edges: Vec<[usize; 2]>) -> Result<Cdt, Fac
             "distinct trim points coincide in the triangulation plane".into(),
         ));
     }
-    let h = FixedVertexHandle::from_index;
     for [a, b] in edges {
-        if !cdt.exists_constraint(h(a), h(b)) {
+        if !cdt.exists_constraint(handles[a], handles[b]) {
             return Err(FaceMeshError::Triangulation(
                 "a trim point lies on another trim segment".into(),
             ));
@@ -77,6 +85,87 @@ pub(crate) fn build(verts: Vec<Vert>, edges: Vec<[usize; 2]>) -> Result<Cdt, Fac
         return Err(FaceMeshError::EmptyDomain);
     }
     Ok(cdt)
+}
+
+/// How many of the points nearest their centroid may lie on one line before the bulk loader
+/// is avoided. Spade's bulk loader inserts points nearest-first and, while all inserted
+/// points are collinear, locates each new one by collecting and sorting every vertex: a face
+/// bounded by a long straight polyline (its centroid on that line) costs O(n²) there —
+/// 70 ms for a 4,764-point boundary, 4–7 ms one by one (issue 13's polyedge).
+const MAX_COLLINEAR_START: usize = 32;
+
+/// Whether the bulk loader's first [`MAX_COLLINEAR_START`] + 1 points (those nearest the
+/// centroid of all, its insertion order) lie on one line.
+fn bulk_load_starts_on_a_line(verts: &[Vert]) -> bool {
+    if verts.len() <= MAX_COLLINEAR_START + 1 {
+        return false;
+    }
+    let inv = 1.0 / verts.len() as f64;
+    let (cx, cy) = verts.iter().fold((0.0, 0.0), |(x, y), v| {
+        (x + v.pos.x * inv, y + v.pos.y * inv)
+    });
+    let d2 = |v: &Vert| (v.pos.x - cx).powi(2) + (v.pos.y - cy).powi(2);
+    let mut nearest: Vec<&Vert> = verts.iter().collect();
+    nearest.select_nth_unstable_by(MAX_COLLINEAR_START, |a, b| d2(a).total_cmp(&d2(b)));
+    nearest.truncate(MAX_COLLINEAR_START + 1);
+    let a = nearest[0].pos;
+    let Some(b) = nearest.iter().map(|v| v.pos).find(|&p| p != a) else {
+        return true;
+    };
+    nearest.iter().all(|v| cross(a, b, v.pos) == 0.0)
+}
+
+/// Twice the signed area of the triangle (a, b, p).
+fn cross(a: Point2<f64>, b: Point2<f64>, p: Point2<f64>) -> f64 {
+    (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)
+}
+
+/// Indices of three points not on one line: the first, the farthest from it, and the
+/// farthest from the line through those two. `None` when every point lies on one line.
+fn non_collinear_seed(verts: &[Vert]) -> Option<[usize; 3]> {
+    let a = verts.first()?.pos;
+    let d2 = |p: Point2<f64>| (p.x - a.x).powi(2) + (p.y - a.y).powi(2);
+    let (j, _) = verts
+        .iter()
+        .enumerate()
+        .max_by(|x, y| d2(x.1.pos).total_cmp(&d2(y.1.pos)))?;
+    let b = verts[j].pos;
+    let (k, far) = verts
+        .iter()
+        .enumerate()
+        .map(|(k, v)| (k, cross(a, b, v.pos).abs()))
+        .max_by(|x, y| x.1.total_cmp(&y.1))?;
+    (far > 0.0).then_some([0, j, k])
+}
+
+/// The triangulation built by inserting a non-collinear seed triangle first and then every
+/// other point in the given (loop) order, so that no insertion meets the all-on-a-line
+/// state; then the constraints. Returns the handle of every input point.
+fn insert_one_by_one(
+    verts: Vec<Vert>,
+    edges: &[[usize; 2]],
+    seed: [usize; 3],
+    conflicts: &mut usize,
+) -> Result<(Cdt, Vec<FixedVertexHandle>), FaceMeshError> {
+    let mut cdt = Cdt::new();
+    let mut handles = vec![FixedVertexHandle::from_index(0); verts.len()];
+    let seeded = seed.iter().copied();
+    let rest = (0..verts.len()).filter(|i| !seed.contains(i));
+    for i in seeded.chain(rest) {
+        handles[i] = cdt
+            .insert(verts[i])
+            .map_err(|e| FaceMeshError::Triangulation(format!("{e:?}")))?;
+    }
+    if cdt.num_vertices() != verts.len() {
+        // Coincident points share a handle; `build` names the failure.
+        return Ok((cdt, handles));
+    }
+    for &[a, b] in edges {
+        if cdt.try_add_constraint(handles[a], handles[b]).is_empty() {
+            *conflicts += 1;
+        }
+    }
+    Ok((cdt, handles))
 }
 
 /// Even-odd classification of every face (indexed by face index; the outer face is
@@ -229,5 +318,94 @@ mod tests {
         assert!(ins(&mut cdt, 1.0, 0.5).is_some());
         assert!(ins(&mut cdt, 1.0, 0.25).is_some());
         assert_eq!(cdt.num_constraints(), 3);
+    }
+
+    /// A square whose left side is an `n`-point straight polyline, as a loop: the shape of
+    /// issue 13's polyedge face, whose centroid lies near that side.
+    fn square_with_long_side(n: usize) -> (Vec<Vert>, Vec<[usize; 2]>) {
+        let mut verts: Vec<Vert> = (0..n)
+            .map(|i| v(0.0, 100.0 * i as f64 / (n - 1) as f64, i as u32))
+            .collect();
+        verts.push(v(100.0, 100.0, n as u32));
+        verts.push(v(100.0, 0.0, n as u32 + 1));
+        let m = verts.len();
+        let edges = (0..m).map(|i| [i, (i + 1) % m]).collect();
+        (verts, edges)
+    }
+
+    fn inside_area(cdt: &Cdt) -> f64 {
+        let mut inside = Vec::new();
+        classify(cdt, &HashSet::new(), &mut inside);
+        cdt.inner_faces()
+            .filter(|f| inside[f.fix().index()])
+            .map(|f| f.area())
+            .sum()
+    }
+
+    #[test]
+    fn a_long_straight_side_is_triangulated_one_by_one() {
+        let (verts, edges) = square_with_long_side(2_000);
+        assert!(bulk_load_starts_on_a_line(&verts));
+        let seed = non_collinear_seed(&verts).unwrap();
+        let mut conflicts = 0;
+        let (one_by_one, handles) =
+            insert_one_by_one(verts.clone(), &edges, seed, &mut conflicts).unwrap();
+        assert_eq!(conflicts, 0);
+        // The same triangulation as the bulk loader's: same triangles, every loop segment a
+        // constraint, the same area inside.
+        let bulk = Cdt::bulk_load_cdt(verts.clone(), edges.clone()).unwrap();
+        assert_eq!(one_by_one.num_inner_faces(), bulk.num_inner_faces());
+        assert_eq!(one_by_one.num_constraints(), edges.len());
+        for &[a, b] in &edges {
+            assert!(one_by_one.exists_constraint(handles[a], handles[b]));
+        }
+        assert!((inside_area(&one_by_one) - 10_000.0).abs() < 1e-6);
+        // And `build` takes this path and gives the same.
+        let built = build(verts, edges).unwrap();
+        assert!((inside_area(&built) - 10_000.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn ordinary_loops_keep_the_bulk_loader() {
+        // Negative control: a 200-gon (no three nearest points on a line) and a short side.
+        let ring: Vec<Vert> = (0..200)
+            .map(|i| {
+                let t = i as f64 * std::f64::consts::TAU / 200.0;
+                v(t.cos(), t.sin(), i)
+            })
+            .collect();
+        assert!(!bulk_load_starts_on_a_line(&ring));
+        let (short, _) = square_with_long_side(MAX_COLLINEAR_START - 2);
+        assert!(!bulk_load_starts_on_a_line(&short));
+        // All on one line: no seed triangle, the bulk loader names the empty domain.
+        let line: Vec<Vert> = (0..100).map(|i| v(f64::from(i), 0.0, i)).collect();
+        assert!(non_collinear_seed(&line).is_none());
+        let edges = (0..99).map(|i| [i, i + 1]).collect();
+        assert!(matches!(
+            build(line, edges),
+            Err(FaceMeshError::EmptyDomain)
+        ));
+    }
+
+    #[test]
+    fn one_by_one_still_rejects_coincident_and_crossing_points() {
+        let (mut verts, edges) = square_with_long_side(500);
+        verts[250].pos = verts[251].pos;
+        assert!(bulk_load_starts_on_a_line(&verts));
+        assert!(matches!(
+            build(verts, edges),
+            Err(FaceMeshError::Triangulation(m)) if m.contains("coincide")
+        ));
+        // A bow-tie: the far corners swapped, so two sides cross.
+        let (mut verts, edges) = square_with_long_side(500);
+        let n = verts.len();
+        verts.swap(n - 1, n - 2);
+        for (i, v) in verts.iter_mut().enumerate() {
+            v.id = i as u32;
+        }
+        assert!(matches!(
+            build(verts, edges),
+            Err(FaceMeshError::Triangulation(m)) if m.contains("cross")
+        ));
     }
 }

@@ -114,15 +114,31 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let Some(sheet) = &args.sheet {
         crate::output::check(sheet, &["png"])?;
     }
-    let gpu = Gpu::headless()?;
-    let renderer = Renderer::new(&gpu)?;
     if args.input.is_dir() {
+        let (gpu, renderer) = open_gpu()?;
         return render_folder(&gpu, &renderer, args);
     }
-    let image = render_file(&gpu, &renderer, &args.input, args)?;
-    save(&image, &args.output)?;
-    println!("wrote {} ({})", args.output.display(), gpu.info.name);
-    Ok(())
+    // One file: the device and its pipelines are made while the file loads and meshes, not
+    // before (on lavapipe the two take about as long as loading and meshing a 6 MB file;
+    // issue 13's polyedge renders in 2.5× its `info` time instead of 3.5×).
+    std::thread::scope(|threads| {
+        let opening = threads.spawn(open_gpu);
+        let meshed = mesh_file(&args.input, args);
+        let (gpu, renderer) = opening
+            .join()
+            .map_err(|_| anyhow::anyhow!("the GPU start-up thread panicked"))??;
+        let image = draw_file(&gpu, &renderer, &meshed?, args)?;
+        save(&image, &args.output)?;
+        println!("wrote {} ({})", args.output.display(), gpu.info.name);
+        Ok(())
+    })
+}
+
+/// The headless device and the renderer's pipelines on it.
+fn open_gpu() -> Result<(Gpu, Renderer)> {
+    let gpu = Gpu::headless()?;
+    let renderer = Renderer::new(&gpu)?;
+    Ok((gpu, renderer))
 }
 
 fn save(image: &RgbaImage, path: &Path) -> Result<()> {
@@ -244,20 +260,24 @@ fn render_file(
     input: &Path,
     args: &RenderArgs,
 ) -> Result<RgbaImage> {
+    draw_file(gpu, renderer, &mesh_file(input, args)?, args)
+}
+
+/// A file loaded and its bodies meshed (once per body, not per instance), ready to be
+/// placed and drawn.
+struct MeshedFile {
+    input: PathBuf,
+    loaded: crate::load::Loaded,
+    mesh: cadre_mesh::ModelMesh,
+}
+
+/// Loads and meshes one file, printing what the tessellation lost; needs no GPU.
+fn mesh_file(input: &Path, args: &RenderArgs) -> Result<MeshedFile> {
     let loaded = load_step(input)?;
     let model = &loaded.model;
-    // Refused before meshing: the scene's draw records would not fit the device's largest
-    // buffer, and meshing and assembling 2·10⁶ instances first took 1.9 GB (issue 13).
+    // Refused before meshing: an assembly past the scene's node cap would be cut silently
+    // by the scene builder, and expanding 6·10⁶ instances took 2.4 GB (issue 13).
     crate::load::check_scene_nodes(model, input, "scene holds", "nothing was meshed")?;
-    let placed = model.placed_body_instances();
-    if placed > gpu.max_draw_records() {
-        bail!(
-            "{}: the scene is too large for this GPU: {placed} placed part instances, over the {} one frame can draw (one {}-byte draw record each in one buffer); nothing was meshed",
-            input.display(),
-            gpu.max_draw_records(),
-            std::mem::size_of::<cadre_render::layout::Draw>()
-        );
-    }
     let params = MeshParams {
         deflection: Deflection::Relative(args.deflection_rel).resolve(deflection_diagonal(model)),
         angle: 0.35,
@@ -277,7 +297,33 @@ fn render_file(
             lost.len() - MAX_PRINTED_WARNINGS
         );
     }
-    let scene = cadre_mesh::assemble::build_scene(model, &mesh);
+    Ok(MeshedFile {
+        input: input.to_path_buf(),
+        loaded,
+        mesh,
+    })
+}
+
+/// Places a meshed file's instances and renders them.
+fn draw_file(
+    gpu: &Gpu,
+    renderer: &Renderer,
+    meshed: &MeshedFile,
+    args: &RenderArgs,
+) -> Result<RgbaImage> {
+    let (input, model) = (meshed.input.as_path(), &meshed.loaded.model);
+    // Refused before the scene is expanded: its draw records (one per placed body
+    // instance) would not fit the device's largest buffer.
+    let placed = model.placed_body_instances();
+    if placed > gpu.max_draw_records() {
+        bail!(
+            "{}: the scene is too large for this GPU: {placed} placed part instances, over the {} one frame can draw (one {}-byte draw record each in one buffer); nothing was drawn",
+            input.display(),
+            gpu.max_draw_records(),
+            std::mem::size_of::<cadre_render::layout::Draw>()
+        );
+    }
+    let scene = cadre_mesh::assemble::build_scene(model, &meshed.mesh);
     let (w, h) = args.size;
     // A model with nothing to draw (no face, mesh or curve: 6 corpus files, OCCT finds nothing
     // in them either) is an error, not a blank image that looks like a result; a folder run
