@@ -7,10 +7,10 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use rayon::prelude::*;
+mod model;
 
 use crate::topology::{Edge, Face, LoopKind};
-use crate::{Body, EdgeId, Model};
+use crate::{EdgeId, Model};
 use cadre_geom::{Accuracy, BoundingBox, Curve3, Surface, Transform, Vec3};
 
 /// Samples taken along each edge to find a face's (u, v) bounds and to bound rotated instances.
@@ -222,13 +222,16 @@ pub fn face_uv_region(
     surface: &Surface,
     acc: Accuracy,
 ) -> Option<UvRegion> {
-    // No loop, or only vertex loops (a whole sphere or torus written with one vertex): the
-    // face is the whole surface.
-    if face
-        .loops
-        .iter()
-        .all(|l| matches!(l.kind, LoopKind::Vertex(_)))
-    {
+    // No loop, or only vertex loops (a whole sphere or torus written with one vertex), or
+    // loops left empty by edges that failed to load: the face is the whole surface, as the
+    // trimmer reads it too (a fuzzed torus face whose edges all named missing vertices was
+    // meshed whole, 384k triangles, while its box was empty and the deflection fell back to
+    // 0.001 mm).
+    if face.loops.iter().all(|l| match &l.kind {
+        LoopKind::Vertex(_) => true,
+        LoopKind::Edges(edges) => edges.is_empty(),
+        LoopKind::Poly(points) => points.is_empty(),
+    }) {
         let ((u0, u1), (v0, v1)) = surface.domain();
         return Some(UvRegion {
             rect: [u0, u1, v0, v1],
@@ -620,123 +623,15 @@ pub fn face_bounds(model: &Model, face: &Face, acc: Accuracy) -> (BoundingBox, V
     (b, samples)
 }
 
-/// Box and samples of each part's own bodies, in part coordinates.
-#[derive(Clone, Debug)]
-pub struct PartBounds {
-    /// The box.
-    pub bbox: BoundingBox,
-    /// Points on the geometry, for bounding rotated instances tightly.
-    pub samples: Vec<Vec3>,
-}
-
 /// Whether `t` maps axis-aligned boxes to axis-aligned boxes exactly (its linear part is a
 /// signed permutation times a scale).
-fn is_axis_aligned(t: &Transform) -> bool {
+pub(crate) fn is_axis_aligned(t: &Transform) -> bool {
     let m = t.matrix3;
     [m.x_axis, m.y_axis, m.z_axis].iter().all(|c| {
         let a = c.abs();
         let big = a.max_element();
         (a.x + a.y + a.z - big) <= 1e-12 * big.max(1.0)
     })
-}
-
-impl Model {
-    /// Bounds of the bodies each part owns directly (children excluded), computed in
-    /// parallel over faces.
-    ///
-    /// Sample points are kept only with `keep_samples` (they are needed to bound rotated
-    /// instances tightly, and cost memory on large models).
-    pub fn part_bounds(&self, acc: Accuracy, keep_samples: bool) -> Vec<PartBounds> {
-        let face_bounds: Vec<(BoundingBox, Vec<Vec3>)> = self
-            .faces
-            .par_iter()
-            .map(|f| {
-                let (b, samples) = face_bounds(self, f, acc);
-                (b, if keep_samples { samples } else { Vec::new() })
-            })
-            .collect();
-        let shell_into = |shell: crate::ShellId, pb: &mut PartBounds| {
-            for &(face, _) in &self.shells[shell.index()].faces {
-                let (b, s) = &face_bounds[face.index()];
-                pb.bbox = pb.bbox.union(b);
-                pb.samples.extend_from_slice(s);
-            }
-        };
-        self.parts
-            .iter()
-            .map(|part| {
-                let mut pb = PartBounds {
-                    bbox: BoundingBox::EMPTY,
-                    samples: Vec::new(),
-                };
-                for body in &part.bodies {
-                    match body {
-                        Body::Solid(id) => {
-                            for shell in self.solids[id.index()].shells() {
-                                shell_into(shell, &mut pb);
-                            }
-                        }
-                        Body::Shell(id) => shell_into(*id, &mut pb),
-                        Body::Face(id) => {
-                            let (b, s) = &face_bounds[id.index()];
-                            pb.bbox = pb.bbox.union(b);
-                            pb.samples.extend_from_slice(s);
-                        }
-                        Body::Mesh(id) => {
-                            let mesh = &self.meshes[id.index()];
-                            pb.bbox = pb.bbox.union(&mesh.bbox());
-                            pb.samples.extend_from_slice(&mesh.positions);
-                        }
-                        Body::Edge(e) => {
-                            let mut samples = Vec::new();
-                            pb.bbox = pb.bbox.union(&edge_bounds(self, *e, acc, &mut samples));
-                            pb.samples.extend(samples);
-                        }
-                        Body::Wire(w) => {
-                            let curve = &self.curves[w.curve.index()];
-                            if let Some((t0, t1)) = w.range.or_else(|| curve.domain())
-                                && t0.is_finite()
-                                && t1.is_finite()
-                            {
-                                pb.bbox = pb.bbox.union(&curve.bbox_between(t0, t1));
-                                pb.samples
-                                    .extend(curve_samples(curve, (t0, t1), EDGE_SAMPLES));
-                            }
-                        }
-                        Body::Point(p) => {
-                            pb.bbox.add_point(*p);
-                            pb.samples.push(*p);
-                        }
-                    }
-                }
-                pb
-            })
-            .collect()
-    }
-
-    /// The world-space box of every part instance (empty for a model without geometry).
-    pub fn bbox(&self, acc: Accuracy) -> BoundingBox {
-        let mut rotated = false;
-        self.visit_instances(|visit| rotated |= !is_axis_aligned(&visit.transform));
-        let parts = self.part_bounds(acc, rotated);
-        let mut b = BoundingBox::EMPTY;
-        self.visit_instances(|visit| {
-            let pb = &parts[visit.part.index()];
-            if pb.bbox.is_empty() {
-                return;
-            }
-            if is_axis_aligned(&visit.transform) {
-                b = b.union(&pb.bbox.transformed(&visit.transform));
-            } else {
-                b = b.union(&BoundingBox::from_points(
-                    pb.samples
-                        .iter()
-                        .map(|&p| visit.transform.transform_point3(p)),
-                ));
-            }
-        });
-        b
-    }
 }
 
 #[cfg(test)]
