@@ -411,7 +411,8 @@ fn placement(
         ],
         material,
         instance,
-        pad: [flags, 0],
+        flags,
+        pad: 0,
     }
 }
 

@@ -1,8 +1,42 @@
-//! GPU struct layouts, one source for Rust and WGSL: each struct here has a twin of the same
-//! name in the passes' `.wgsl` files, and the `layouts_match_the_shaders` test checks the sizes
-//! naga computes for those twins against these.
+//! GPU struct layouts, one source for Rust and WGSL: each struct here has a twin in
+//! `passes/common.wgsl` ([`GpuStruct::WGSL_NAME`]), and `tests/shaders.rs` checks every
+//! member's name and offset, in order, and the struct's size against what naga computes for
+//! that twin in every pass, so two fields swapped on either side fail the build's tests.
 
 use bytemuck::{Pod, Zeroable};
+
+/// One member of a GPU struct: its name and byte offset.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Member {
+    /// Field name, as written in Rust and in WGSL.
+    pub name: &'static str,
+    /// Byte offset from the start of the struct.
+    pub offset: usize,
+}
+
+/// A struct shared with the shaders: its WGSL name and its members in declaration order.
+pub trait GpuStruct: Pod {
+    /// The name of its twin in `passes/common.wgsl`.
+    const WGSL_NAME: &'static str;
+    /// Every field, in declaration order.
+    fn members() -> Vec<Member>;
+}
+
+/// Implements [`GpuStruct`] for a struct from the list of all its fields (a field left out
+/// or misnamed fails `offset_of!` or the member count the layout test compares).
+macro_rules! gpu_struct {
+    ($t:ty, $wgsl:literal, [$($field:ident),+ $(,)?]) => {
+        impl GpuStruct for $t {
+            const WGSL_NAME: &'static str = $wgsl;
+            fn members() -> Vec<Member> {
+                vec![$(Member {
+                    name: stringify!($field),
+                    offset: std::mem::offset_of!($t, $field),
+                }),+]
+            }
+        }
+    };
+}
 
 /// One mesh vertex: position and unit normal (mesh-local), and the STEP id of its B-Rep face.
 #[repr(C)]
@@ -101,14 +135,16 @@ pub struct Draw {
     pub material: u32,
     /// Instance number (scene instance order).
     pub instance: u32,
-    /// Flags ([`DRAW_CLOSED`], [`DRAW_INSIDE_OUT`]), padding.
-    pub pad: [u32; 2],
+    /// Flags: [`DRAW_CLOSED`], [`DRAW_INSIDE_OUT`].
+    pub flags: u32,
+    /// Padding to the struct's 16-byte alignment.
+    pub pad: u32,
 }
 
-/// [`Draw::pad`]`[0]` flag: the mesh is a closed, consistently oriented solid, so seeing one
+/// [`Draw::flags`] flag: the mesh is a closed, consistently oriented solid, so seeing one
 /// of its faces from inside means looking through a section into the material (a cap).
 pub const DRAW_CLOSED: u32 = 1;
-/// [`Draw::pad`]`[0]` flag: the draw's triangles wind clockwise seen from outside (the mesh
+/// [`Draw::flags`] flag: the draw's triangles wind clockwise seen from outside (the mesh
 /// encloses a negative volume, or the instance's placement mirrors, but not both).
 pub const DRAW_INSIDE_OUT: u32 = 2;
 
@@ -121,3 +157,35 @@ pub struct Material {
     /// Metalness, perceptual roughness, unused, unused.
     pub params: [f32; 4],
 }
+
+gpu_struct!(
+    Frame,
+    "Frame",
+    [
+        view_proj,
+        inv_proj,
+        background,
+        viewport,
+        edges,
+        edge_colour,
+        hidden_colour,
+        outline,
+        sky_up,
+        counts,
+        hover,
+        hover_colour,
+        selection_colour,
+        planes,
+        plane_normals,
+        forward,
+        section,
+    ]
+);
+gpu_struct!(LightGpu, "Light", [position, direction, colour, params]);
+gpu_struct!(Segment, "Segment", [a, b]);
+gpu_struct!(
+    Draw,
+    "Draw",
+    [model, normal, material, instance, flags, pad]
+);
+gpu_struct!(Material, "Material", [base_color, params]);

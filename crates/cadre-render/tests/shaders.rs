@@ -1,11 +1,12 @@
 //! Every pass's WGSL parses and validates with naga (the compiler wgpu uses), and the structs
-//! shared with Rust have the sizes of their `cadre_render::layout` twins.
+//! shared with Rust have the members (names and offsets, in order) and sizes of their
+//! `cadre_render::layout` twins.
 
 use std::path::Path;
 
 use cadre_render::SECTION_CAP;
 use cadre_render::layout::{
-    DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Frame, LightGpu, Material, Segment,
+    DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Frame, GpuStruct, LightGpu, Material, Member, Segment,
 };
 
 /// Parses and validates one shader; returns the module.
@@ -43,21 +44,76 @@ fn constant_u32(module: &naga::Module, name: &str) -> Option<u32> {
     }
 }
 
-/// Size naga gives the struct `name` of `module`.
-fn struct_size(module: &naga::Module, name: &str) -> Option<usize> {
+/// Members (name, offset) and size naga gives the struct `name` of `module`.
+fn naga_struct(module: &naga::Module, name: &str) -> Option<(Vec<Member>, usize)> {
     module.types.iter().find_map(|(_, ty)| match &ty.inner {
-        naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => {
-            Some(*span as usize)
+        naga::TypeInner::Struct { members, span } if ty.name.as_deref() == Some(name) => {
+            let members = members
+                .iter()
+                .map(|m| Member {
+                    name: m.name.clone().map_or("?", |n| n.leak()),
+                    offset: m.offset as usize,
+                })
+                .collect();
+            Some((members, *span as usize))
         }
         _ => None,
     })
 }
 
+/// Compares a Rust layout with its WGSL twin: the same members, in order, at the same
+/// offsets, and the same size. The error names the first member that differs.
+fn compare(
+    name: &str,
+    rust: &[Member],
+    rust_size: usize,
+    wgsl: &[Member],
+    wgsl_size: usize,
+) -> Result<(), String> {
+    for (i, (r, w)) in rust.iter().zip(wgsl).enumerate() {
+        if r != w {
+            return Err(format!(
+                "{name} member {i}: Rust {} at {}, WGSL {} at {}",
+                r.name, r.offset, w.name, w.offset
+            ));
+        }
+    }
+    if rust.len() != wgsl.len() {
+        return Err(format!(
+            "{name}: {} members in Rust, {} in WGSL",
+            rust.len(),
+            wgsl.len()
+        ));
+    }
+    if rust_size != wgsl_size {
+        return Err(format!(
+            "{name}: {rust_size} bytes in Rust, {wgsl_size} in WGSL"
+        ));
+    }
+    Ok(())
+}
+
+/// Checks one layout against its twin in `module`, if the module declares it.
+fn check<T: GpuStruct>(pass: &str, module: &naga::Module) -> Result<bool, String> {
+    let Some((wgsl, wgsl_size)) = naga_struct(module, T::WGSL_NAME) else {
+        return Ok(false);
+    };
+    compare(
+        &format!("{pass}: {}", T::WGSL_NAME),
+        &T::members(),
+        size_of::<T>(),
+        &wgsl,
+        wgsl_size,
+    )
+    .map(|()| true)
+}
+
+const PASSES: [&str; 5] = ["visibility", "shade", "edges", "xray", "pick"];
+
 #[test]
 fn shaders_validate_and_share_the_rust_layouts() {
-    let visibility = module("visibility");
     // The shared structs are declared once, in common.wgsl, for every pass.
-    for pass in ["visibility", "shade", "edges", "xray", "pick"] {
+    for pass in PASSES {
         let own = std::fs::read_to_string(
             Path::new(env!("CARGO_MANIFEST_DIR"))
                 .join("src/passes")
@@ -65,32 +121,70 @@ fn shaders_validate_and_share_the_rust_layouts() {
                 .join(format!("{pass}.wgsl")),
         )
         .expect("shader source");
-        assert!(
-            !own.contains("struct Frame"),
-            "{pass}.wgsl redeclares Frame"
-        );
+        for name in ["Frame", "Draw", "Material", "Segment", "Light"] {
+            assert!(
+                !own.contains(&format!("struct {name} ")),
+                "{pass}.wgsl redeclares {name}"
+            );
+        }
     }
-    let shade = module("shade");
-    let edges = module("edges");
-    let xray = module("xray");
-    let pick = module("pick");
-    for (m, name, size) in [
-        (&visibility, "Frame", size_of::<Frame>()),
-        (&visibility, "Draw", size_of::<Draw>()),
-        (&shade, "Frame", size_of::<Frame>()),
-        (&shade, "Material", size_of::<Material>()),
-        (&shade, "Light", size_of::<LightGpu>()),
-        (&edges, "Frame", size_of::<Frame>()),
-        (&edges, "Draw", size_of::<Draw>()),
-        (&edges, "Segment", size_of::<Segment>()),
-        (&xray, "Frame", size_of::<Frame>()),
-        (&xray, "Draw", size_of::<Draw>()),
-        (&xray, "Material", size_of::<Material>()),
-        (&pick, "Frame", size_of::<Frame>()),
-        (&pick, "Segment", size_of::<Segment>()),
-    ] {
-        assert_eq!(struct_size(m, name), Some(size), "{name}");
+    let mut found = std::collections::BTreeMap::<&str, usize>::new();
+    for pass in PASSES {
+        let m = module(pass);
+        for (name, hit) in [
+            ("Frame", check::<Frame>(pass, &m)),
+            ("Draw", check::<Draw>(pass, &m)),
+            ("Material", check::<Material>(pass, &m)),
+            ("Segment", check::<Segment>(pass, &m)),
+            ("Light", check::<LightGpu>(pass, &m)),
+        ] {
+            if hit.unwrap_or_else(|e| panic!("{e}")) {
+                *found.entry(name).or_default() += 1;
+            }
+        }
     }
+    // Every layout was really compared somewhere (naga drops nothing we rely on).
+    assert_eq!(found.len(), 5, "{found:?}");
+}
+
+#[test]
+fn swapped_fields_are_caught() {
+    // Negative control: the Rust Frame with two fields of the same type swapped (what the
+    // old size-only comparison let through) and with one field dropped.
+    let m = module("shade");
+    let (wgsl, size) = naga_struct(&m, "Frame").expect("Frame in shade");
+    let mut swapped = Frame::members();
+    let (a, b) = (
+        swapped
+            .iter()
+            .position(|f| f.name == "edge_colour")
+            .unwrap(),
+        swapped
+            .iter()
+            .position(|f| f.name == "hidden_colour")
+            .unwrap(),
+    );
+    let (oa, ob) = (swapped[a].offset, swapped[b].offset);
+    swapped[a].offset = ob;
+    swapped[b].offset = oa;
+    swapped.sort_by_key(|f| f.offset);
+    let err = compare("Frame", &swapped, size_of::<Frame>(), &wgsl, size).unwrap_err();
+    assert!(err.contains("hidden_colour"), "{err}");
+    let mut short = Frame::members();
+    short.pop();
+    assert!(compare("Frame", &short, size_of::<Frame>(), &wgsl, size).is_err());
+    assert!(
+        compare(
+            "Frame",
+            &Frame::members(),
+            size_of::<Frame>() + 16,
+            &wgsl,
+            size
+        )
+        .is_err()
+    );
+    // And the true layout passes.
+    compare("Frame", &Frame::members(), size_of::<Frame>(), &wgsl, size).unwrap();
 }
 
 #[test]

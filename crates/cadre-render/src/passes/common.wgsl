@@ -24,12 +24,11 @@ struct Frame {
 
 struct Draw {
     model: mat4x4<f32>,
-    normal0: vec4<f32>,
-    normal1: vec4<f32>,
-    normal2: vec4<f32>,
+    normal: array<vec4<f32>, 3>,
     material: u32,
     instance: u32,
-    pad: vec2<u32>,
+    flags: u32,
+    pad: u32,
 }
 
 struct Material {
@@ -60,7 +59,7 @@ fn is_target(wanted: vec4<u32>, kind: u32, instance1: u32, id: u32) -> bool {
     return wanted.x == 4u || (wanted.x == kind && wanted.z == id);
 }
 
-// Flags of `Draw.pad.x` (layout::DRAW_CLOSED, layout::DRAW_INSIDE_OUT).
+// Flags of `Draw.flags` (layout::DRAW_CLOSED, layout::DRAW_INSIDE_OUT).
 const DRAW_CLOSED: u32 = 1u;
 const DRAW_INSIDE_OUT: u32 = 2u;
 
@@ -148,6 +147,6 @@ fn place_vertex(d: Draw, position: vec3<f32>, normal: vec3<f32>) -> PlacedVertex
     var out: PlacedVertex;
     out.clip = frame.view_proj * world;
     out.world = world.xyz;
-    out.normal = mat3x3<f32>(d.normal0.xyz, d.normal1.xyz, d.normal2.xyz) * normal;
+    out.normal = mat3x3<f32>(d.normal[0].xyz, d.normal[1].xyz, d.normal[2].xyz) * normal;
     return out;
 }

@@ -94,8 +94,8 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> VisibilityOut {
     out.ids = vec4<u32>(in.face, d.instance + 1u, d.material, bitcast<u32>(in.clip.z));
     out.uv = bitcast<vec2<u32>>(in.uv);
     // Triangles wind counter-clockwise seen from outside, unless the draw is inside out.
-    let from_inside = front == ((d.pad.x & DRAW_INSIDE_OUT) != 0u);
-    if frame.counts.z > 0u && (d.pad.x & DRAW_CLOSED) != 0u && from_inside {
+    let from_inside = front == ((d.flags & DRAW_INSIDE_OUT) != 0u);
+    if frame.counts.z > 0u && (d.flags & DRAW_CLOSED) != 0u && from_inside {
         let cap = cap_of(in.world);
         if cap.plane >= 0 {
             let clip = frame.view_proj * vec4<f32>(cap.point, 1.0);
