@@ -5,7 +5,9 @@ use image::RgbaImage;
 use wgpu::util::DeviceExt;
 
 use crate::gpu_scene::{FrameScene, PreparedScene};
-use crate::layout::{Frame, LightGpu};
+use crate::layout::{
+    EDGES_ALL, EDGES_VISIBLE, Frame, LightGpu, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE,
+};
 use crate::passes::edges::EdgesPass;
 use crate::passes::pick::{PickInputs, PickPass};
 use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass};
@@ -45,13 +47,15 @@ impl DisplayMode {
 
     /// Face fill (see `Frame::viewport.w`), edge mode (see `Frame::edges.y`), or `None` for
     /// no edges.
-    fn fill_and_edges(self) -> (f32, Option<f32>) {
+    fn fill_and_edges(self) -> (u32, Option<u32>) {
+        use crate::layout::EDGES_HIDDEN_DASHED;
+        use crate::layout::{FILL_BACKGROUND, FILL_NONE, FILL_SHADED};
         match self {
-            DisplayMode::Shaded => (0.0, None),
-            DisplayMode::ShadedEdges => (0.0, Some(0.0)),
-            DisplayMode::Wireframe => (2.0, Some(1.0)),
-            DisplayMode::HiddenLine => (1.0, Some(2.0)),
-            DisplayMode::XRay => (2.0, Some(1.0)),
+            DisplayMode::Shaded => (FILL_SHADED, None),
+            DisplayMode::ShadedEdges => (FILL_SHADED, Some(EDGES_VISIBLE)),
+            DisplayMode::Wireframe => (FILL_NONE, Some(EDGES_ALL)),
+            DisplayMode::HiddenLine => (FILL_BACKGROUND, Some(EDGES_HIDDEN_DASHED)),
+            DisplayMode::XRay => (FILL_NONE, Some(EDGES_ALL)),
         }
     }
 }
@@ -510,14 +514,20 @@ fn frame_uniform(
         viewport: [
             w as f32,
             h as f32,
-            if camera.is_orthographic() { 1.0 } else { 0.0 },
-            fill,
-        ],
-        edges: [
             options.edge_width.max(0.1) * scale,
-            edge_mode.unwrap_or(0.0),
             8.0 * scale,
-            2e-3,
+        ],
+        tolerances: [2e-3, 0.02, 0.0, 0.0],
+        modes: [
+            if camera.is_orthographic() {
+                PROJECTION_ORTHOGRAPHIC
+            } else {
+                PROJECTION_PERSPECTIVE
+            },
+            fill,
+            edge_mode.unwrap_or(EDGES_VISIBLE),
+            // Outlines with the visible edges (not in wireframe, which shows edges only).
+            u32::from(matches!(edge_mode, Some(m) if m != EDGES_ALL)),
         ],
         edge_colour: if options.mode == DisplayMode::XRay {
             [0.05, 0.07, 0.10, 0.6]
@@ -531,17 +541,6 @@ fn frame_uniform(
             state.selection.len().min(MAX_HIGHLIGHTED) as u32,
             state.sections.len().min(MAX_SECTIONS) as u32,
             0,
-        ],
-        // Outlines with the visible edges (not in wireframe, which shows edges only).
-        outline: [
-            if matches!(edge_mode, Some(m) if m != 1.0) {
-                1.0
-            } else {
-                0.0
-            },
-            0.02,
-            0.0,
-            0.0,
         ],
         hover: state.hover.map_or([0; 4], |p| p.to_gpu()),
         // Hover: a light cyan wash; selection: a stronger orange (the usual CAD pair).

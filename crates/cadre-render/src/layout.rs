@@ -62,18 +62,19 @@ pub struct Frame {
     pub inv_proj: [[f32; 4]; 4],
     /// Background colour, linear RGBA.
     pub background: [f32; 4],
-    /// Width, height, 1 when orthographic, face fill (0 shaded, 1 background colour as in
-    /// hidden-line drawings, 2 none: wireframe).
+    /// Target width and height, edge width and hidden-edge dash length, all in target pixels.
     pub viewport: [f32; 4],
-    /// Edge width in pixels, edge mode (0 visible edges only, 1 all edges solid, 2 hidden
-    /// edges dashed), dash length in pixels, depth tolerance (relative).
-    pub edges: [f32; 4],
+    /// Relative depth tolerances: an edge behind the scene's depth by less is visible; a
+    /// depth jump past the second makes a silhouette outline; unused, unused.
+    pub tolerances: [f32; 4],
+    /// Projection ([`PROJECTION_PERSPECTIVE`], [`PROJECTION_ORTHOGRAPHIC`]), face fill
+    /// ([`FILL_SHADED`], [`FILL_BACKGROUND`], [`FILL_NONE`]), edge mode ([`EDGES_VISIBLE`],
+    /// [`EDGES_ALL`], [`EDGES_HIDDEN_DASHED`]), silhouette outlines (0 off, 1 on).
+    pub modes: [u32; 4],
     /// Visible edge colour, linear RGBA.
     pub edge_colour: [f32; 4],
     /// Hidden edge colour, linear RGBA.
     pub hidden_colour: [f32; 4],
-    /// Silhouette outlines: 1 to draw them, relative depth jump that makes one, unused, unused.
-    pub outline: [f32; 4],
     /// World up in view space (the environment's zenith), w unused.
     pub sky_up: [f32; 4],
     /// Number of lights, number of selected items, number of section planes (at most 3),
@@ -98,6 +99,23 @@ pub struct Frame {
     /// unused.
     pub section: [f32; 4],
 }
+
+/// [`Frame::modes`]`[0]`: perspective projection.
+pub const PROJECTION_PERSPECTIVE: u32 = 0;
+/// [`Frame::modes`]`[0]`: orthographic projection (every view ray is the camera's forward).
+pub const PROJECTION_ORTHOGRAPHIC: u32 = 1;
+/// [`Frame::modes`]`[1]`: faces shaded.
+pub const FILL_SHADED: u32 = 0;
+/// [`Frame::modes`]`[1]`: faces filled with the background colour (hidden-line drawings).
+pub const FILL_BACKGROUND: u32 = 1;
+/// [`Frame::modes`]`[1]`: faces not filled (wireframe, x-ray).
+pub const FILL_NONE: u32 = 2;
+/// [`Frame::modes`]`[2]`: only visible edges.
+pub const EDGES_VISIBLE: u32 = 0;
+/// [`Frame::modes`]`[2]`: all edges, solid.
+pub const EDGES_ALL: u32 = 1;
+/// [`Frame::modes`]`[2]`: visible edges solid, hidden ones dashed.
+pub const EDGES_HIDDEN_DASHED: u32 = 2;
 
 /// A light in view space, as the shade pass reads it.
 #[repr(C)]
@@ -166,10 +184,10 @@ gpu_struct!(
         inv_proj,
         background,
         viewport,
-        edges,
+        tolerances,
+        modes,
         edge_colour,
         hidden_colour,
-        outline,
         sky_up,
         counts,
         hover,

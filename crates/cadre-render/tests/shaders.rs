@@ -6,7 +6,9 @@ use std::path::Path;
 
 use cadre_render::SECTION_CAP;
 use cadre_render::layout::{
-    DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Frame, GpuStruct, LightGpu, Material, Member, Segment,
+    DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE,
+    FILL_BACKGROUND, FILL_NONE, FILL_SHADED, Frame, GpuStruct, LightGpu, Material, Member,
+    PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, Segment,
 };
 
 /// Parses and validates one shader; returns the module.
@@ -195,7 +197,17 @@ fn the_shaders_flags_are_the_rust_flags() {
         ("DRAW_CLOSED", DRAW_CLOSED),
         ("DRAW_INSIDE_OUT", DRAW_INSIDE_OUT),
         ("SECTION_CAP", SECTION_CAP),
+        ("PROJECTION_PERSPECTIVE", PROJECTION_PERSPECTIVE),
+        ("PROJECTION_ORTHOGRAPHIC", PROJECTION_ORTHOGRAPHIC),
+        ("FILL_SHADED", FILL_SHADED),
+        ("FILL_BACKGROUND", FILL_BACKGROUND),
+        ("FILL_NONE", FILL_NONE),
+        ("EDGES_VISIBLE", EDGES_VISIBLE),
+        ("EDGES_ALL", EDGES_ALL),
+        ("EDGES_HIDDEN_DASHED", EDGES_HIDDEN_DASHED),
     ] {
         assert_eq!(constant_u32(&visibility, name), Some(value), "{name}");
     }
+    // Negative control: a constant the shaders do not declare is not found.
+    assert_eq!(constant_u32(&visibility, "FILL_SOMETHING"), None);
 }

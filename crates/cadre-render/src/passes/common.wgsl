@@ -7,10 +7,10 @@ struct Frame {
     inv_proj: mat4x4<f32>,
     background: vec4<f32>,
     viewport: vec4<f32>,
-    edges: vec4<f32>,
+    tolerances: vec4<f32>,
+    modes: vec4<u32>,
     edge_colour: vec4<f32>,
     hidden_colour: vec4<f32>,
-    outline: vec4<f32>,
     sky_up: vec4<f32>,
     counts: vec4<u32>,
     hover: vec4<u32>,
@@ -58,6 +58,17 @@ fn is_target(wanted: vec4<u32>, kind: u32, instance1: u32, id: u32) -> bool {
     }
     return wanted.x == 4u || (wanted.x == kind && wanted.z == id);
 }
+
+// `Frame.modes` lanes (layout::PROJECTION_*, FILL_*, EDGES_*): projection, face fill, edge
+// mode, outlines (0 off, 1 on).
+const PROJECTION_PERSPECTIVE: u32 = 0u;
+const PROJECTION_ORTHOGRAPHIC: u32 = 1u;
+const FILL_SHADED: u32 = 0u;
+const FILL_BACKGROUND: u32 = 1u;
+const FILL_NONE: u32 = 2u;
+const EDGES_VISIBLE: u32 = 0u;
+const EDGES_ALL: u32 = 1u;
+const EDGES_HIDDEN_DASHED: u32 = 2u;
 
 // Flags of `Draw.flags` (layout::DRAW_CLOSED, layout::DRAW_INSIDE_OUT).
 const DRAW_CLOSED: u32 = 1u;

@@ -14,7 +14,7 @@
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> LineOut {
     let seg = segments[vi / 6u];
     let d = draws[draw_index];
-    var width = frame.edges.x;
+    var width = frame.viewport.z;
     if is_highlighted(seg, d) {
         width = max(2.0 * width, width + 2.0);
     }
@@ -55,20 +55,20 @@ fn fs_main(in: LineOut) -> @location(0) vec4<f32> {
     let seg = segments[in.segment];
     let highlight = highlight_of(seg, draws[in.draw]);
     // Reverse Z: nearer is larger. The tolerance keeps an edge on its own faces visible.
-    let hidden = in.clip.z < scene_depth * (1.0 - frame.edges.w);
-    let mode = u32(frame.edges.y + 0.5);
+    let hidden = in.clip.z < scene_depth * (1.0 - frame.tolerances.x);
+    let mode = frame.modes.z;
     var colour = frame.edge_colour;
-    var width = frame.edges.x;
+    var width = frame.viewport.z;
     if highlight.w > 0.0 {
         colour = vec4<f32>(highlight.rgb, 1.0);
         width = max(2.0 * width, width + 2.0);
     }
     if hidden {
-        if mode == 0u {
+        if mode == EDGES_VISIBLE {
             discard;
         }
-        if mode == 2u {
-            if fract(in.along / max(frame.edges.z, 1.0)) > 0.5 {
+        if mode == EDGES_HIDDEN_DASHED {
+            if fract(in.along / max(frame.viewport.w, 1.0)) > 0.5 {
                 discard;
             }
             colour = frame.hidden_colour;

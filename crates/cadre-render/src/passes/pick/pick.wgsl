@@ -32,7 +32,7 @@ fn fs_main(in: LineOut) -> @location(0) vec4<u32> {
     }
     let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy), 0);
     // Reverse Z: nearer is larger; the tolerance keeps edges on their own faces.
-    if in.clip.z < scene_depth_at(ids) * (1.0 - frame.edges.w) {
+    if in.clip.z < scene_depth_at(ids) * (1.0 - frame.tolerances.x) {
         discard;
     }
     let kind = select(2u, 3u, vertex);

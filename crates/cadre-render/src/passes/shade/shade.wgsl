@@ -131,7 +131,7 @@ fn distance_at(p: vec2<i32>) -> f32 {
 // Only the nearer side of a jump is marked, so outlines stay one pixel wide and on the object.
 fn on_silhouette(p: vec2<i32>) -> bool {
     let offsets = array<vec2<i32>, 4>(vec2<i32>(1, 0), vec2<i32>(-1, 0), vec2<i32>(0, 1), vec2<i32>(0, -1));
-    let limit = distance_at(p) * (1.0 + frame.outline.y);
+    let limit = distance_at(p) * (1.0 + frame.tolerances.y);
     for (var k = 0; k < 4; k++) {
         if distance_at(p + offsets[k]) > limit {
             return true;
@@ -180,18 +180,18 @@ fn hatch(pos: vec2<f32>, ids: vec4<u32>) -> f32 {
 fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(pos.xy);
     let ids = textureLoad(ids_tex, p, 0);
-    if ids.y != 0u && frame.outline.x > 0.5 && on_silhouette(p) {
+    if ids.y != 0u && frame.modes.w != 0u && on_silhouette(p) {
         return frame.edge_colour;
     }
     let cap = is_cap(ids);
     // Caps are outlined whenever faces are filled (shaded or hidden-line).
-    if cap && frame.viewport.w < 1.5 && on_cap_boundary(p, ids) {
+    if cap && frame.modes.y != FILL_NONE && on_cap_boundary(p, ids) {
         return frame.edge_colour;
     }
     // No face (background), or faces drawn as the background (hidden-line, wireframe);
     // hidden-line drawings keep the caps' hatching.
-    if ids.y == 0u || frame.viewport.w > 0.5 {
-        if cap && frame.viewport.w < 1.5 {
+    if ids.y == 0u || frame.modes.y != FILL_SHADED {
+        if cap && frame.modes.y != FILL_NONE {
             let h = hatch(pos.xy, ids);
             return vec4<f32>(mix(frame.background.rgb, frame.edge_colour.rgb, h), frame.background.a);
         }
@@ -208,7 +208,7 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let view_h = frame.inv_proj * vec4<f32>(ndc, depth, 1.0);
     let view_pos = view_h.xyz / view_h.w;
     var v = normalize(-view_pos);
-    if frame.viewport.z > 0.5 {
+    if frame.modes.x == PROJECTION_ORTHOGRAPHIC {
         v = vec3<f32>(0.0, 0.0, 1.0);
     }
     var n = normalize(textureLoad(normal_tex, p, 0).xyz);

@@ -59,7 +59,7 @@ struct Cap {
 fn cap_of(p: vec3<f32>) -> Cap {
     // From the eye through `p` (perspective) or along the view direction (orthographic).
     var dir = normalize(p);
-    if frame.viewport.z > 0.5 {
+    if frame.modes.x == PROJECTION_ORTHOGRAPHIC {
         dir = frame.forward.xyz;
     }
     // Crossings behind the eye (or its plane) do not count.
