@@ -5,6 +5,34 @@
 
 use bytemuck::{Pod, Zeroable};
 
+/// What one binding of a pass's bind group 0 holds, as the Rust side lays it out and binds
+/// it (the binding number is its index in the pass's list). Each pass's layout entries are
+/// made from its list, and `tests/shaders.rs` checks the list against the pass's WGSL.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Binding {
+    /// A uniform buffer holding one struct (its WGSL name).
+    Uniform(&'static str),
+    /// A read-only storage buffer: an array of this element (a struct's WGSL name, or a WGSL
+    /// vector type such as `vec4<u32>`).
+    Storage(&'static str),
+    /// A 2D `f32` texture read with `textureLoad` (not filterable).
+    FloatTexture,
+    /// A 2D `u32` texture read with `textureLoad`.
+    UintTexture,
+}
+
+/// Every pass's binding list, by pass name (the name of its folder and `.wgsl` file).
+pub fn pass_bindings() -> [(&'static str, &'static [Binding]); 5] {
+    use crate::passes::{edges, pick, shade, visibility, xray};
+    [
+        ("visibility", visibility::BINDINGS),
+        ("shade", shade::BINDINGS),
+        ("edges", edges::BINDINGS),
+        ("xray", xray::BINDINGS),
+        ("pick", pick::BINDINGS),
+    ]
+}
+
 /// One member of a GPU struct: its name and byte offset.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Member {

@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use cadre_render::SECTION_CAP;
+use cadre_render::layout::{Binding, pass_bindings};
 use cadre_render::layout::{
     DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE,
     FILL_BACKGROUND, FILL_NONE, FILL_SHADED, Frame, GpuStruct, LightGpu, Material, Member,
@@ -187,6 +188,90 @@ fn swapped_fields_are_caught() {
     );
     // And the true layout passes.
     compare("Frame", &Frame::members(), size_of::<Frame>(), &wgsl, size).unwrap();
+}
+
+/// The group-0 bindings `module` declares, in binding order, as [`Binding`]s.
+fn naga_bindings(module: &naga::Module) -> Result<Vec<(u32, Binding)>, String> {
+    let type_name = |h: naga::Handle<naga::Type>| -> Result<&'static str, String> {
+        let ty = &module.types[h];
+        if let Some(name) = &ty.name {
+            return Ok(name.clone().leak());
+        }
+        match ty.inner {
+            naga::TypeInner::Vector {
+                size: naga::VectorSize::Quad,
+                scalar: naga::Scalar::U32,
+            } => Ok("vec4<u32>"),
+            ref other => Err(format!("unnamed binding type {other:?}")),
+        }
+    };
+    let mut out = Vec::new();
+    for (_, var) in module.global_variables.iter() {
+        let Some(rb) = &var.binding else { continue };
+        if rb.group != 0 {
+            return Err(format!("{:?} is in group {}", var.name, rb.group));
+        }
+        let binding = match (var.space, &module.types[var.ty].inner) {
+            (naga::AddressSpace::Uniform, _) => Binding::Uniform(type_name(var.ty)?),
+            (naga::AddressSpace::Storage { access }, naga::TypeInner::Array { base, .. })
+                if !access.contains(naga::StorageAccess::STORE) =>
+            {
+                Binding::Storage(type_name(*base)?)
+            }
+            (
+                naga::AddressSpace::Handle,
+                naga::TypeInner::Image {
+                    dim: naga::ImageDimension::D2,
+                    arrayed: false,
+                    class: naga::ImageClass::Sampled { kind, multi: false },
+                },
+            ) => match kind {
+                naga::ScalarKind::Float => Binding::FloatTexture,
+                naga::ScalarKind::Uint => Binding::UintTexture,
+                other => return Err(format!("texture of {other:?}")),
+            },
+            (space, inner) => return Err(format!("{:?}: {space:?} {inner:?}", var.name)),
+        };
+        out.push((rb.binding, binding));
+    }
+    out.sort_by_key(|b| b.0);
+    Ok(out)
+}
+
+/// Compares a pass's Rust binding list (binding = index) with its WGSL declarations.
+fn compare_bindings(pass: &str, rust: &[Binding], wgsl: &[(u32, Binding)]) -> Result<(), String> {
+    let rust: Vec<(u32, Binding)> = rust
+        .iter()
+        .enumerate()
+        .map(|(i, b)| (i as u32, *b))
+        .collect();
+    if rust != wgsl {
+        return Err(format!(
+            "{pass}: Rust binds {rust:?}, the WGSL declares {wgsl:?}"
+        ));
+    }
+    Ok(())
+}
+
+#[test]
+fn every_pass_binds_what_its_shader_declares() {
+    for (pass, bindings) in pass_bindings() {
+        let wgsl = naga_bindings(&module(pass)).unwrap_or_else(|e| panic!("{pass}: {e}"));
+        compare_bindings(pass, bindings, &wgsl).unwrap_or_else(|e| panic!("{e}"));
+    }
+}
+
+#[test]
+fn a_wrong_binding_list_is_caught() {
+    // Negative control: shade's list with its materials and lights swapped (both storage
+    // arrays, which wgpu's own validation accepts), and with its last binding dropped.
+    let (_, shade) = pass_bindings()[1];
+    let wgsl = naga_bindings(&module("shade")).unwrap();
+    compare_bindings("shade", shade, &wgsl).unwrap();
+    let mut swapped = shade.to_vec();
+    swapped.swap(1, 4);
+    assert!(compare_bindings("shade", &swapped, &wgsl).is_err());
+    assert!(compare_bindings("shade", &shade[..shade.len() - 1], &wgsl).is_err());
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! layout entries, the mesh vertex layout, overlay render passes and drawing a scene's meshes.
 
 use crate::gpu_scene::{DrawCall, FrameScene};
-use crate::layout::Vertex;
+use crate::layout::{Binding, Vertex};
 
 /// The WGSL every pass starts with (`common.wgsl`: the layout structs and the frame uniform).
 pub(crate) const COMMON_WGSL: &str = include_str!("common.wgsl");
@@ -13,6 +13,29 @@ pub(crate) fn shader(device: &wgpu::Device, label: &str, own: &str) -> wgpu::Sha
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(format!("{COMMON_WGSL}\n{own}").into()),
     })
+}
+
+/// The bind group layout entries of a pass's [`Binding`] list: buffers visible to `stages`,
+/// textures to the fragment stage.
+pub(crate) fn entries(
+    bindings: &[Binding],
+    stages: wgpu::ShaderStages,
+) -> Vec<wgpu::BindGroupLayoutEntry> {
+    bindings
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let i = i as u32;
+            match b {
+                Binding::Uniform(_) => buffer_entry(i, wgpu::BufferBindingType::Uniform, stages),
+                Binding::Storage(_) => buffer_entry(i, STORAGE, stages),
+                Binding::FloatTexture => {
+                    texture_entry(i, wgpu::TextureSampleType::Float { filterable: false })
+                }
+                Binding::UintTexture => texture_entry(i, wgpu::TextureSampleType::Uint),
+            }
+        })
+        .collect()
 }
 
 /// A uniform or storage buffer binding.

@@ -2,11 +2,20 @@
 //! of constant pixel width, visible, hidden-dashed or all, by the display mode.
 
 use super::common::{
-    PipelineSpec, STORAGE, bind_group, blended, buffer_entry, colour_pass, layouts, pipeline,
-    shader, texture_entry,
+    PipelineSpec, bind_group, blended, colour_pass, entries, layouts, pipeline, shader,
 };
 use super::visibility::VisibilityTargets;
 use crate::gpu_scene::FrameScene;
+use crate::layout::{Binding, Draw, Frame, GpuStruct, Segment};
+
+/// Bind group 0: frame, draw records, segments, the id target, selection.
+pub(crate) const BINDINGS: &[Binding] = &[
+    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Storage(Draw::WGSL_NAME),
+    Binding::Storage(Segment::WGSL_NAME),
+    Binding::UintTexture,
+    Binding::Storage("vec4<u32>"),
+];
 
 /// The pass's pipeline and bind group layout.
 pub(crate) struct EdgesPass {
@@ -19,17 +28,7 @@ impl EdgesPass {
     pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> EdgesPass {
         let module = shader(device, "edges", include_str!("edges.wgsl"));
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let (layout, pipeline_layout) = layouts(
-            device,
-            "edges",
-            &[
-                buffer_entry(0, wgpu::BufferBindingType::Uniform, stages),
-                buffer_entry(1, STORAGE, stages),
-                buffer_entry(2, STORAGE, stages),
-                texture_entry(3, wgpu::TextureSampleType::Uint),
-                buffer_entry(4, STORAGE, stages),
-            ],
-        );
+        let (layout, pipeline_layout) = layouts(device, "edges", &entries(BINDINGS, stages));
         let pipeline = pipeline(
             device,
             PipelineSpec {

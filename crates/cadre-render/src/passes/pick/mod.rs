@@ -1,12 +1,18 @@
 //! Pick pass: B-Rep edges and vertices into an id target, for picking with a few pixels of
 //! tolerance (faces are picked from the visibility buffer's ids).
 
-use super::common::{
-    PipelineSpec, STORAGE, bind_group, buffer_entry, colour_pass, layouts, pipeline, shader,
-    texture_entry,
-};
+use super::common::{PipelineSpec, bind_group, colour_pass, entries, layouts, pipeline, shader};
 use super::visibility::VisibilityTargets;
 use crate::gpu_scene::EdgeCall;
+use crate::layout::{Binding, Draw, Frame, GpuStruct, Segment};
+
+/// Bind group 0: frame, draw records, segments, the id target.
+pub(crate) const BINDINGS: &[Binding] = &[
+    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Storage(Draw::WGSL_NAME),
+    Binding::Storage(Segment::WGSL_NAME),
+    Binding::UintTexture,
+];
 
 /// STEP id, instance + 1 (0 = nothing), kind (2 edge, 3 vertex), unused.
 pub(crate) const PICK: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
@@ -30,16 +36,7 @@ impl PickPass {
     pub fn new(device: &wgpu::Device) -> PickPass {
         let module = shader(device, "pick", include_str!("pick.wgsl"));
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let (layout, pipeline_layout) = layouts(
-            device,
-            "pick",
-            &[
-                buffer_entry(0, wgpu::BufferBindingType::Uniform, stages),
-                buffer_entry(1, STORAGE, stages),
-                buffer_entry(2, STORAGE, stages),
-                texture_entry(3, wgpu::TextureSampleType::Uint),
-            ],
-        );
+        let (layout, pipeline_layout) = layouts(device, "pick", &entries(BINDINGS, stages));
         let pipeline = pipeline(
             device,
             PipelineSpec {

@@ -1,10 +1,18 @@
 //! Shading pass: lights the visibility buffer into the colour target.
 
-use super::common::{
-    PipelineSpec, STORAGE, bind_group, buffer_entry, colour_pass, layouts, pipeline, shader,
-    texture_entry,
-};
+use super::common::{PipelineSpec, bind_group, colour_pass, entries, layouts, pipeline, shader};
 use super::visibility::VisibilityTargets;
+use crate::layout::{Binding, Frame, GpuStruct, LightGpu, Material};
+
+/// Bind group 0: frame, materials, the normal and id targets, lights, selection.
+pub(crate) const BINDINGS: &[Binding] = &[
+    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Storage(Material::WGSL_NAME),
+    Binding::FloatTexture,
+    Binding::UintTexture,
+    Binding::Storage(LightGpu::WGSL_NAME),
+    Binding::Storage("vec4<u32>"),
+];
 
 /// Format of the offscreen colour target (linear output, sRGB encoding on write); window
 /// surfaces bring theirs (`Renderer::for_format`).
@@ -29,18 +37,7 @@ impl ShadePass {
     pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> ShadePass {
         let module = shader(device, "shade", include_str!("shade.wgsl"));
         let fragment = wgpu::ShaderStages::FRAGMENT;
-        let (layout, pipeline_layout) = layouts(
-            device,
-            "shade",
-            &[
-                buffer_entry(0, wgpu::BufferBindingType::Uniform, fragment),
-                buffer_entry(1, STORAGE, fragment),
-                texture_entry(2, wgpu::TextureSampleType::Float { filterable: false }),
-                texture_entry(3, wgpu::TextureSampleType::Uint),
-                buffer_entry(4, STORAGE, fragment),
-                buffer_entry(5, STORAGE, fragment),
-            ],
-        );
+        let (layout, pipeline_layout) = layouts(device, "shade", &entries(BINDINGS, fragment));
         let pipeline = pipeline(
             device,
             PipelineSpec {

@@ -1,10 +1,16 @@
 //! Visibility pass: the mesh back-end's draw into the visibility buffer.
 
 use super::common::{
-    PipelineSpec, STORAGE, bind_group, buffer_entry, draw_meshes, layouts, mesh_vertex_layout,
-    pipeline, shader,
+    PipelineSpec, bind_group, draw_meshes, entries, layouts, mesh_vertex_layout, pipeline, shader,
 };
 use crate::gpu_scene::FrameScene;
+use crate::layout::{Binding, Draw, Frame, GpuStruct};
+
+/// Bind group 0: frame, draw records.
+pub(crate) const BINDINGS: &[Binding] = &[
+    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Storage(Draw::WGSL_NAME),
+];
 
 /// Formats of the visibility buffer.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -73,14 +79,7 @@ impl VisibilityPass {
     pub fn new(device: &wgpu::Device) -> VisibilityPass {
         let module = shader(device, "visibility", include_str!("visibility.wgsl"));
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let (layout, pipeline_layout) = layouts(
-            device,
-            "visibility",
-            &[
-                buffer_entry(0, wgpu::BufferBindingType::Uniform, stages),
-                buffer_entry(1, STORAGE, stages),
-            ],
-        );
+        let (layout, pipeline_layout) = layouts(device, "visibility", &entries(BINDINGS, stages));
         let pipeline = pipeline(
             device,
             PipelineSpec {

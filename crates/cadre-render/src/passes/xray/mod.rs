@@ -1,11 +1,19 @@
 //! X-ray pass: the meshes drawn see-through over the background, before the edges.
 
 use super::common::{
-    PipelineSpec, STORAGE, bind_group, blended, buffer_entry, colour_pass, draw_meshes, layouts,
+    PipelineSpec, bind_group, blended, colour_pass, draw_meshes, entries, layouts,
     mesh_vertex_layout, pipeline, shader,
 };
 use super::visibility::{DEPTH, VisibilityTargets};
 use crate::gpu_scene::FrameScene;
+use crate::layout::{Binding, Draw, Frame, GpuStruct, Material};
+
+/// Bind group 0: frame, draw records, materials.
+pub(crate) const BINDINGS: &[Binding] = &[
+    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Storage(Draw::WGSL_NAME),
+    Binding::Storage(Material::WGSL_NAME),
+];
 
 /// The pass's pipeline and bind group layout.
 pub(crate) struct XrayPass {
@@ -20,15 +28,7 @@ impl XrayPass {
     pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> XrayPass {
         let module = shader(device, "xray", include_str!("xray.wgsl"));
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let (layout, pipeline_layout) = layouts(
-            device,
-            "xray",
-            &[
-                buffer_entry(0, wgpu::BufferBindingType::Uniform, stages),
-                buffer_entry(1, STORAGE, stages),
-                buffer_entry(2, STORAGE, stages),
-            ],
-        );
+        let (layout, pipeline_layout) = layouts(device, "xray", &entries(BINDINGS, stages));
         let buffers = [Some(mesh_vertex_layout())];
         let targets = [Some(blended(colour))];
         let spec = |label, fragment, depth| PipelineSpec {
