@@ -420,6 +420,22 @@ pub fn face_uv_region(
             uv[3] = uv[3].max(uv[2] + pv);
         }
     }
+    // Loops that enclose nothing in (u, v) (every point projects to one spot or one line: a
+    // degenerate edge alone) are dropped by the trimmer, which then reads the face as its
+    // whole surface when that is bounded; the box follows it (a fuzzed B-spline face had a
+    // one-point box while it meshed whole, so the deflection fell to its 1e-7 mm floor).
+    let ((du0, du1), (dv0, dv1)) = surface.domain();
+    let flat = |lo: f64, hi: f64, d0: f64, d1: f64| hi - lo <= 1e-9 * (d1 - d0).abs().max(1.0);
+    if (flat(uv[0], uv[1], du0, du1) || flat(uv[2], uv[3], dv0, dv1))
+        && [du0, du1, dv0, dv1].iter().all(|x| x.is_finite())
+    {
+        return Some(UvRegion {
+            rect: [du0, du1, dv0, dv1],
+            polygons: None,
+            sides: Vec::new(),
+            loops: Vec::new(),
+        });
+    }
     let wraps = complement || !seams_empty || !wrapping.is_empty();
     Some(UvRegion {
         rect: uv,

@@ -12,7 +12,8 @@ use cadre_mesh::{MeshParams, mesh_model};
 use common::{MM_CONTEXT, model};
 
 /// A torus (R 37.5, r 12.5, axis z at the origin) face in a shell, with `bounds` as its
-/// bounds and one edge loop `#20` whose edge curve names the missing vertices #998 and #999.
+/// bounds: `#21`, one edge loop whose edge curve names the missing vertices #998 and #999,
+/// or `#26`, one loop of an edge from and to one vertex on the torus whose curve is missing.
 fn torus_face(bounds: &str) -> String {
     format!(
         "{MM_CONTEXT}
@@ -26,6 +27,12 @@ fn torus_face(bounds: &str) -> String {
 #12=ORIENTED_EDGE('',*,*,#11,.T.);
 #20=EDGE_LOOP('',(#12));
 #21=FACE_OUTER_BOUND('',#20,.T.);
+#22=CARTESIAN_POINT('',(50.,0.,0.));
+#23=VERTEX_POINT('',#22);
+#25=EDGE_CURVE('',#23,#23,#9999,.T.);
+#28=ORIENTED_EDGE('',*,*,#25,.T.);
+#29=EDGE_LOOP('',(#28));
+#26=FACE_OUTER_BOUND('',#29,.T.);
 #30=ADVANCED_FACE('',({bounds}),#5,.T.);
 #31=OPEN_SHELL('',(#30));
 #32=SHELL_BASED_SURFACE_MODEL('',(#31));
@@ -56,4 +63,15 @@ fn a_face_with_only_empty_loops_is_bounded_as_its_whole_surface() {
     // both readings agree.
     let (no_loop, _) = box_and_triangles(&torus_face(""));
     assert_eq!(no_loop, empty_loop);
+}
+
+#[test]
+fn a_face_bounded_by_one_point_is_bounded_as_its_whole_surface() {
+    // The loop is one point: the trimmer drops it and meshes the whole torus
+    // (a fuzzed B-spline face of this kind had a one-point box: 96,348 triangles at the
+    // 1e-7 mm deflection floor, 32 now).
+    let (point_loop, triangles) = box_and_triangles(&torus_face("#26"));
+    let (no_loop, whole) = box_and_triangles(&torus_face(""));
+    assert_eq!(point_loop, no_loop);
+    assert_eq!(triangles, whole);
 }
