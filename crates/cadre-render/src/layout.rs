@@ -21,15 +21,35 @@ pub enum Binding {
     UintTexture,
 }
 
-/// Every pass's binding list, by pass name (the name of its folder and `.wgsl` file).
-pub fn pass_bindings() -> [(&'static str, &'static [Binding]); 5] {
+/// A shader the renderer compiles: its name, its whole WGSL as compiled, and its bind group.
+#[derive(Clone, Debug)]
+pub struct PassShader {
+    /// The pass or back-end (`visibility/mesh`, `shade`, ...).
+    pub name: &'static str,
+    /// The WGSL exactly as the pipeline compiles it.
+    pub source: String,
+    /// Its bind group 0, binding `i` at index `i`.
+    pub bindings: &'static [Binding],
+}
+
+/// Every shader of the renderer, with what the Rust side binds to it (for the layout tests).
+pub fn pass_shaders() -> Vec<PassShader> {
     use crate::passes::{edges, pick, shade, visibility, xray};
-    [
-        ("visibility", visibility::BINDINGS),
-        ("shade", shade::BINDINGS),
-        ("edges", edges::BINDINGS),
-        ("xray", xray::BINDINGS),
-        ("pick", pick::BINDINGS),
+    let shader = |name, source, bindings| PassShader {
+        name,
+        source,
+        bindings,
+    };
+    vec![
+        shader(
+            "visibility/mesh",
+            visibility::mesh::source(),
+            visibility::mesh::BINDINGS,
+        ),
+        shader("shade", shade::source(), shade::BINDINGS),
+        shader("edges", edges::source(), edges::BINDINGS),
+        shader("xray", xray::source(), xray::BINDINGS),
+        shader("pick", pick::source(), pick::BINDINGS),
     ]
 }
 

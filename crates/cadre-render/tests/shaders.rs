@@ -2,35 +2,36 @@
 //! shared with Rust have the members (names and offsets, in order) and sizes of their
 //! `cadre_render::layout` twins.
 
-use std::path::Path;
-
 use cadre_render::SECTION_CAP;
-use cadre_render::layout::{Binding, pass_bindings};
+use cadre_render::layout::{Binding, PassShader, pass_shaders};
 use cadre_render::layout::{
     DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE,
     FILL_BACKGROUND, FILL_NONE, FILL_SHADED, Frame, GpuStruct, LightGpu, Material, Member,
     PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, Segment,
 };
 
-/// Parses and validates one shader; returns the module.
-fn module(pass: &str) -> naga::Module {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("src/passes")
-        .join(pass)
-        .join(format!("{pass}.wgsl"));
-    // Passes are built as the shared declarations followed by their own source.
-    let common = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/passes/common.wgsl");
-    let source = std::fs::read_to_string(&common).expect("common.wgsl")
-        + "\n"
-        + &std::fs::read_to_string(&path).expect("shader source");
-    let module = naga::front::wgsl::parse_str(&source)
-        .unwrap_or_else(|e| panic!("{}: {}", path.display(), e.emit_to_string(&source)));
+/// The renderer's shader named `name`, as it compiles it.
+fn shader(name: &str) -> PassShader {
+    pass_shaders()
+        .into_iter()
+        .find(|s| s.name == name)
+        .unwrap_or_else(|| panic!("no shader {name}"))
+}
+
+/// Parses and validates one of the renderer's shaders; returns the module.
+fn module(name: &str) -> naga::Module {
+    validated(name, &shader(name).source)
+}
+
+fn validated(name: &str, source: &str) -> naga::Module {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
     naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::empty(),
     )
     .validate(&module)
-    .unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+    .unwrap_or_else(|e| panic!("{name}: {e:?}"));
     module
 }
 
@@ -111,29 +112,29 @@ fn check<T: GpuStruct>(pass: &str, module: &naga::Module) -> Result<bool, String
     .map(|()| true)
 }
 
-const PASSES: [&str; 5] = ["visibility", "shade", "edges", "xray", "pick"];
-
 #[test]
 fn shaders_validate_and_share_the_rust_layouts() {
     // The shared structs are declared once, in common.wgsl, for every pass.
-    for pass in PASSES {
-        let own = std::fs::read_to_string(
-            Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("src/passes")
-                .join(pass)
-                .join(format!("{pass}.wgsl")),
-        )
-        .expect("shader source");
-        for name in ["Frame", "Draw", "Material", "Segment", "Light"] {
+    for pass in pass_shaders() {
+        for name in [
+            "Frame",
+            "Draw",
+            "Material",
+            "Segment",
+            "Light",
+            "VisibilityOut",
+        ] {
             assert!(
-                !own.contains(&format!("struct {name} ")),
-                "{pass}.wgsl redeclares {name}"
+                pass.source.matches(&format!("struct {name} ")).count() <= 1,
+                "{} declares {name} twice",
+                pass.name
             );
         }
     }
     let mut found = std::collections::BTreeMap::<&str, usize>::new();
-    for pass in PASSES {
-        let m = module(pass);
+    for pass in pass_shaders() {
+        let m = validated(pass.name, &pass.source);
+        let pass = pass.name;
         for (name, hit) in [
             ("Frame", check::<Frame>(pass, &m)),
             ("Draw", check::<Draw>(pass, &m)),
@@ -255,9 +256,10 @@ fn compare_bindings(pass: &str, rust: &[Binding], wgsl: &[(u32, Binding)]) -> Re
 
 #[test]
 fn every_pass_binds_what_its_shader_declares() {
-    for (pass, bindings) in pass_bindings() {
-        let wgsl = naga_bindings(&module(pass)).unwrap_or_else(|e| panic!("{pass}: {e}"));
-        compare_bindings(pass, bindings, &wgsl).unwrap_or_else(|e| panic!("{e}"));
+    for pass in pass_shaders() {
+        let m = validated(pass.name, &pass.source);
+        let wgsl = naga_bindings(&m).unwrap_or_else(|e| panic!("{}: {e}", pass.name));
+        compare_bindings(pass.name, pass.bindings, &wgsl).unwrap_or_else(|e| panic!("{e}"));
     }
 }
 
@@ -265,7 +267,7 @@ fn every_pass_binds_what_its_shader_declares() {
 fn a_wrong_binding_list_is_caught() {
     // Negative control: shade's list with its materials and lights swapped (both storage
     // arrays, which wgpu's own validation accepts), and with its last binding dropped.
-    let (_, shade) = pass_bindings()[1];
+    let shade = shader("shade").bindings;
     let wgsl = naga_bindings(&module("shade")).unwrap();
     compare_bindings("shade", shade, &wgsl).unwrap();
     let mut swapped = shade.to_vec();
@@ -277,7 +279,7 @@ fn a_wrong_binding_list_is_caught() {
 #[test]
 fn the_shaders_flags_are_the_rust_flags() {
     // Draw flags and the section cap marker are written by Rust or read by tests from Rust.
-    let visibility = module("visibility");
+    let visibility = module("visibility/mesh");
     for (name, value) in [
         ("DRAW_CLOSED", DRAW_CLOSED),
         ("DRAW_INSIDE_OUT", DRAW_INSIDE_OUT),

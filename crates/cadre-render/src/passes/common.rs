@@ -7,11 +7,21 @@ use crate::layout::{Binding, Vertex};
 /// The WGSL every pass starts with (`common.wgsl`: the layout structs and the frame uniform).
 pub(crate) const COMMON_WGSL: &str = include_str!("common.wgsl");
 
-/// A pass's shader module: [`COMMON_WGSL`] followed by the pass's own source.
-pub(crate) fn shader(device: &wgpu::Device, label: &str, own: &str) -> wgpu::ShaderModule {
+/// A pass's whole WGSL: [`COMMON_WGSL`] followed by `parts` (shared pieces, then its own).
+pub(crate) fn wgsl(parts: &[&str]) -> String {
+    let mut source = COMMON_WGSL.to_string();
+    for part in parts {
+        source.push('\n');
+        source.push_str(part);
+    }
+    source
+}
+
+/// A pass's shader module from its whole WGSL (see [`wgsl`]).
+pub(crate) fn shader(device: &wgpu::Device, label: &str, source: &str) -> wgpu::ShaderModule {
     device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(format!("{COMMON_WGSL}\n{own}").into()),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
     })
 }
 

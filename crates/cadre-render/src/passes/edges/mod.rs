@@ -2,7 +2,7 @@
 //! of constant pixel width, visible, hidden-dashed or all, by the display mode.
 
 use super::common::{
-    PipelineSpec, bind_group, blended, colour_pass, entries, layouts, pipeline, shader,
+    PipelineSpec, bind_group, blended, colour_pass, entries, layouts, pipeline, shader, wgsl,
 };
 use super::visibility::VisibilityTargets;
 use crate::gpu_scene::FrameScene;
@@ -17,6 +17,11 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Storage("vec4<u32>"),
 ];
 
+/// The pass's whole WGSL: the shared declarations and its own source.
+pub(crate) fn source() -> String {
+    wgsl(&[include_str!("edges.wgsl")])
+}
+
 /// The pass's pipeline and bind group layout.
 pub(crate) struct EdgesPass {
     pipeline: wgpu::RenderPipeline,
@@ -26,7 +31,7 @@ pub(crate) struct EdgesPass {
 impl EdgesPass {
     /// Builds the pipeline for a `colour` target of that format.
     pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> EdgesPass {
-        let module = shader(device, "edges", include_str!("edges.wgsl"));
+        let module = shader(device, "edges", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) = layouts(device, "edges", &entries(BINDINGS, stages));
         let pipeline = pipeline(

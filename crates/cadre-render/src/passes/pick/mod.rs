@@ -1,7 +1,9 @@
 //! Pick pass: B-Rep edges and vertices into an id target, for picking with a few pixels of
 //! tolerance (faces are picked from the visibility buffer's ids).
 
-use super::common::{PipelineSpec, bind_group, colour_pass, entries, layouts, pipeline, shader};
+use super::common::{
+    PipelineSpec, bind_group, colour_pass, entries, layouts, pipeline, shader, wgsl,
+};
 use super::visibility::VisibilityTargets;
 use crate::gpu_scene::EdgeCall;
 use crate::layout::{Binding, Draw, Frame, GpuStruct, Segment};
@@ -13,6 +15,11 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Storage(Segment::WGSL_NAME),
     Binding::UintTexture,
 ];
+
+/// The pass's whole WGSL: the shared declarations and its own source.
+pub(crate) fn source() -> String {
+    wgsl(&[include_str!("pick.wgsl")])
+}
 
 /// STEP id, instance + 1 (0 = nothing), kind (2 edge, 3 vertex), unused.
 pub(crate) const PICK: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
@@ -34,7 +41,7 @@ pub(crate) struct PickInputs<'a> {
 impl PickPass {
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> PickPass {
-        let module = shader(device, "pick", include_str!("pick.wgsl"));
+        let module = shader(device, "pick", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) = layouts(device, "pick", &entries(BINDINGS, stages));
         let pipeline = pipeline(

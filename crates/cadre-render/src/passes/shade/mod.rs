@@ -1,6 +1,8 @@
 //! Shading pass: lights the visibility buffer into the colour target.
 
-use super::common::{PipelineSpec, bind_group, colour_pass, entries, layouts, pipeline, shader};
+use super::common::{
+    PipelineSpec, bind_group, colour_pass, entries, layouts, pipeline, shader, wgsl,
+};
 use super::visibility::VisibilityTargets;
 use crate::layout::{Binding, Frame, GpuStruct, LightGpu, Material};
 
@@ -13,6 +15,11 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Storage(LightGpu::WGSL_NAME),
     Binding::Storage("vec4<u32>"),
 ];
+
+/// The pass's whole WGSL: the shared declarations and its own source.
+pub(crate) fn source() -> String {
+    wgsl(&[include_str!("shade.wgsl")])
+}
 
 /// Format of the offscreen colour target (linear output, sRGB encoding on write); window
 /// surfaces bring theirs (`Renderer::for_format`).
@@ -35,7 +42,7 @@ pub(crate) struct ShadePass {
 impl ShadePass {
     /// Builds the pipeline for a `colour` target of that format.
     pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> ShadePass {
-        let module = shader(device, "shade", include_str!("shade.wgsl"));
+        let module = shader(device, "shade", &source());
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let (layout, pipeline_layout) = layouts(device, "shade", &entries(BINDINGS, fragment));
         let pipeline = pipeline(

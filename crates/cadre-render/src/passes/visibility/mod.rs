@@ -1,16 +1,15 @@
-//! Visibility pass: the mesh back-end's draw into the visibility buffer.
+//! Visibility pass: the visibility buffer (depth, normal, ids, (u, v)) and the surface
+//! back-ends that write it. The pass is opened once per frame (targets cleared) and every
+//! back-end draws into it in turn; each back-end's fragments go through the one texel writer
+//! of `texel.wgsl` (section caps, id packing), so shading, edges, picking and sections read
+//! the same buffer whatever drew it. Back-ends: [`mesh`] (the scene's triangles).
 
-use super::common::{
-    PipelineSpec, bind_group, draw_meshes, entries, layouts, mesh_vertex_layout, pipeline, shader,
-};
+pub(crate) mod mesh;
+
 use crate::gpu_scene::FrameScene;
-use crate::layout::{Binding, Draw, Frame, GpuStruct};
 
-/// Bind group 0: frame, draw records.
-pub(crate) const BINDINGS: &[Binding] = &[
-    Binding::Uniform(Frame::WGSL_NAME),
-    Binding::Storage(Draw::WGSL_NAME),
-];
+/// The WGSL of the shared texel writer, placed before each back-end's own source.
+pub(crate) const TEXEL_WGSL: &str = include_str!("texel.wgsl");
 
 /// Formats of the visibility buffer.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -22,11 +21,40 @@ pub(crate) const IDS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 /// renderable on GL, integer ones are).
 pub(crate) const UV: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 
-/// The pass's pipeline and bind group layout.
+/// The surface back-ends, drawn in this order into one opened pass.
 pub(crate) struct VisibilityPass {
-    pipeline: wgpu::RenderPipeline,
-    layout: wgpu::BindGroupLayout,
+    mesh: mesh::MeshBackend,
 }
+
+/// Depth state of every back-end: reverse Z (nearer is larger), written.
+pub(crate) fn depth_state() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH,
+        depth_write_enabled: Some(true),
+        depth_compare: Some(wgpu::CompareFunction::Greater),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
+/// Colour targets of every back-end: normal, ids, (u, v).
+pub(crate) const TARGETS: [Option<wgpu::ColorTargetState>; 3] = [
+    Some(wgpu::ColorTargetState {
+        format: NORMAL,
+        blend: None,
+        write_mask: wgpu::ColorWrites::ALL,
+    }),
+    Some(wgpu::ColorTargetState {
+        format: IDS,
+        blend: None,
+        write_mask: wgpu::ColorWrites::ALL,
+    }),
+    Some(wgpu::ColorTargetState {
+        format: UV,
+        blend: None,
+        write_mask: wgpu::ColorWrites::ALL,
+    }),
+];
 
 /// The visibility buffer's textures, of one size.
 pub(crate) struct VisibilityTargets {
@@ -75,34 +103,15 @@ impl VisibilityTargets {
 }
 
 impl VisibilityPass {
-    /// Builds the pipeline.
+    /// Builds every back-end's pipeline.
     pub fn new(device: &wgpu::Device) -> VisibilityPass {
-        let module = shader(device, "visibility", include_str!("visibility.wgsl"));
-        let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let (layout, pipeline_layout) = layouts(device, "visibility", &entries(BINDINGS, stages));
-        let pipeline = pipeline(
-            device,
-            PipelineSpec {
-                label: "visibility",
-                layout: &pipeline_layout,
-                module: &module,
-                fragment: "fs_main",
-                buffers: &[Some(mesh_vertex_layout())],
-                depth: Some(wgpu::DepthStencilState {
-                    format: DEPTH,
-                    depth_write_enabled: Some(true),
-                    // Reverse Z: nearer is larger.
-                    depth_compare: Some(wgpu::CompareFunction::Greater),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                targets: &[Some(NORMAL.into()), Some(IDS.into()), Some(UV.into())],
-            },
-        );
-        VisibilityPass { pipeline, layout }
+        VisibilityPass {
+            mesh: mesh::MeshBackend::new(device),
+        }
     }
 
-    /// Records the pass: clears the targets and draws every call of `scene`.
+    /// Records the pass: opens it once on `targets` (cleared) and has every back-end draw
+    /// `scene` into it.
     pub fn record(
         &self,
         device: &wgpu::Device,
@@ -111,44 +120,44 @@ impl VisibilityPass {
         frame: &wgpu::Buffer,
         scene: &FrameScene<'_>,
     ) {
-        let bind = bind_group(
-            device,
-            "visibility",
-            &self.layout,
-            &[frame.as_entire_binding(), scene.draws.as_entire_binding()],
-        );
-        let clear = |view| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("visibility"),
-            color_attachments: &[
-                clear(&targets.normal),
-                clear(&targets.ids),
-                clear(&targets.uv),
-            ],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind, &[]);
-        draw_meshes(&mut pass, scene, &scene.calls);
+        let mut pass = open(encoder, targets);
+        self.mesh.draw(device, &mut pass, frame, scene);
     }
+}
+
+/// The visibility render pass over `targets`, cleared: background ids 0, depth 0 (far).
+fn open<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    targets: &VisibilityTargets,
+) -> wgpu::RenderPass<'e> {
+    let clear = |view| {
+        Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                store: wgpu::StoreOp::Store,
+            },
+        })
+    };
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("visibility"),
+        color_attachments: &[
+            clear(&targets.normal),
+            clear(&targets.ids),
+            clear(&targets.uv),
+        ],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &targets.depth,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(0.0),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
 }

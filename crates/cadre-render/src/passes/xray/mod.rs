@@ -2,7 +2,7 @@
 
 use super::common::{
     PipelineSpec, bind_group, blended, colour_pass, draw_meshes, entries, layouts,
-    mesh_vertex_layout, pipeline, shader,
+    mesh_vertex_layout, pipeline, shader, wgsl,
 };
 use super::visibility::{DEPTH, VisibilityTargets};
 use crate::gpu_scene::FrameScene;
@@ -15,6 +15,11 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Storage(Material::WGSL_NAME),
 ];
 
+/// The pass's whole WGSL: the shared declarations and its own source.
+pub(crate) fn source() -> String {
+    wgsl(&[include_str!("xray.wgsl")])
+}
+
 /// The pass's pipeline and bind group layout.
 pub(crate) struct XrayPass {
     pipeline: wgpu::RenderPipeline,
@@ -26,7 +31,7 @@ pub(crate) struct XrayPass {
 impl XrayPass {
     /// Builds the pipeline for a `colour` target of that format.
     pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> XrayPass {
-        let module = shader(device, "xray", include_str!("xray.wgsl"));
+        let module = shader(device, "xray", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) = layouts(device, "xray", &entries(BINDINGS, stages));
         let buffers = [Some(mesh_vertex_layout())];

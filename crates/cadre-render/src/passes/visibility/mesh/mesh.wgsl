@@ -1,0 +1,42 @@
+// Mesh back-end of the visibility pass: triangles of the scene's meshes, placed by their
+// draw records, each fragment written by `visibility_texel` (texel.wgsl, before this file).
+
+@group(0) @binding(1) var<storage, read> draws: array<Draw>;
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) @interpolate(flat) face: u32,
+    @location(2) @interpolate(flat) draw: u32,
+    @location(3) uv: vec2<f32>,
+    // Camera-relative world position, for the section planes.
+    @location(4) world: vec3<f32>,
+}
+
+@vertex
+fn vs_main(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) face: u32,
+    @location(3) uv: vec2<f32>,
+    @builtin(instance_index) draw_index: u32,
+) -> VertexOut {
+    let placed = place_vertex(draws[draw_index], position, normal);
+    var out: VertexOut;
+    out.clip = placed.clip;
+    out.world = placed.world;
+    out.normal = placed.normal;
+    out.face = face;
+    out.draw = draw_index;
+    out.uv = uv;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> VisibilityOut {
+    if section_cut(in.world) {
+        discard;
+    }
+    let d = draws[in.draw];
+    return visibility_texel(in.world, in.normal, in.face, d, in.clip.z, in.uv, front);
+}
