@@ -8,12 +8,13 @@ pub enum RenderError {
     /// No GPU adapter, native or software, could be found.
     #[error(
         "no GPU adapter found (native drivers, or Mesa's software Vulkan: \
-         apt-get install mesa-vulkan-drivers): {0}"
+         apt-get install mesa-vulkan-drivers): {}",
+        .0.as_ref().map_or_else(|| "no backend tried".to_string(), |e| e.to_string())
     )]
-    NoAdapter(String),
+    NoAdapter(#[source] Option<Box<dyn std::error::Error + Send + Sync>>),
     /// The adapter refused to create a device.
     #[error("the GPU adapter refused a device: {0}")]
-    Device(String),
+    Device(#[source] wgpu::RequestDeviceError),
     /// The adapter lacks a capability the passes need.
     #[error("the GPU adapter cannot run the renderer: {0}")]
     Unsupported(String),
@@ -27,12 +28,32 @@ pub enum RenderError {
         /// Largest side the adapter allows (after supersampling).
         max: u32,
     },
-    /// Reading the image back from the GPU failed.
+    /// Waiting for the GPU to finish a frame failed.
+    #[error("waiting for the GPU failed: {0}")]
+    Poll(#[source] wgpu::PollError),
+    /// The buffer the image is read back through could not be mapped.
     #[error("reading the image back from the GPU failed: {0}")]
-    Readback(String),
+    Map(#[source] wgpu::BufferAsyncError),
+    /// The mapped buffer's range could not be read.
+    #[error("reading the image back from the GPU failed: {0}")]
+    MapRange(#[source] wgpu::MapRangeError),
+    /// The GPU dropped the read-back without answering.
+    #[error("the GPU dropped the image read-back")]
+    ReadbackLost(#[source] std::sync::mpsc::RecvError),
+    /// The image read back does not have the size asked for.
+    #[error("the image read back is {got} bytes, not the {want} of its size")]
+    ReadbackSize {
+        /// Bytes read back.
+        got: usize,
+        /// Bytes the image size needs.
+        want: usize,
+    },
+    /// A viewport was asked for what its last frame drew before it drew one.
+    #[error("no frame drawn yet in this viewport")]
+    NoFrame,
     /// The GPU reported a validation or out-of-memory error.
     #[error("the GPU reported an error: {0}")]
-    Gpu(String),
+    Gpu(#[source] wgpu::Error),
     /// A buffer the frame needs is larger than the adapter allows.
     #[error(
         "the scene is too large for this GPU: its {what} take {bytes} bytes, over the \
@@ -46,4 +67,31 @@ pub enum RenderError {
         /// The adapter's limit for it.
         limit: u64,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::error::Error as _;
+
+    #[test]
+    fn errors_keep_their_cause() {
+        let none = RenderError::NoAdapter(None);
+        assert!(none.to_string().ends_with("no backend tried"), "{none}");
+        assert!(none.source().is_none());
+        let cause = RenderError::Unsupported("GL 3.3 cannot read storage buffers".into());
+        let why = RenderError::NoAdapter(Some(Box::new(cause)));
+        assert!(
+            why.to_string()
+                .ends_with("GL 3.3 cannot read storage buffers"),
+            "{why}"
+        );
+        let source = why.source().expect("the cause is the source");
+        assert!(source.to_string().contains("cannot run the renderer"));
+        let size = RenderError::ReadbackSize { got: 4, want: 16 };
+        assert_eq!(
+            size.to_string(),
+            "the image read back is 4 bytes, not the 16 of its size"
+        );
+    }
 }

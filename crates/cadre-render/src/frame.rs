@@ -126,7 +126,7 @@ impl Renderer {
             colour: format,
         };
         match pollster::block_on(scope.pop()) {
-            Some(e) => Err(RenderError::Gpu(e.to_string())),
+            Some(e) => Err(RenderError::Gpu(e)),
             None => Ok(renderer),
         }
     }
@@ -177,8 +177,11 @@ impl Renderer {
                 px.swap(0, 2);
             }
         }
-        let full = RgbaImage::from_raw(w, h, pixels)
-            .ok_or_else(|| RenderError::Readback("image size mismatch".into()))?;
+        let got = pixels.len();
+        let full = RgbaImage::from_raw(w, h, pixels).ok_or(RenderError::ReadbackSize {
+            got,
+            want: 4 * w as usize * h as usize,
+        })?;
         Ok(downsample(&full, ss))
     }
 
@@ -303,7 +306,7 @@ impl Renderer {
         radius: u32,
     ) -> Result<PickWindow, RenderError> {
         let Some(last) = &viewport.last else {
-            return Err(RenderError::Readback("no frame drawn yet".into()));
+            return Err(RenderError::NoFrame);
         };
         let window = PickWindow::around(viewport.width, viewport.height, (x, y), radius);
         if window.width == 0 || window.height == 0 {
@@ -338,7 +341,7 @@ impl Renderer {
         let encoder = device.create_command_encoder(&Default::default());
         let lines = read_region(gpu, encoder, &viewport.pick_texture, origin, size, 16)?;
         if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(RenderError::Gpu(e.to_string()));
+            return Err(RenderError::Gpu(e));
         }
         Ok(PickWindow {
             faces: words4(&faces),
@@ -458,7 +461,7 @@ impl Renderer {
             }
         };
         if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(RenderError::Gpu(e.to_string()));
+            return Err(RenderError::Gpu(e));
         }
         if let Some(v) = viewport {
             v.last = Some(LastFrame {
@@ -724,14 +727,14 @@ pub(crate) fn read_region(
         .map_async(wgpu::MapMode::Read, move |r| drop(tx.send(r)));
     gpu.device
         .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
+        .map_err(RenderError::Poll)?;
     rx.recv()
-        .map_err(|e| RenderError::Readback(e.to_string()))?
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
+        .map_err(RenderError::ReadbackLost)?
+        .map_err(RenderError::Map)?;
     let mapped = buffer
         .slice(..)
         .get_mapped_range()
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
+        .map_err(RenderError::MapRange)?;
     let mut out = Vec::with_capacity((row * h) as usize);
     for y in 0..h as usize {
         let start = y * padded as usize;

@@ -37,7 +37,7 @@ impl Gpu {
     /// The first adapter found trying each set of backends in turn (`force`: the sets replace
     /// what `WGPU_BACKEND` would choose).
     fn first_of(tries: &[wgpu::Backends], force: bool) -> Result<Gpu, RenderError> {
-        let mut last = String::from("no backend tried");
+        let mut last: Option<Box<dyn std::error::Error + Send + Sync>> = None;
         let mut found = None;
         for &backends in tries {
             let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
@@ -60,9 +60,9 @@ impl Gpu {
                         found = Some(gpu);
                         break;
                     }
-                    Err(e) => last = e.to_string(),
+                    Err(e) => last = Some(Box::new(e)),
                 },
-                Err(e) => last = e.to_string(),
+                Err(e) => last = Some(Box::new(e)),
             }
         }
         found.ok_or(RenderError::NoAdapter(last))
@@ -92,7 +92,7 @@ impl Gpu {
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
             ..Default::default()
         }))
-        .map_err(|e| RenderError::Device(e.to_string()))?;
+        .map_err(RenderError::Device)?;
         Ok(Gpu {
             device,
             queue,
