@@ -75,3 +75,56 @@ fn a_face_bounded_by_one_point_is_bounded_as_its_whole_surface() {
     assert_eq!(point_loop, no_loop);
     assert_eq!(triangles, whole);
 }
+
+/// A torus face whose one loop is a 0.01 mm circle on its outer equator, run so that the
+/// face is the torus minus that hole: its edges span 0.02 mm, the face 100 mm.
+fn torus_with_a_pinhole() -> String {
+    format!(
+        "{MM_CONTEXT}
+#1=CARTESIAN_POINT('',(0.,0.,0.));
+#2=DIRECTION('',(0.,0.,1.));
+#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
+#5=TOROIDAL_SURFACE('',#4,37.5,12.5);
+#6=CARTESIAN_POINT('',(50.,0.,0.));
+#7=DIRECTION('',(0.,1.,0.));
+#8=AXIS2_PLACEMENT_3D('',#6,#3,#7);
+#9=CIRCLE('',#8,0.01);
+#10=CARTESIAN_POINT('',(50.,0.01,0.));
+#11=VERTEX_POINT('',#10);
+#12=EDGE_CURVE('',#11,#11,#9,.T.);
+#13=ORIENTED_EDGE('',*,*,#12,.F.);
+#20=EDGE_LOOP('',(#13));
+#21=FACE_OUTER_BOUND('',#20,.T.);
+#30=ADVANCED_FACE('',(#21),#5,.T.);
+#31=OPEN_SHELL('',(#30));
+#32=SHELL_BASED_SURFACE_MODEL('',(#31));
+#40=MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#32),#900);"
+    )
+}
+
+#[test]
+fn a_face_far_larger_than_its_edges_is_not_meshed_finer_than_its_own_size_allows() {
+    let m = model(&torus_with_a_pinhole());
+    // The relative deflection is taken of the edges' box: 2e-5 mm here.
+    let params = MeshParams::relative(&m, 0.001, 0.5);
+    assert!(params.deflection < 1e-4, "{}", params.deflection);
+    let mesh = mesh_model(&m, &params, None);
+    assert!(mesh.failures.is_empty(), "{:?}", mesh.failures);
+    let triangles: usize = mesh.faces.iter().flatten().map(|f| f.triangles.len()).sum();
+    assert!(mesh.truncated.is_empty(), "stopped at the point budget");
+    // About what a torus needs at 10⁻⁵ of its 100 mm size, not the point budget.
+    assert!(triangles < 400_000, "{triangles} triangles");
+    assert!(
+        mesh.repairs.iter().any(|r| r.note.contains("own size")),
+        "{:?}",
+        mesh.repairs
+    );
+    // Negative control: at 0.1 mm the face is meshed as asked, without the note.
+    let coarse = MeshParams {
+        deflection: 0.1,
+        ..params
+    };
+    let mesh = mesh_model(&m, &coarse, None);
+    assert!(mesh.repairs.iter().all(|r| !r.note.contains("own size")));
+}

@@ -10,7 +10,8 @@ use serde_json::{Value, json};
 pub struct MeshReport {
     /// Faces not meshed: (STEP id, reason).
     pub failed: Vec<(u64, String)>,
-    /// Faces meshed after a repair of their trim: (STEP id, what was done).
+    /// Faces meshed after a repair of their trim or coarser than asked: (STEP id, what was
+    /// done).
     pub repaired: Vec<(u64, String)>,
     /// Faces whose refinement stopped at the point budget.
     pub truncated: Vec<u64>,
@@ -60,7 +61,7 @@ impl MeshReport {
             ));
         }
         for (id, note) in &self.repaired {
-            out.push(format!("{}: face meshed after a repair: {note}", at(*id)));
+            out.push(format!("{}: face meshed with a change: {note}", at(*id)));
         }
         for id in &self.truncated {
             out.push(format!(
