@@ -761,32 +761,48 @@ fn linear_to_srgb(c: f32) -> f32 {
     }
 }
 
-/// Averages `factor` × `factor` blocks in linear light (colour) and linearly (alpha).
+/// [`srgb_to_linear`] of every 8-bit value: a supersampled frame has 4 to 16 samples per
+/// output pixel, and a `powf` per sample channel, one row at a time, made the downsampling
+/// 66–90 ms of the 0.26 s an 800×600 render takes on llvmpipe (13–29 ms now, same bytes).
+static SRGB_TO_LINEAR: std::sync::LazyLock<[f32; 256]> =
+    std::sync::LazyLock::new(|| std::array::from_fn(|i| srgb_to_linear(i as f32 / 255.0)));
+
+/// Averages `factor` × `factor` blocks in linear light (colour) and linearly (alpha), rows in
+/// parallel (the same sums in the same order as one row at a time).
 fn downsample(full: &RgbaImage, factor: u32) -> RgbaImage {
+    use rayon::prelude::*;
     if factor <= 1 {
         return full.clone();
     }
     let (w, h) = (full.width() / factor, full.height() / factor);
     let n = (factor * factor) as f32;
-    RgbaImage::from_fn(w, h, |x, y| {
-        let mut sum = [0.0f32; 4];
-        for dy in 0..factor {
-            for dx in 0..factor {
-                let p = full.get_pixel(x * factor + dx, y * factor + dy).0;
-                for c in 0..3 {
-                    sum[c] += srgb_to_linear(f32::from(p[c]) / 255.0);
+    let lut = &*SRGB_TO_LINEAR;
+    let (fw, f) = (full.width() as usize, factor as usize);
+    let src = full.as_raw();
+    let mut out = vec![0u8; 4 * w as usize * h as usize];
+    out.par_chunks_mut(4 * w as usize)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, px) in row.chunks_exact_mut(4).enumerate() {
+                let mut sum = [0.0f32; 4];
+                for dy in 0..f {
+                    for dx in 0..f {
+                        let i = 4 * ((y * f + dy) * fw + x * f + dx);
+                        let p = &src[i..i + 4];
+                        for c in 0..3 {
+                            sum[c] += lut[usize::from(p[c])];
+                        }
+                        sum[3] += f32::from(p[3]) / 255.0;
+                    }
                 }
-                sum[3] += f32::from(p[3]) / 255.0;
+                let to_u8 = |c: f32| (c * 255.0).round().clamp(0.0, 255.0) as u8;
+                px[0] = to_u8(linear_to_srgb(sum[0] / n));
+                px[1] = to_u8(linear_to_srgb(sum[1] / n));
+                px[2] = to_u8(linear_to_srgb(sum[2] / n));
+                px[3] = to_u8(sum[3] / n);
             }
-        }
-        let px = |c: f32| (c * 255.0).round().clamp(0.0, 255.0) as u8;
-        image::Rgba([
-            px(linear_to_srgb(sum[0] / n)),
-            px(linear_to_srgb(sum[1] / n)),
-            px(linear_to_srgb(sum[2] / n)),
-            px(sum[3] / n),
-        ])
-    })
+        });
+    RgbaImage::from_raw(w, h, out).expect("the buffer has w × h pixels")
 }
 
 #[cfg(test)]
