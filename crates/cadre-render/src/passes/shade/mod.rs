@@ -16,9 +16,15 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Storage("vec4<u32>"),
 ];
 
-/// The pass's whole WGSL: the shared declarations and its own source.
+/// The pass's whole WGSL: the shared declarations and its own sources, by job (lighting,
+/// outlines, section caps, then the pass's entry points and bindings).
 pub(crate) fn source() -> String {
-    wgsl(&[include_str!("shade.wgsl")])
+    wgsl(&[
+        include_str!("lighting.wgsl"),
+        include_str!("outlines.wgsl"),
+        include_str!("caps.wgsl"),
+        include_str!("shade.wgsl"),
+    ])
 }
 
 /// Format of the offscreen colour target (linear output, sRGB encoding on write); window
