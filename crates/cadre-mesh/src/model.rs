@@ -166,17 +166,17 @@ pub fn mesh_face(
     mesh_face_noted(model, id, edges, tol, params).0
 }
 
-/// [`mesh_face`], with the repairs its trim and triangulation needed.
 /// A face is never refined finer than this fraction of its own size (the box of its
 /// surface over its trimmed (u, v) rectangle). A relative deflection is taken of the model's
 /// edges; a face the trimmer reads as far larger than its edges (a torus whose only loop is a
 /// tiny hole, fuzzed) was refined to its 500,000-point budget: 995,902 triangles in 2.6 s for
-/// two faces, now 254,272 in 0.9 s. Real faces lie within the model, so this applies to them only when
-/// their edges span under a tenth of the face at a relative deflection of 10⁻⁴ (at 10⁻⁴ of
-/// the face, the corpus's torus-with-a-hole bug28414 was floored at fine settings; at 10⁻⁵ no
-/// corpus face is).
+/// two faces, now 254,272 in 0.9 s. Real faces lie within the model, so this applies to them
+/// only when their edges span under a tenth of the face at a relative deflection of 10⁻⁴ (at
+/// 10⁻⁴ of the face, the corpus's torus-with-a-hole bug28414 was floored at fine settings; at
+/// 10⁻⁵ no corpus face is).
 const FACE_RELATIVE_FLOOR: f64 = 1e-5;
 
+/// [`mesh_face`], with the repairs its trim and triangulation needed.
 fn mesh_face_noted(
     model: &Model,
     id: FaceId,
@@ -202,9 +202,9 @@ fn mesh_face_noted(
     };
     let params = if own_size.is_finite() && params.deflection < floored.deflection {
         notes.push(format!(
-            "meshed at a deflection of {:.3e} mm (10⁻⁵ of the face's own size), not the \
-             {:.3e} mm asked: the face is far larger than the box the relative deflection was \
-             taken of (its edges span less than the face)",
+            "meshed at a deflection of {:.3e} mm ({FACE_RELATIVE_FLOOR:e} of the face's own \
+             size), not the {:.3e} mm asked: the face is far larger than the box the relative \
+             deflection was taken of (its edges span less than the face)",
             floored.deflection, params.deflection
         ));
         &floored

@@ -11,17 +11,21 @@ use cadre_geom::Accuracy;
 use cadre_mesh::{MeshParams, mesh_model};
 use common::{MM_CONTEXT, model};
 
+/// A torus surface #5 (R 37.5, r 12.5, axis z at the origin), with the directions #2 (z) and
+/// #3 (x).
+const TORUS: &str = "
+#1=CARTESIAN_POINT('',(0.,0.,0.));
+#2=DIRECTION('',(0.,0.,1.));
+#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
+#5=TOROIDAL_SURFACE('',#4,37.5,12.5);";
+
 /// A torus (R 37.5, r 12.5, axis z at the origin) face in a shell, with `bounds` as its
 /// bounds: `#21`, one edge loop whose edge curve names the missing vertices #998 and #999,
 /// or `#26`, one loop of an edge from and to one vertex on the torus whose curve is missing.
 fn torus_face(bounds: &str) -> String {
     format!(
-        "{MM_CONTEXT}
-#1=CARTESIAN_POINT('',(0.,0.,0.));
-#2=DIRECTION('',(0.,0.,1.));
-#3=DIRECTION('',(1.,0.,0.));
-#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
-#5=TOROIDAL_SURFACE('',#4,37.5,12.5);
+        "{MM_CONTEXT}{TORUS}
 #10=CIRCLE('',#4,50.);
 #11=EDGE_CURVE('',#998,#999,#10,.T.);
 #12=ORIENTED_EDGE('',*,*,#11,.T.);
@@ -80,12 +84,7 @@ fn a_face_bounded_by_one_point_is_bounded_as_its_whole_surface() {
 /// face is the torus minus that hole: its edges span 0.02 mm, the face 100 mm.
 fn torus_with_a_pinhole() -> String {
     format!(
-        "{MM_CONTEXT}
-#1=CARTESIAN_POINT('',(0.,0.,0.));
-#2=DIRECTION('',(0.,0.,1.));
-#3=DIRECTION('',(1.,0.,0.));
-#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
-#5=TOROIDAL_SURFACE('',#4,37.5,12.5);
+        "{MM_CONTEXT}{TORUS}
 #6=CARTESIAN_POINT('',(50.,0.,0.));
 #7=DIRECTION('',(0.,1.,0.));
 #8=AXIS2_PLACEMENT_3D('',#6,#3,#7);
