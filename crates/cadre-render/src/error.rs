@@ -67,6 +67,32 @@ pub enum RenderError {
         /// The adapter's limit for it.
         limit: u64,
     },
+    /// One frame's instances would cover the image more times over than
+    /// [`crate::MAX_IMAGE_COVERAGE`] (instances piled on each other).
+    #[error(
+        "the scene is too deep to draw: its {instances} instances would cover the image about \
+         {coverage:.0} times over, past the {limit} one frame draws (instances piled on each \
+         other); nothing was drawn"
+    )]
+    Overdrawn {
+        /// Estimated images covered.
+        coverage: f64,
+        /// Visible instances.
+        instances: usize,
+        /// [`crate::MAX_IMAGE_COVERAGE`].
+        limit: f64,
+    },
+    /// One frame would draw more triangles than [`crate::MAX_FRAME_TRIANGLES`].
+    #[error(
+        "the scene is too large to draw: {triangles} triangles placed, over the {limit} one \
+         frame draws"
+    )]
+    TooManyTriangles {
+        /// Triangles of every visible instance.
+        triangles: u64,
+        /// [`crate::MAX_FRAME_TRIANGLES`].
+        limit: u64,
+    },
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ use crate::layout::{
     EDGES_ALL, EDGES_VISIBLE, Frame, LightGpu, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE,
 };
 use crate::passes::edges::EdgesPass;
+use crate::passes::instances::InstanceLayout;
 use crate::passes::pick::{PickInputs, PickPass};
 use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass};
 use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
@@ -102,6 +103,8 @@ pub struct Renderer {
     edges: EdgesPass,
     xray: XrayPass,
     pick: PickPass,
+    /// Bind group 1 of the passes that draw instances.
+    instances: InstanceLayout,
     /// Format of the colour target the pipelines write.
     colour: wgpu::TextureFormat,
 }
@@ -117,12 +120,14 @@ impl Renderer {
     /// `Bgra8UnormSrgb`; an sRGB format gives correct output, the shading is linear).
     pub fn for_format(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<Renderer, RenderError> {
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let instances = InstanceLayout::new(&gpu.device);
         let renderer = Renderer {
-            visibility: VisibilityPass::new(&gpu.device),
+            visibility: VisibilityPass::new(&gpu.device, &instances),
             shade: ShadePass::new(&gpu.device, format),
-            edges: EdgesPass::new(&gpu.device, format),
-            xray: XrayPass::new(&gpu.device, format),
-            pick: PickPass::new(&gpu.device),
+            edges: EdgesPass::new(&gpu.device, format, &instances),
+            xray: XrayPass::new(&gpu.device, format, &instances),
+            pick: PickPass::new(&gpu.device, &instances),
+            instances,
             colour: format,
         };
         match pollster::block_on(scope.pop()) {
@@ -134,7 +139,19 @@ impl Renderer {
     /// Uploads `scene`'s geometry once, for any number of frames ([`Renderer::draw`],
     /// [`Renderer::render_prepared`]).
     pub fn prepare(&self, gpu: &Gpu, scene: &Scene) -> PreparedScene {
-        PreparedScene::new(&gpu.device, scene)
+        PreparedScene::new(&gpu.device, scene, crate::FLAT_LIMIT)
+    }
+
+    /// [`Renderer::prepare`] with its placements factored past `flat_limit` instances
+    /// instead of [`crate::FLAT_LIMIT`]: for tests that draw one scene both ways.
+    #[doc(hidden)]
+    pub fn prepare_with_flat_limit(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        flat_limit: usize,
+    ) -> PreparedScene {
+        PreparedScene::new(&gpu.device, scene, flat_limit)
     }
 
     /// Renders `scene` seen by `camera` into an sRGB image.
@@ -317,7 +334,7 @@ impl Renderer {
         let mut encoder = device.create_command_encoder(&Default::default());
         let inputs = PickInputs {
             frame: &last.frame,
-            draws: &last.draws,
+            instances: &last.instances,
             segments: &scene.segments,
             calls: &last.pick_calls,
         };
@@ -385,14 +402,15 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let with_edges = edge_mode.is_some() && readback.shaded();
-        let frame_scene = match FrameScene::new(device, scene, camera, state, with_edges) {
-            Ok(f) => f,
-            Err(e) => {
-                // The scope must come off the device's stack before leaving.
-                let _ = pollster::block_on(scope.pop());
-                return Err(e);
-            }
-        };
+        let frame_scene =
+            match FrameScene::new(device, &self.instances, scene, (camera, state), with_edges) {
+                Ok(f) => f,
+                Err(e) => {
+                    // The scope must come off the device's stack before leaving.
+                    let _ = pollster::block_on(scope.pop());
+                    return Err(e);
+                }
+            };
         // Wire bodies are drawn in every mode; B-Rep edges only in the modes with edges.
         let draw_lines = readback.shaded() && !frame_scene.edge_calls.is_empty();
         let fresh;
@@ -466,7 +484,7 @@ impl Renderer {
         if let Some(v) = viewport {
             v.last = Some(LastFrame {
                 frame: frame_buffer,
-                draws: frame_scene.draws,
+                instances: frame_scene.instances,
                 pick_calls: frame_scene.pick_calls,
             });
         }

@@ -100,16 +100,6 @@ impl Gpu {
         })
     }
 
-    /// The most instances one frame can draw: each visible instance takes one draw record
-    /// ([`crate::layout::Draw`]) in a storage buffer bound whole, so the device's storage
-    /// binding limit caps them (about 10⁶ on Mesa's software drivers). Checked before meshing
-    /// so a scene that cannot be drawn is refused before it takes memory.
-    pub fn max_draw_records(&self) -> u64 {
-        let limit =
-            crate::gpu_scene::buffer_limit(&self.device.limits(), wgpu::BufferUsages::STORAGE);
-        limit / std::mem::size_of::<crate::layout::Draw>() as u64
-    }
-
     /// Largest texture side the device allows.
     pub fn max_side(&self) -> u32 {
         self.device.limits().max_texture_dimension_2d

@@ -6,10 +6,15 @@ use cadre_mesh::export::{Scene, SceneMesh};
 use glam::{DAffine3, DMat3, DVec3};
 use wgpu::util::DeviceExt;
 
+use std::collections::BTreeMap;
+
 use crate::Camera;
+use crate::coverage::{ImageCoverage, MAX_IMAGE_COVERAGE, bounding_sphere};
 use crate::edges::feature_edges;
 use crate::error::RenderError;
-use crate::layout::{DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Segment, Vertex};
+use crate::layout::{Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Segment, Vertex};
+use crate::passes::instances::InstanceLayout;
+use crate::placements::Placements;
 use crate::solid::closed_orientation;
 use crate::view::{InstanceStyle, ViewState};
 
@@ -24,23 +29,43 @@ pub(crate) const SEGMENT_EDGE: u32 = 1;
 /// A B-Rep vertex: a segment of zero length, drawn only for picking.
 pub(crate) const SEGMENT_VERTEX: u32 = 2;
 
-/// One instanced indexed draw: `count` indices from `first` of mesh `mesh`, once per draw
-/// record `draw .. draw + instances` (the instances of that mesh drawn alike).
+/// Most triangles one frame may draw (instances × their meshes' triangles): past it a frame
+/// is refused, not left running for minutes on a software rasterizer (10⁶ placed cubes are
+/// 1.2·10⁷).
+pub const MAX_FRAME_TRIANGLES: u64 = 250_000_000;
+
+/// One instanced indexed draw: `count` indices from `first` of mesh `mesh`, `instances`
+/// times, each instance found through call `slot` of the frame's call buffer (its record
+/// and local placement, [`Call`]).
 pub(crate) struct DrawCall {
     pub mesh: usize,
     pub first: u32,
     pub count: u32,
-    pub draw: u32,
+    pub slot: u32,
     pub instances: u32,
 }
 
-/// One instanced segment draw: `count` segments from `first` of the segment buffer, once per
-/// draw record `draw .. draw + instances` (one record per instance of the mesh).
+/// One instanced segment draw: `count` segments from `first` of the segment buffer,
+/// `instances` times through call `slot` (as [`DrawCall`]).
 pub(crate) struct EdgeCall {
     pub first: u32,
     pub count: u32,
-    pub draw: u32,
+    pub slot: u32,
     pub instances: u32,
+}
+
+/// A frame's bind group 1: its calls (one [`Call`] per `stride` bytes, bound at a dynamic
+/// offset), draw records and the scene's local placements.
+pub(crate) struct FrameInstances {
+    pub bind: wgpu::BindGroup,
+    stride: u64,
+}
+
+impl FrameInstances {
+    /// The dynamic offset of call `slot`.
+    pub fn offset(&self, slot: u32) -> u32 {
+        (u64::from(slot) * self.stride) as u32
+    }
 }
 
 /// Where one mesh's pieces lie in the shared buffers.
@@ -56,6 +81,8 @@ struct MeshRanges {
     points: (u32, u32),
     /// `Some(inside_out)` when the mesh is a closed solid (section planes cap it).
     solid: Option<bool>,
+    /// Bounding sphere (centre, radius) of its vertices and lines, mesh-local.
+    sphere: (glam::DVec3, f64),
 }
 
 /// A scene's geometry on the GPU, uploaded once and drawn by any number of frames: vertex and
@@ -67,13 +94,17 @@ pub struct PreparedScene {
     pub(crate) segments: wgpu::Buffer,
     meshes: Vec<MeshRanges>,
     materials: Vec<Material>,
-    /// Per instance (scene order): its mesh and world placement.
-    instances: Vec<(Option<usize>, DAffine3)>,
+    /// Where the meshes are placed: runs over local placement lists.
+    placements: Placements,
+    /// [`Placements::locals`] on the GPU.
+    locals: wgpu::Buffer,
 }
 
 impl PreparedScene {
     /// Uploads `scene`'s geometry.
-    pub(crate) fn new(device: &wgpu::Device, scene: &Scene) -> PreparedScene {
+    /// Uploads `scene`'s geometry; past `flat_limit` instances its placements are factored
+    /// ([`Placements`]).
+    pub(crate) fn new(device: &wgpu::Device, scene: &Scene, flat_limit: usize) -> PreparedScene {
         let mut segments: Vec<Segment> = Vec::new();
         let mut meshes = Vec::with_capacity(scene.meshes.len());
         let mut vertices = Vec::with_capacity(scene.meshes.len());
@@ -123,6 +154,12 @@ impl PreparedScene {
                 edges,
                 points,
                 solid: closed_orientation(mesh),
+                sphere: bounding_sphere(
+                    mesh.positions
+                        .iter()
+                        .copied()
+                        .chain(mesh.lines.iter().flatten().copied()),
+                ),
             });
         }
         let mut materials: Vec<Material> = scene
@@ -134,14 +171,14 @@ impl PreparedScene {
             })
             .collect();
         materials.push(DEFAULT_MATERIAL);
-        let instances = scene
-            .instances()
-            .map(|(node, world)| {
-                let mesh = scene.nodes[node].mesh.filter(|&m| m < scene.meshes.len());
-                (mesh, world)
-            })
-            .collect();
+        let placements = Placements::new(scene, |m| meshes[m].solid.is_some(), flat_limit);
         PreparedScene {
+            locals: buffer(
+                device,
+                "local placements",
+                bytemuck::cast_slice(&placements.locals),
+                wgpu::BufferUsages::STORAGE,
+            ),
             vertices,
             indices,
             segments: buffer(
@@ -152,13 +189,19 @@ impl PreparedScene {
             ),
             meshes,
             materials,
-            instances,
+            placements,
         }
     }
 
     /// Number of instances (placed meshes), in the scene's instance order.
     pub fn instance_count(&self) -> usize {
-        self.instances.len()
+        self.placements.instances
+    }
+
+    /// Runs of placements: a frame of every instance has one draw record per run for its
+    /// segments and one per run and primitive (see [`crate::layout::Local`]).
+    pub fn run_count(&self) -> usize {
+        self.placements.runs.len()
     }
 
     /// Index of the default material (after the scene's own).
@@ -218,12 +261,12 @@ fn append(
     (first, segments.len() as u32 - first)
 }
 
-/// What one frame draws: the draw records (instances placed relative to the camera, with
-/// the view's colours), the mesh draw calls split into opaque and see-through, and the
-/// segment calls.
+/// What one frame draws: the draw records (runs of instances placed relative to the camera,
+/// with the view's colours) and their calls, the mesh draw calls split into opaque and
+/// see-through, and the segment calls.
 pub(crate) struct FrameScene<'a> {
     pub geometry: &'a PreparedScene,
-    pub draws: wgpu::Buffer,
+    pub instances: FrameInstances,
     pub materials: wgpu::Buffer,
     /// Opaque triangles, drawn into the visibility buffer.
     pub calls: Vec<DrawCall>,
@@ -235,32 +278,60 @@ pub(crate) struct FrameScene<'a> {
     pub pick_calls: Vec<EdgeCall>,
 }
 
+/// A visible run's base draw record and the material of its view colour, if any.
+type RunRecord = (Draw, Option<u32>);
+
+/// The records of one frame and the calls that draw them, while they are built.
+#[derive(Default)]
+struct FrameCalls {
+    draws: Vec<Draw>,
+    headers: Vec<Call>,
+    calls: Vec<DrawCall>,
+    transparent: Vec<DrawCall>,
+    edge_calls: Vec<EdgeCall>,
+    pick_calls: Vec<EdgeCall>,
+    /// Triangles the calls draw, all instances counted.
+    triangles: u64,
+}
+
+impl FrameCalls {
+    /// A call slot over the records from `record` on, each drawn once per local of `list`.
+    fn slot(&mut self, record: u32, (locals_first, locals_count): (u32, u32)) -> u32 {
+        self.headers.push(Call {
+            record,
+            locals_first,
+            locals_count,
+            pad: 0,
+        });
+        self.headers.len() as u32 - 1
+    }
+}
+
 impl<'a> FrameScene<'a> {
     /// The draw records of `geometry` seen by `camera` in `state`; B-Rep edges are drawn when
     /// `with_edges` (wire bodies always).
     pub fn new(
         device: &wgpu::Device,
+        layout: &InstanceLayout,
         geometry: &'a PreparedScene,
-        camera: &Camera,
-        state: &ViewState,
+        (camera, state): (&Camera, &ViewState),
         with_edges: bool,
     ) -> Result<FrameScene<'a>, RenderError> {
         let mut materials = geometry.materials.clone();
         let rotation = DMat3::from_mat4(camera.view_rotation());
-        let mut draws = Vec::new();
-        let mut calls = Vec::new();
-        let mut transparent = Vec::new();
-        let mut edge_calls = Vec::new();
-        let mut pick_calls = Vec::new();
-        // Visible instances grouped by mesh, each with its base record and colour: the
-        // instances of one mesh are drawn by one instanced call per primitive (an assembly of
+        let placements = &geometry.placements;
+        // Visible runs grouped by mesh and local list, each with its base record and colour:
+        // the runs of one group are drawn by one instanced call per primitive (an assembly of
         // thousands of repeated parts costs a few calls, not thousands).
-        let mut by_mesh: Vec<Vec<(Draw, Option<u32>)>> = vec![Vec::new(); geometry.meshes.len()];
-        for (instance, &(mesh, world)) in geometry.instances.iter().enumerate() {
-            let Some(mesh) = mesh else { continue };
+        let mut groups: BTreeMap<(usize, usize), Vec<RunRecord>> = BTreeMap::new();
+        let mut coverage = ImageCoverage::new(camera);
+        let mut visible = 0usize;
+        for run in &placements.runs {
+            // A run of several placements takes the style of its first (a view styles the
+            // instances of a factored sub-assembly together).
             let style = state
                 .instances
-                .get(instance)
+                .get(run.instance as usize)
                 .copied()
                 .unwrap_or(InstanceStyle::default());
             if !style.visible {
@@ -274,10 +345,19 @@ impl<'a> FrameScene<'a> {
                 });
                 materials.len() as u32 - 1
             });
-            let ranges = &geometry.meshes[mesh];
+            let ranges = &geometry.meshes[run.mesh];
+            let list = placements.lists[run.list];
+            if run.list == 0 {
+                coverage.add(run.world, ranges.sphere);
+            } else {
+                for l in placements.list(list) {
+                    coverage.add(run.world * l.affine(), ranges.sphere);
+                }
+            }
+            visible += list.count as usize;
             // A mirroring placement turns the winding over, as does a mesh wound inside out.
             let flags = ranges.solid.map_or(0, |inside_out| {
-                let mirrored = world.matrix3.determinant() < 0.0;
+                let mirrored = run.world.matrix3.determinant() < 0.0;
                 DRAW_CLOSED
                     | if inside_out != mirrored {
                         DRAW_INSIDE_OUT
@@ -285,34 +365,48 @@ impl<'a> FrameScene<'a> {
                         0
                     }
             });
-            let record = placement(camera, rotation, world, (instance as u32, flags));
-            by_mesh[mesh].push((record(geometry.default_material()), colour_material));
+            let record = placement(camera, rotation, run.world, (run.instance, flags));
+            groups
+                .entry((run.mesh, run.list))
+                .or_default()
+                .push((record(geometry.default_material()), colour_material));
         }
-        for (mesh, group) in by_mesh.iter().enumerate() {
-            if group.is_empty() {
-                continue;
-            }
+        // Refused before anything is drawn: a frame covering the image thousands of times
+        // over would run for hours on a software rasterizer.
+        if coverage.total > MAX_IMAGE_COVERAGE {
+            return Err(RenderError::Overdrawn {
+                coverage: coverage.total,
+                instances: visible,
+                limit: MAX_IMAGE_COVERAGE,
+            });
+        }
+        let mut out = FrameCalls::default();
+        for (&(mesh, list), group) in &groups {
             let ranges = &geometry.meshes[mesh];
+            let list = placements.lists[list];
+            let locals = (list.first, list.count);
             let n = group.len() as u32;
-            // One record per instance for its segments (the default material's).
-            let own = draws.len() as u32;
-            draws.extend(group.iter().map(|(d, _)| *d));
+            let instances = n * list.count;
+            // One record per run for its segments (the default material's).
+            let own = out.draws.len() as u32;
+            out.draws.extend(group.iter().map(|(d, _)| *d));
+            let own_slot = out.slot(own, locals);
             let segment_call = |calls: &mut Vec<EdgeCall>, (first, count): (u32, u32)| {
                 if count > 0 {
                     calls.push(EdgeCall {
                         first,
                         count,
-                        draw: own,
-                        instances: n,
+                        slot: own_slot,
+                        instances,
                     });
                 }
             };
-            segment_call(&mut edge_calls, ranges.lines);
+            segment_call(&mut out.edge_calls, ranges.lines);
             if with_edges {
-                segment_call(&mut edge_calls, ranges.edges);
+                segment_call(&mut out.edge_calls, ranges.edges);
             }
-            segment_call(&mut pick_calls, ranges.edges);
-            segment_call(&mut pick_calls, ranges.points);
+            segment_call(&mut out.pick_calls, ranges.edges);
+            segment_call(&mut out.pick_calls, ranges.points);
             for &(first, count, material) in &ranges.primitives {
                 if count == 0 {
                     continue;
@@ -320,7 +414,7 @@ impl<'a> FrameScene<'a> {
                 let own_material = material
                     .filter(|&m| m + 1 < geometry.materials.len())
                     .map_or(geometry.default_material(), |m| m as u32);
-                // Opaque instances first, then see-through ones, each a contiguous run.
+                // Opaque runs first, then see-through ones, each a contiguous run of records.
                 let resolved: Vec<(Draw, bool)> = group
                     .iter()
                     .map(|&(d, colour)| {
@@ -329,49 +423,101 @@ impl<'a> FrameScene<'a> {
                         (Draw { material: m, ..d }, see_through)
                     })
                     .collect();
-                for (list, see_through) in [(&mut calls, false), (&mut transparent, true)] {
-                    let start = draws.len() as u32;
-                    draws.extend(
+                for see_through in [false, true] {
+                    let start = out.draws.len() as u32;
+                    out.draws.extend(
                         resolved
                             .iter()
                             .filter(|(_, t)| *t == see_through)
                             .map(|(d, _)| *d),
                     );
-                    let instances = draws.len() as u32 - start;
-                    if instances > 0 {
-                        list.push(DrawCall {
-                            mesh,
-                            first,
-                            count,
-                            draw: start,
-                            instances,
-                        });
+                    let records = out.draws.len() as u32 - start;
+                    if records == 0 {
+                        continue;
+                    }
+                    let call = DrawCall {
+                        mesh,
+                        first,
+                        count,
+                        slot: out.slot(start, locals),
+                        instances: records * list.count,
+                    };
+                    out.triangles += u64::from(count / 3) * u64::from(call.instances);
+                    if see_through {
+                        out.transparent.push(call);
+                    } else {
+                        out.calls.push(call);
                     }
                 }
             }
         }
-        if draws.is_empty() {
-            // Storage bindings may not be empty.
-            draws.push(Draw::default());
+        if out.triangles > MAX_FRAME_TRIANGLES {
+            return Err(RenderError::TooManyTriangles {
+                triangles: out.triangles,
+                limit: MAX_FRAME_TRIANGLES,
+            });
         }
+        if out.draws.is_empty() {
+            // Storage bindings may not be empty.
+            out.draws.push(Draw::default());
+        }
+        if out.headers.is_empty() {
+            out.headers.push(Call::default());
+        }
+        let draws = checked_buffer(
+            device,
+            "draw records",
+            bytemuck::cast_slice(&out.draws),
+            wgpu::BufferUsages::STORAGE,
+        )?;
+        let stride = InstanceLayout::call_stride(device);
+        let mut call_bytes = vec![0u8; out.headers.len() * stride as usize];
+        for (k, header) in out.headers.iter().enumerate() {
+            let at = k * stride as usize;
+            call_bytes[at..at + std::mem::size_of::<Call>()]
+                .copy_from_slice(bytemuck::bytes_of(header));
+        }
+        let calls = checked_buffer(
+            device,
+            "draw calls",
+            &call_bytes,
+            wgpu::BufferUsages::UNIFORM,
+        )?;
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("instances"),
+            layout: &layout.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &calls,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(std::mem::size_of::<Call>() as u64),
+                    }),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: draws.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: geometry.locals.as_entire_binding(),
+                },
+            ],
+        });
         Ok(FrameScene {
             geometry,
-            draws: checked_buffer(
-                device,
-                "draw records",
-                bytemuck::cast_slice(&draws),
-                wgpu::BufferUsages::STORAGE,
-            )?,
+            instances: FrameInstances { bind, stride },
             materials: checked_buffer(
                 device,
                 "materials",
                 bytemuck::cast_slice(&materials),
                 wgpu::BufferUsages::STORAGE,
             )?,
-            calls,
-            transparent,
-            edge_calls,
-            pick_calls,
+            calls: out.calls,
+            transparent: out.transparent,
+            edge_calls: out.edge_calls,
+            pick_calls: out.pick_calls,
         })
     }
 }

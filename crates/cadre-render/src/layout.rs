@@ -30,26 +30,30 @@ pub struct PassShader {
     pub source: String,
     /// Its bind group 0, binding `i` at index `i`.
     pub bindings: &'static [Binding],
+    /// Whether it draws the scene's instances, binding [`INSTANCE_BINDINGS`] as group 1.
+    pub instanced: bool,
 }
 
 /// Every shader of the renderer, with what the Rust side binds to it (for the layout tests).
 pub fn pass_shaders() -> Vec<PassShader> {
     use crate::passes::{edges, pick, shade, visibility, xray};
-    let shader = |name, source, bindings| PassShader {
+    let shader = |name, source, bindings, instanced| PassShader {
         name,
         source,
         bindings,
+        instanced,
     };
     vec![
         shader(
             "visibility/mesh",
             visibility::mesh::source(),
             visibility::mesh::BINDINGS,
+            true,
         ),
-        shader("shade", shade::source(), shade::BINDINGS),
-        shader("edges", edges::source(), edges::BINDINGS),
-        shader("xray", xray::source(), xray::BINDINGS),
-        shader("pick", pick::source(), pick::BINDINGS),
+        shader("shade", shade::source(), shade::BINDINGS, false),
+        shader("edges", edges::source(), edges::BINDINGS, true),
+        shader("xray", xray::source(), xray::BINDINGS, true),
+        shader("pick", pick::source(), pick::BINDINGS, true),
     ]
 }
 
@@ -214,6 +218,72 @@ pub const DRAW_CLOSED: u32 = 1;
 /// encloses a negative volume, or the instance's placement mirrors, but not both).
 pub const DRAW_INSIDE_OUT: u32 = 2;
 
+/// A placement below a draw record: instances of a shared sub-assembly drawn by one record
+/// (issue 13: 10⁶ placed cubes as 10³ records × 10³ locals, not 10⁶ records). A record's
+/// instance `j` is placed by `record.model × local.model`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct Local {
+    /// Mesh-local → the record's frame (column-major).
+    pub model: [[f32; 4]; 4],
+    /// Mesh-local normals → the record's frame (columns, xyz used; the inverse transpose).
+    pub normal: [[f32; 4]; 3],
+    /// Scene instance number of this placement minus the record's [`Draw::instance`].
+    pub offset: u32,
+    /// Flags toggled on the record's: [`DRAW_INSIDE_OUT`] when this placement mirrors.
+    pub flags: u32,
+    /// Padding to the struct's 16-byte alignment.
+    pub pad: [u32; 2],
+}
+
+impl Local {
+    /// Its placement as an `f64` affine map.
+    pub fn affine(&self) -> glam::DAffine3 {
+        glam::DAffine3::from_mat4(glam::Mat4::from_cols_array_2d(&self.model).as_dmat4())
+    }
+
+    /// The placement that changes nothing (records drawn once each).
+    pub const IDENTITY: Local = Local {
+        model: [
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ],
+        normal: [
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+        ],
+        offset: 0,
+        flags: 0,
+        pad: [0; 2],
+    };
+}
+
+/// One draw call's instances, read through a dynamic uniform offset: instance `i` of the call
+/// is local `locals_first + i % locals_count` of record `record + i / locals_count`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct Call {
+    /// First draw record of the call.
+    pub record: u32,
+    /// First local placement shared by the call's records.
+    pub locals_first: u32,
+    /// Local placements per record (at least 1).
+    pub locals_count: u32,
+    /// Padding to 16 bytes.
+    pub pad: u32,
+}
+
+/// Bind group 1 of every pass that draws the scene's instances: the call (uniform at a
+/// dynamic offset), the draw records, the local placements.
+pub const INSTANCE_BINDINGS: &[Binding] = &[
+    Binding::Uniform(Call::WGSL_NAME),
+    Binding::Storage(Draw::WGSL_NAME),
+    Binding::Storage(Local::WGSL_NAME),
+];
+
 /// A metallic-roughness material.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
@@ -255,3 +325,5 @@ gpu_struct!(
     [model, normal, material, instance, flags, pad]
 );
 gpu_struct!(Material, "Material", [base_color, params]);
+gpu_struct!(Local, "Local", [model, normal, offset, flags, pad]);
+gpu_struct!(Call, "Call", [record, locals_first, locals_count, pad]);

@@ -15,6 +15,7 @@
 mod bounds;
 mod camera;
 pub mod compare;
+mod coverage;
 pub mod edges;
 mod error;
 mod frame;
@@ -23,6 +24,7 @@ mod gpu_scene;
 pub mod layout;
 mod lights;
 mod passes;
+mod placements;
 pub mod raycast;
 mod solid;
 mod view;
@@ -30,11 +32,13 @@ mod viewport;
 
 pub use bounds::scene_bounds;
 pub use camera::{Camera, Projection, ViewPreset};
+pub use coverage::MAX_IMAGE_COVERAGE;
 pub use error::RenderError;
 pub use frame::{DisplayMode, FrameOptions, Renderer};
 pub use gpu::Gpu;
-pub use gpu_scene::PreparedScene;
+pub use gpu_scene::{MAX_FRAME_TRIANGLES, PreparedScene};
 pub use lights::Light;
+pub use placements::{FLAT_LIMIT, MAX_LOCALS_PER_NODE};
 pub use view::{
     InstanceStyle, MAX_HIGHLIGHTED, MAX_SECTIONS, Pick, SECTION_CAP, SectionPlane, ViewState,
     section_cap,

@@ -1,6 +1,6 @@
 //! A viewer's viewport: render targets kept between frames, and picking from the last frame.
 
-use crate::gpu_scene::EdgeCall;
+use crate::gpu_scene::{EdgeCall, FrameInstances};
 use crate::passes::pick::PICK;
 use crate::passes::visibility::VisibilityTargets;
 use crate::view::{Pick, section_cap};
@@ -9,7 +9,7 @@ use crate::{Gpu, RenderError};
 /// The buffers of the last frame drawn into a viewport, which the pick pass draws with again.
 pub(crate) struct LastFrame {
     pub frame: wgpu::Buffer,
-    pub draws: wgpu::Buffer,
+    pub instances: FrameInstances,
     pub pick_calls: Vec<EdgeCall>,
 }
 

@@ -3,10 +3,10 @@
 //! `cadre_render::layout` twins.
 
 use cadre_render::SECTION_CAP;
-use cadre_render::layout::{Binding, PassShader, pass_shaders};
+use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders};
 use cadre_render::layout::{
-    DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE,
-    FILL_BACKGROUND, FILL_NONE, FILL_SHADED, Frame, GpuStruct, LightGpu, Material, Member,
+    Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE,
+    FILL_BACKGROUND, FILL_NONE, FILL_SHADED, Frame, GpuStruct, LightGpu, Local, Material, Member,
     PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, Segment,
 };
 
@@ -122,6 +122,8 @@ fn shaders_validate_and_share_the_rust_layouts() {
             "Material",
             "Segment",
             "Light",
+            "Local",
+            "Call",
             "VisibilityOut",
         ] {
             assert!(
@@ -141,6 +143,8 @@ fn shaders_validate_and_share_the_rust_layouts() {
             ("Material", check::<Material>(pass, &m)),
             ("Segment", check::<Segment>(pass, &m)),
             ("Light", check::<LightGpu>(pass, &m)),
+            ("Local", check::<Local>(pass, &m)),
+            ("Call", check::<Call>(pass, &m)),
         ] {
             if hit.unwrap_or_else(|e| panic!("{e}")) {
                 *found.entry(name).or_default() += 1;
@@ -148,7 +152,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         }
     }
     // Every layout was really compared somewhere (naga drops nothing we rely on).
-    assert_eq!(found.len(), 5, "{found:?}");
+    assert_eq!(found.len(), 7, "{found:?}");
 }
 
 #[test]
@@ -191,8 +195,9 @@ fn swapped_fields_are_caught() {
     compare("Frame", &Frame::members(), size_of::<Frame>(), &wgsl, size).unwrap();
 }
 
-/// The group-0 bindings `module` declares, in binding order, as [`Binding`]s.
-fn naga_bindings(module: &naga::Module) -> Result<Vec<(u32, Binding)>, String> {
+/// The bindings of bind group `group` that `module` declares, in binding order, as
+/// [`Binding`]s; a declaration in a group past 1 is an error.
+fn naga_bindings(module: &naga::Module, group: u32) -> Result<Vec<(u32, Binding)>, String> {
     let type_name = |h: naga::Handle<naga::Type>| -> Result<&'static str, String> {
         let ty = &module.types[h];
         if let Some(name) = &ty.name {
@@ -209,8 +214,11 @@ fn naga_bindings(module: &naga::Module) -> Result<Vec<(u32, Binding)>, String> {
     let mut out = Vec::new();
     for (_, var) in module.global_variables.iter() {
         let Some(rb) = &var.binding else { continue };
-        if rb.group != 0 {
+        if rb.group > 1 {
             return Err(format!("{:?} is in group {}", var.name, rb.group));
+        }
+        if rb.group != group {
+            continue;
         }
         let binding = match (var.space, &module.types[var.ty].inner) {
             (naga::AddressSpace::Uniform, _) => Binding::Uniform(type_name(var.ty)?),
@@ -258,9 +266,29 @@ fn compare_bindings(pass: &str, rust: &[Binding], wgsl: &[(u32, Binding)]) -> Re
 fn every_pass_binds_what_its_shader_declares() {
     for pass in pass_shaders() {
         let m = validated(pass.name, &pass.source);
-        let wgsl = naga_bindings(&m).unwrap_or_else(|e| panic!("{}: {e}", pass.name));
+        let wgsl = naga_bindings(&m, 0).unwrap_or_else(|e| panic!("{}: {e}", pass.name));
         compare_bindings(pass.name, pass.bindings, &wgsl).unwrap_or_else(|e| panic!("{e}"));
+        // Group 1: the instances, for the passes that draw them, and nothing for the others.
+        let wgsl = naga_bindings(&m, 1).unwrap_or_else(|e| panic!("{}: {e}", pass.name));
+        let instances = if pass.instanced {
+            INSTANCE_BINDINGS
+        } else {
+            &[]
+        };
+        compare_bindings(pass.name, instances, &wgsl).unwrap_or_else(|e| panic!("{e}"));
     }
+}
+
+#[test]
+fn a_wrong_instance_binding_list_is_caught() {
+    // Negative control: the records and locals swapped (both storage arrays), or the
+    // instance group missing from a pass that declares it.
+    let wgsl = naga_bindings(&module("visibility/mesh"), 1).unwrap();
+    compare_bindings("visibility/mesh", INSTANCE_BINDINGS, &wgsl).unwrap();
+    let mut swapped = INSTANCE_BINDINGS.to_vec();
+    swapped.swap(1, 2);
+    assert!(compare_bindings("visibility/mesh", &swapped, &wgsl).is_err());
+    assert!(compare_bindings("visibility/mesh", &[], &wgsl).is_err());
 }
 
 #[test]
@@ -268,7 +296,7 @@ fn a_wrong_binding_list_is_caught() {
     // Negative control: shade's list with its materials and lights swapped (both storage
     // arrays, which wgpu's own validation accepts), and with its last binding dropped.
     let shade = shader("shade").bindings;
-    let wgsl = naga_bindings(&module("shade")).unwrap();
+    let wgsl = naga_bindings(&module("shade"), 0).unwrap();
     compare_bindings("shade", shade, &wgsl).unwrap();
     let mut swapped = shade.to_vec();
     swapped.swap(1, 4);

@@ -1,8 +1,9 @@
 //! Pieces every pass uses: its shader module (the shared WGSL declarations first), bind group
 //! layout entries, the mesh vertex layout, overlay render passes and drawing a scene's meshes.
 
-use crate::gpu_scene::{DrawCall, FrameScene};
+use crate::gpu_scene::{DrawCall, EdgeCall, FrameInstances, FrameScene};
 use crate::layout::{Binding, Vertex};
+use crate::passes::instances::InstanceLayout;
 
 /// The WGSL every pass starts with (`common.wgsl`: the layout structs and the frame uniform).
 pub(crate) const COMMON_WGSL: &str = include_str!("common.wgsl");
@@ -87,21 +88,26 @@ pub(crate) fn texture_entry(
     }
 }
 
-/// The bind group layout (group 0) of `entries` and a pipeline layout with only it.
+/// The bind group layout (group 0) of `entries` and a pipeline layout with it, followed by
+/// `instances` as group 1 for the passes that draw the scene's instances.
 pub(crate) fn layouts(
     device: &wgpu::Device,
     label: &str,
     entries: &[wgpu::BindGroupLayoutEntry],
+    instances: Option<&InstanceLayout>,
 ) -> (wgpu::BindGroupLayout, wgpu::PipelineLayout) {
     let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
         entries,
     });
-    let pipeline = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(&group)],
-        immediate_size: 0,
-    });
+    let pipeline = match instances {
+        Some(instances) => instances.pipeline_layout(device, label, &group),
+        None => device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&group)],
+            immediate_size: 0,
+        }),
+    };
     (group, pipeline)
 }
 
@@ -182,15 +188,32 @@ pub(crate) fn draw_meshes(
 ) {
     let geometry = scene.geometry;
     for call in calls {
+        pass.set_bind_group(
+            1,
+            &scene.instances.bind,
+            &[scene.instances.offset(call.slot)],
+        );
         pass.set_vertex_buffer(0, geometry.vertices[call.mesh].slice(..));
         pass.set_index_buffer(
             geometry.indices[call.mesh].slice(..),
             wgpu::IndexFormat::Uint32,
         );
-        pass.draw_indexed(
-            call.first..call.first + call.count,
-            0,
-            call.draw..call.draw + call.instances,
+        pass.draw_indexed(call.first..call.first + call.count, 0, 0..call.instances);
+    }
+}
+
+/// Draws segment `calls` (six vertices per segment), each over its instances read through
+/// `instances` (bind group 1).
+pub(crate) fn draw_segments(
+    pass: &mut wgpu::RenderPass<'_>,
+    instances: &FrameInstances,
+    calls: &[EdgeCall],
+) {
+    for call in calls {
+        pass.set_bind_group(1, &instances.bind, &[instances.offset(call.slot)]);
+        pass.draw(
+            call.first * 6..(call.first + call.count) * 6,
+            0..call.instances,
         );
     }
 }

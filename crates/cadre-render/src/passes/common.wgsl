@@ -31,6 +31,21 @@ struct Draw {
     pad: u32,
 }
 
+struct Local {
+    model: mat4x4<f32>,
+    normal: array<vec4<f32>, 3>,
+    offset: u32,
+    flags: u32,
+    pad: vec2<u32>,
+}
+
+struct Call {
+    record: u32,
+    locals_first: u32,
+    locals_count: u32,
+    pad: u32,
+}
+
 struct Material {
     base_color: vec4<f32>,
     params: vec4<f32>,

@@ -6,6 +6,7 @@
 
 pub(crate) mod common;
 pub(crate) mod edges;
+pub(crate) mod instances;
 pub(crate) mod pick;
 pub(crate) mod shade;
 pub(crate) mod visibility;

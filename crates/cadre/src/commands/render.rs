@@ -275,9 +275,6 @@ struct MeshedFile {
 fn mesh_file(input: &Path, args: &RenderArgs) -> Result<MeshedFile> {
     let loaded = load_step(input)?;
     let model = &loaded.model;
-    // Refused before meshing: an assembly past the scene's node cap would be cut silently
-    // by the scene builder, and expanding 6·10⁶ instances took 2.4 GB (issue 13).
-    crate::load::check_scene_nodes(model, input, "scene holds", "nothing was meshed")?;
     let params = MeshParams {
         deflection: Deflection::Relative(args.deflection_rel).resolve(deflection_diagonal(model)),
         angle: 0.35,
@@ -312,17 +309,6 @@ fn draw_file(
     args: &RenderArgs,
 ) -> Result<RgbaImage> {
     let (input, model) = (meshed.input.as_path(), &meshed.loaded.model);
-    // Refused before the scene is expanded: its draw records (one per placed body
-    // instance) would not fit the device's largest buffer.
-    let placed = model.placed_body_instances();
-    if placed > gpu.max_draw_records() {
-        bail!(
-            "{}: the scene is too large for this GPU: {placed} placed part instances, over the {} one frame can draw (one {}-byte draw record each in one buffer); nothing was drawn",
-            input.display(),
-            gpu.max_draw_records(),
-            std::mem::size_of::<cadre_render::layout::Draw>()
-        );
-    }
     let scene = cadre_mesh::assemble::build_scene(model, &meshed.mesh);
     let (w, h) = args.size;
     // A model with nothing to draw (no face, mesh or curve: 6 corpus files, OCCT finds nothing
@@ -346,5 +332,7 @@ fn draw_file(
         edge_width: args.edge_width,
         ..FrameOptions::default()
     };
-    Ok(renderer.render(gpu, &scene, &camera, &options)?)
+    renderer
+        .render(gpu, &scene, &camera, &options)
+        .with_context(|| format!("{}: nothing was drawn", input.display()))
 }

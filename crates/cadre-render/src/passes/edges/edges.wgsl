@@ -4,16 +4,14 @@
 // tolerance keeps edges from fighting with their own faces): hidden fragments are dropped,
 // drawn dashed, or drawn like the others, by the edge mode.
 
-@group(0) @binding(1) var<storage, read> draws: array<Draw>;
-@group(0) @binding(2) var<storage, read> segments: array<Segment>;
-@group(0) @binding(3) var ids_tex: texture_2d<u32>;
-
-@group(0) @binding(4) var<storage, read> selection: array<vec4<u32>>;
+@group(0) @binding(1) var<storage, read> segments: array<Segment>;
+@group(0) @binding(2) var ids_tex: texture_2d<u32>;
+@group(0) @binding(3) var<storage, read> selection: array<vec4<u32>>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> LineOut {
     let seg = segments[vi / 6u];
-    let d = draws[draw_index];
+    let d = instance_draw(draw_index);
     var width = frame.viewport.z;
     if is_highlighted(seg, d) {
         width = max(2.0 * width, width + 2.0);
@@ -53,7 +51,7 @@ fn fs_main(in: LineOut) -> @location(0) vec4<f32> {
     let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy), 0);
     let scene_depth = scene_depth_at(ids);
     let seg = segments[in.segment];
-    let highlight = highlight_of(seg, draws[in.draw]);
+    let highlight = highlight_of(seg, instance_ids(in.draw));
     // Reverse Z: nearer is larger. The tolerance keeps an edge on its own faces visible.
     let hidden = in.clip.z < scene_depth * (1.0 - frame.tolerances.x);
     let mode = frame.modes.z;

@@ -2,16 +2,17 @@
 //! of constant pixel width, visible, hidden-dashed or all, by the display mode.
 
 use super::common::{
-    PipelineSpec, bind_group, blended, colour_pass, entries, layouts, pipeline, shader, wgsl,
+    PipelineSpec, bind_group, blended, colour_pass, draw_segments, entries, layouts, pipeline,
+    shader, wgsl,
 };
 use super::visibility::VisibilityTargets;
 use crate::gpu_scene::FrameScene;
-use crate::layout::{Binding, Draw, Frame, GpuStruct, Segment};
+use crate::layout::{Binding, Frame, GpuStruct, Segment};
+use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
-/// Bind group 0: frame, draw records, segments, the id target, selection.
+/// Bind group 0: frame, segments, the id target, selection (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(Frame::WGSL_NAME),
-    Binding::Storage(Draw::WGSL_NAME),
     Binding::Storage(Segment::WGSL_NAME),
     Binding::UintTexture,
     Binding::Storage("vec4<u32>"),
@@ -19,7 +20,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
 
 /// The pass's whole WGSL: the shared declarations and its own source.
 pub(crate) fn source() -> String {
-    wgsl(&[include_str!("edges.wgsl")])
+    wgsl(&[INSTANCES_WGSL, include_str!("edges.wgsl")])
 }
 
 /// The pass's pipeline and bind group layout.
@@ -30,10 +31,15 @@ pub(crate) struct EdgesPass {
 
 impl EdgesPass {
     /// Builds the pipeline for a `colour` target of that format.
-    pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> EdgesPass {
+    pub fn new(
+        device: &wgpu::Device,
+        colour: wgpu::TextureFormat,
+        instances: &InstanceLayout,
+    ) -> EdgesPass {
         let module = shader(device, "edges", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let (layout, pipeline_layout) = layouts(device, "edges", &entries(BINDINGS, stages));
+        let (layout, pipeline_layout) =
+            layouts(device, "edges", &entries(BINDINGS, stages), Some(instances));
         let pipeline = pipeline(
             device,
             PipelineSpec {
@@ -68,7 +74,6 @@ impl EdgesPass {
             &self.layout,
             &[
                 frame.as_entire_binding(),
-                scene.draws.as_entire_binding(),
                 scene.geometry.segments.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&visibility.ids),
                 selection.as_entire_binding(),
@@ -77,11 +82,6 @@ impl EdgesPass {
         let mut pass = colour_pass(encoder, "edges", target, None);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        for call in &scene.edge_calls {
-            pass.draw(
-                call.first * 6..(call.first + call.count) * 6,
-                call.draw..call.draw + call.instances,
-            );
-        }
+        draw_segments(&mut pass, &scene.instances, &scene.edge_calls);
     }
 }

@@ -2,23 +2,23 @@
 //! tolerance (faces are picked from the visibility buffer's ids).
 
 use super::common::{
-    PipelineSpec, bind_group, colour_pass, entries, layouts, pipeline, shader, wgsl,
+    PipelineSpec, bind_group, colour_pass, draw_segments, entries, layouts, pipeline, shader, wgsl,
 };
 use super::visibility::VisibilityTargets;
-use crate::gpu_scene::EdgeCall;
-use crate::layout::{Binding, Draw, Frame, GpuStruct, Segment};
+use crate::gpu_scene::{EdgeCall, FrameInstances};
+use crate::layout::{Binding, Frame, GpuStruct, Segment};
+use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
-/// Bind group 0: frame, draw records, segments, the id target.
+/// Bind group 0: frame, segments, the id target (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(Frame::WGSL_NAME),
-    Binding::Storage(Draw::WGSL_NAME),
     Binding::Storage(Segment::WGSL_NAME),
     Binding::UintTexture,
 ];
 
 /// The pass's whole WGSL: the shared declarations and its own source.
 pub(crate) fn source() -> String {
-    wgsl(&[include_str!("pick.wgsl")])
+    wgsl(&[INSTANCES_WGSL, include_str!("pick.wgsl")])
 }
 
 /// STEP id, instance + 1 (0 = nothing), kind (2 edge, 3 vertex), unused.
@@ -30,20 +30,21 @@ pub(crate) struct PickPass {
     layout: wgpu::BindGroupLayout,
 }
 
-/// The buffers a pick pass reads: the frame's uniform and draw records, the segments.
+/// The buffers a pick pass reads: the frame's uniform and instances, the segments.
 pub(crate) struct PickInputs<'a> {
     pub frame: &'a wgpu::Buffer,
-    pub draws: &'a wgpu::Buffer,
+    pub instances: &'a FrameInstances,
     pub segments: &'a wgpu::Buffer,
     pub calls: &'a [EdgeCall],
 }
 
 impl PickPass {
     /// Builds the pipeline.
-    pub fn new(device: &wgpu::Device) -> PickPass {
+    pub fn new(device: &wgpu::Device, instances: &InstanceLayout) -> PickPass {
         let module = shader(device, "pick", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let (layout, pipeline_layout) = layouts(device, "pick", &entries(BINDINGS, stages));
+        let (layout, pipeline_layout) =
+            layouts(device, "pick", &entries(BINDINGS, stages), Some(instances));
         let pipeline = pipeline(
             device,
             PipelineSpec {
@@ -74,7 +75,6 @@ impl PickPass {
             &self.layout,
             &[
                 inputs.frame.as_entire_binding(),
-                inputs.draws.as_entire_binding(),
                 inputs.segments.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&visibility.ids),
             ],
@@ -82,11 +82,6 @@ impl PickPass {
         let mut pass = colour_pass(encoder, "pick", target, Some(wgpu::Color::TRANSPARENT));
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        for call in inputs.calls {
-            pass.draw(
-                call.first * 6..(call.first + call.count) * 6,
-                call.draw..call.draw + call.instances,
-            );
-        }
+        draw_segments(&mut pass, inputs.instances, inputs.calls);
     }
 }

@@ -4,16 +4,15 @@
 // viewer reads a small window around the cursor and takes the nearest vertex, else the
 // nearest edge, else the face under the cursor.
 
-@group(0) @binding(1) var<storage, read> draws: array<Draw>;
-@group(0) @binding(2) var<storage, read> segments: array<Segment>;
-@group(0) @binding(3) var ids_tex: texture_2d<u32>;
+@group(0) @binding(1) var<storage, read> segments: array<Segment>;
+@group(0) @binding(2) var ids_tex: texture_2d<u32>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> LineOut {
     let seg = segments[vi / 6u];
     // Vertices a little larger than the one-pixel edges, so an edge's end still shows them.
     let vertex = bitcast<u32>(seg.b.w) == 2u;
-    var out = segment_quad(seg, vi, draws[draw_index], select(0.0, 1.0, vertex));
+    var out = segment_quad(seg, vi, instance_draw(draw_index), select(0.0, 1.0, vertex));
     out.draw = draw_index;
     return out;
 }
@@ -36,5 +35,5 @@ fn fs_main(in: LineOut) -> @location(0) vec4<u32> {
         discard;
     }
     let kind = select(2u, 3u, vertex);
-    return vec4<u32>(bitcast<u32>(seg.a.w), draws[in.draw].instance + 1u, kind, 0u);
+    return vec4<u32>(bitcast<u32>(seg.a.w), instance_ids(in.draw).instance + 1u, kind, 0u);
 }

@@ -50,7 +50,8 @@ impl ShadePass {
     pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> ShadePass {
         let module = shader(device, "shade", &source());
         let fragment = wgpu::ShaderStages::FRAGMENT;
-        let (layout, pipeline_layout) = layouts(device, "shade", &entries(BINDINGS, fragment));
+        let (layout, pipeline_layout) =
+            layouts(device, "shade", &entries(BINDINGS, fragment), None);
         let pipeline = pipeline(
             device,
             PipelineSpec {

@@ -104,9 +104,12 @@ impl VisibilityTargets {
 
 impl VisibilityPass {
     /// Builds every back-end's pipeline.
-    pub fn new(device: &wgpu::Device) -> VisibilityPass {
+    pub fn new(
+        device: &wgpu::Device,
+        instances: &crate::passes::instances::InstanceLayout,
+    ) -> VisibilityPass {
         VisibilityPass {
-            mesh: mesh::MeshBackend::new(device),
+            mesh: mesh::MeshBackend::new(device, instances),
         }
     }
 

@@ -6,18 +6,18 @@ use super::common::{
 };
 use super::visibility::{DEPTH, VisibilityTargets};
 use crate::gpu_scene::FrameScene;
-use crate::layout::{Binding, Draw, Frame, GpuStruct, Material};
+use crate::layout::{Binding, Frame, GpuStruct, Material};
+use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
-/// Bind group 0: frame, draw records, materials.
+/// Bind group 0: frame, materials (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(Frame::WGSL_NAME),
-    Binding::Storage(Draw::WGSL_NAME),
     Binding::Storage(Material::WGSL_NAME),
 ];
 
 /// The pass's whole WGSL: the shared declarations and its own source.
 pub(crate) fn source() -> String {
-    wgsl(&[include_str!("xray.wgsl")])
+    wgsl(&[INSTANCES_WGSL, include_str!("xray.wgsl")])
 }
 
 /// The pass's pipeline and bind group layout.
@@ -30,10 +30,15 @@ pub(crate) struct XrayPass {
 
 impl XrayPass {
     /// Builds the pipeline for a `colour` target of that format.
-    pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> XrayPass {
+    pub fn new(
+        device: &wgpu::Device,
+        colour: wgpu::TextureFormat,
+        instances: &InstanceLayout,
+    ) -> XrayPass {
         let module = shader(device, "xray", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let (layout, pipeline_layout) = layouts(device, "xray", &entries(BINDINGS, stages));
+        let (layout, pipeline_layout) =
+            layouts(device, "xray", &entries(BINDINGS, stages), Some(instances));
         let buffers = [Some(mesh_vertex_layout())];
         let targets = [Some(blended(colour))];
         let spec = |label, fragment, depth| PipelineSpec {
@@ -139,7 +144,6 @@ impl XrayPass {
             &self.layout,
             &[
                 frame.as_entire_binding(),
-                scene.draws.as_entire_binding(),
                 scene.materials.as_entire_binding(),
             ],
         )

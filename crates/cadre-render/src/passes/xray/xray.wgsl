@@ -1,8 +1,7 @@
 // X-ray pass: every triangle drawn see-through, without depth test, more opaque where it is
 // seen edge-on (a Fresnel-like rim), so the inside of an assembly shows through its shell.
 
-@group(0) @binding(1) var<storage, read> draws: array<Draw>;
-@group(0) @binding(2) var<storage, read> materials: array<Material>;
+@group(0) @binding(1) var<storage, read> materials: array<Material>;
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -20,7 +19,7 @@ fn vs_main(
     @location(3) uv: vec2<f32>,
     @builtin(instance_index) draw_index: u32,
 ) -> VertexOut {
-    let placed = place_vertex(draws[draw_index], position, normal);
+    let placed = place_vertex(instance_draw(draw_index), position, normal);
     var out: VertexOut;
     out.clip = placed.clip;
     out.world = placed.world;
@@ -34,7 +33,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     if section_cut(in.world) {
         discard;
     }
-    let m = materials[draws[in.draw].material];
+    let m = materials[instance_ids(in.draw).material];
     let len = length(in.normal);
     let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
     let rim = (1.0 - facing) * (1.0 - facing);
@@ -49,7 +48,7 @@ fn fs_transparent(in: VertexOut) -> @location(0) vec4<f32> {
     if section_cut(in.world) {
         discard;
     }
-    let m = materials[draws[in.draw].material];
+    let m = materials[instance_ids(in.draw).material];
     let len = length(in.normal);
     let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
     return vec4<f32>(m.base_color.rgb * (0.35 + 0.65 * facing), m.base_color.a);

@@ -1,7 +1,5 @@
 // Mesh back-end of the visibility pass: triangles of the scene's meshes, placed by their
-// draw records, each fragment written by `visibility_texel` (texel.wgsl, before this file).
-
-@group(0) @binding(1) var<storage, read> draws: array<Draw>;
+// draw records (instances.wgsl), each fragment written by `visibility_texel` (texel.wgsl, before this file).
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -21,7 +19,7 @@ fn vs_main(
     @location(3) uv: vec2<f32>,
     @builtin(instance_index) draw_index: u32,
 ) -> VertexOut {
-    let placed = place_vertex(draws[draw_index], position, normal);
+    let placed = place_vertex(instance_draw(draw_index), position, normal);
     var out: VertexOut;
     out.clip = placed.clip;
     out.world = placed.world;
@@ -37,6 +35,6 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> VisibilityOut {
     if section_cut(in.world) {
         discard;
     }
-    let d = draws[in.draw];
+    let d = instance_ids(in.draw);
     return visibility_texel(in.world, in.normal, in.face, d, in.clip.z, in.uv, front);
 }

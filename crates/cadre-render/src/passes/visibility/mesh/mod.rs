@@ -3,21 +3,20 @@
 
 use super::{TARGETS, TEXEL_WGSL, depth_state};
 use crate::gpu_scene::FrameScene;
-use crate::layout::{Binding, Draw, Frame, GpuStruct};
+use crate::layout::{Binding, Frame, GpuStruct};
 use crate::passes::common::{
     PipelineSpec, bind_group, draw_meshes, entries, layouts, mesh_vertex_layout, pipeline, shader,
     wgsl,
 };
+use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
-/// Bind group 0: frame, draw records.
-pub(crate) const BINDINGS: &[Binding] = &[
-    Binding::Uniform(Frame::WGSL_NAME),
-    Binding::Storage(Draw::WGSL_NAME),
-];
+/// Bind group 0: the frame (group 1: the instances, [`crate::layout::INSTANCE_BINDINGS`]).
+pub(crate) const BINDINGS: &[Binding] = &[Binding::Uniform(Frame::WGSL_NAME)];
 
-/// The back-end's whole WGSL: the shared declarations, the texel writer, its own source.
+/// The back-end's whole WGSL: the shared declarations, the instances, the texel writer, its
+/// own source.
 pub(crate) fn source() -> String {
-    wgsl(&[TEXEL_WGSL, include_str!("mesh.wgsl")])
+    wgsl(&[INSTANCES_WGSL, TEXEL_WGSL, include_str!("mesh.wgsl")])
 }
 
 /// The back-end's pipeline and bind group layout.
@@ -28,11 +27,15 @@ pub(crate) struct MeshBackend {
 
 impl MeshBackend {
     /// Builds the pipeline.
-    pub fn new(device: &wgpu::Device) -> MeshBackend {
+    pub fn new(device: &wgpu::Device, instances: &InstanceLayout) -> MeshBackend {
         let module = shader(device, "visibility mesh", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let (layout, pipeline_layout) =
-            layouts(device, "visibility mesh", &entries(BINDINGS, stages));
+        let (layout, pipeline_layout) = layouts(
+            device,
+            "visibility mesh",
+            &entries(BINDINGS, stages),
+            Some(instances),
+        );
         let pipeline = pipeline(
             device,
             PipelineSpec {
@@ -60,7 +63,7 @@ impl MeshBackend {
             device,
             "visibility mesh",
             &self.layout,
-            &[frame.as_entire_binding(), scene.draws.as_entire_binding()],
+            &[frame.as_entire_binding()],
         );
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
