@@ -14,7 +14,7 @@ use crate::edges::feature_edges;
 use crate::error::RenderError;
 use crate::layout::{Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Segment, Vertex};
 use crate::passes::instances::InstanceLayout;
-use crate::placements::Placements;
+use crate::placements::{Placements, normal_columns, normal_matrix};
 use crate::solid::closed_orientation;
 use crate::view::{InstanceStyle, ViewState};
 
@@ -532,13 +532,8 @@ fn placement(
     (instance, flags): (u32, u32),
 ) -> impl Fn(u32) -> Draw {
     let linear = world.matrix3;
-    // Normals transform by the inverse transpose; mirrors are fine, singular placements get
-    // the plain rotation part.
-    let normal = if linear.determinant().abs() > 1e-300 {
-        rotation * linear.inverse().transpose()
-    } else {
-        rotation * linear
-    };
+    // Normals transform by the inverse transpose, then into view space.
+    let normal = normal_columns(rotation * normal_matrix(linear));
     let translation: DVec3 = world.translation - camera.eye;
     let model = glam::DMat4::from_cols(
         linear.x_axis.extend(0.0),
@@ -547,14 +542,9 @@ fn placement(
         translation.extend(1.0),
     )
     .as_mat4();
-    let n = normal.as_mat3();
     move |material: u32| Draw {
         model: model.to_cols_array_2d(),
-        normal: [
-            n.x_axis.extend(0.0).to_array(),
-            n.y_axis.extend(0.0).to_array(),
-            n.z_axis.extend(0.0).to_array(),
-        ],
+        normal,
         material,
         instance,
         flags,

@@ -85,17 +85,22 @@ impl Placements {
         &self.locals[list.first as usize..(list.first + list.count) as usize]
     }
 
+    /// Places one instance of `mesh` by `world`: a run on the identity list.
+    fn place(&mut self, mesh: usize, world: DAffine3) {
+        self.runs.push(Run {
+            mesh,
+            world,
+            instance: self.instances as u32,
+            list: 0,
+        });
+        self.instances += 1;
+    }
+
     /// One run per instance, every run on the identity list.
     fn flat(&mut self, scene: &Scene) {
         for (node, world) in scene.instances() {
             if let Some(mesh) = mesh_of(scene, node) {
-                self.runs.push(Run {
-                    mesh,
-                    world,
-                    instance: self.instances as u32,
-                    list: 0,
-                });
-                self.instances += 1;
+                self.place(mesh, world);
             }
         }
     }
@@ -132,13 +137,7 @@ impl Placements {
             }
             let world = parent_world * n.transform;
             if let Some(mesh) = mesh_of(scene, node) {
-                self.runs.push(Run {
-                    mesh,
-                    world,
-                    instance: self.instances as u32,
-                    list: 0,
-                });
-                self.instances += 1;
+                self.place(mesh, world);
             }
             for &child in n.children.iter().rev() {
                 if child < scene.nodes.len() {
@@ -189,6 +188,26 @@ impl Placements {
     }
 }
 
+/// The matrix that carries normals through `linear`: its inverse transpose (mirrors
+/// included); a singular map gets itself.
+pub(crate) fn normal_matrix(linear: DMat3) -> DMat3 {
+    if linear.determinant().abs() > 1e-300 {
+        linear.inverse().transpose()
+    } else {
+        linear
+    }
+}
+
+/// `m`'s columns as the GPU structs' `array<vec4<f32>, 3>` (w unused).
+pub(crate) fn normal_columns(m: DMat3) -> [[f32; 4]; 3] {
+    let n = m.as_mat3();
+    [
+        n.x_axis.extend(0.0).to_array(),
+        n.y_axis.extend(0.0).to_array(),
+        n.z_axis.extend(0.0).to_array(),
+    ]
+}
+
 /// The valid mesh index of `node`, if any.
 fn mesh_of(scene: &Scene, node: usize) -> Option<usize> {
     scene.nodes[node].mesh.filter(|&m| m < scene.meshes.len())
@@ -198,20 +217,9 @@ fn mesh_of(scene: &Scene, node: usize) -> Option<usize> {
 /// flag for a solid mesh.
 fn local(world: DAffine3, offset: u32, solid: bool) -> Local {
     let linear: DMat3 = world.matrix3;
-    let normal = if linear.determinant().abs() > 1e-300 {
-        linear.inverse().transpose()
-    } else {
-        linear
-    };
-    let model = glam::DMat4::from(world).as_mat4();
-    let n = normal.as_mat3();
     Local {
-        model: model.to_cols_array_2d(),
-        normal: [
-            n.x_axis.extend(0.0).to_array(),
-            n.y_axis.extend(0.0).to_array(),
-            n.z_axis.extend(0.0).to_array(),
-        ],
+        model: glam::DMat4::from(world).as_mat4().to_cols_array_2d(),
+        normal: normal_columns(normal_matrix(linear)),
         offset,
         flags: if solid && linear.determinant() < 0.0 {
             DRAW_INSIDE_OUT
