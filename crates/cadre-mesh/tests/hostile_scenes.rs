@@ -42,3 +42,21 @@ fn a_wide_assembly_reaches_the_scene_whole() {
     assert!(model >= 1000, "{model}");
     assert!(scene >= model, "scene {scene}, model {model}");
 }
+
+#[test]
+fn a_huge_assembly_shares_its_nodes_and_keeps_every_instance() {
+    let Some(wide) = hostile::chain(6, 9) else {
+        return;
+    };
+    let model = cadre_step::map_file(&StepFile::parse(wide).expect("parses"));
+    let params = MeshParams::relative(&model, 0.001, MeshParams::default().angle);
+    let mesh = mesh_model(&model, &params, None);
+    let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
+    // 9⁶ = 531,441 uses, past SHARE_NODES_ABOVE: one node per occurrence in the file, not
+    // one per instance, and the walk still reaches every instance.
+    assert!(model.placed_instances() > cadre_mesh::assemble::SHARE_NODES_ABOVE);
+    assert!(scene.nodes.len() < 100, "{} nodes", scene.nodes.len());
+    let placed = model.placed_body_instances();
+    assert!(placed >= 531_441, "{placed}");
+    assert_eq!(scene.instances().count() as u64, placed);
+}
