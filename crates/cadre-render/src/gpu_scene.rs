@@ -477,12 +477,22 @@ impl<'a> FrameScene<'a> {
             call_bytes[at..at + std::mem::size_of::<Call>()]
                 .copy_from_slice(bytemuck::bytes_of(header));
         }
-        let calls = checked_buffer(
+        // Bound one call wide at a dynamic offset, so only the buffer limit applies, not the
+        // uniform binding limit (16 KiB on downlevel devices: 64 calls).
+        let limit = device.limits().max_buffer_size;
+        if call_bytes.len() as u64 > limit {
+            return Err(RenderError::TooLarge {
+                what: "draw calls".to_string(),
+                bytes: call_bytes.len() as u64,
+                limit,
+            });
+        }
+        let calls = buffer(
             device,
             "draw calls",
             &call_bytes,
             wgpu::BufferUsages::UNIFORM,
-        )?;
+        );
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("instances"),
             layout: &layout.layout,

@@ -143,3 +143,36 @@ fn factored_instances_draw_like_one_record_each() {
         "{share}, {one} of {covered}"
     );
 }
+
+/// A scene of 300 distinct meshes (300 draw calls, each bound at its own dynamic offset of the
+/// call buffer) draws: the call buffer is bound one call wide, so the uniform binding limit
+/// of downlevel devices (16 KiB, 64 calls of 256 bytes) does not cap the calls.
+#[test]
+fn hundreds_of_draw_calls_draw() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).unwrap();
+    let pins = scene("pin-assembly.step");
+    let mut many = Scene::default();
+    for k in 0..300 {
+        many.meshes.push(pins.meshes[0].clone());
+        many.nodes.push(SceneNode {
+            transform: DAffine3::from_translation(DVec3::new(
+                30.0 * (k % 20) as f64,
+                30.0 * (k / 20) as f64,
+                0.0,
+            )),
+            mesh: Some(k),
+            ..SceneNode::default()
+        });
+        many.roots.push(k);
+    }
+    let (lo, hi) = scene_bounds(&many).unwrap();
+    let camera = Camera::fit(lo, hi, ViewPreset::Top, false, f64::from(W) / f64::from(H));
+    let prepared = renderer.prepare(&gpu, &many);
+    let ids = renderer
+        .render_ids_prepared(&gpu, &prepared, &camera, &options(), &ViewState::default())
+        .unwrap();
+    let drawn: std::collections::BTreeSet<u32> =
+        ids.iter().map(|p| p[1]).filter(|&i| i > 0).collect();
+    assert!(drawn.len() > 250, "{} of 300 instances seen", drawn.len());
+}
