@@ -6,9 +6,7 @@
 mod common;
 
 use cadre_mesh::export::{Scene, SceneNode};
-use cadre_render::{
-    Camera, DisplayMode, FrameOptions, Renderer, ViewPreset, ViewState, scene_bounds,
-};
+use cadre_render::{Camera, FrameOptions, Renderer, ViewPreset, ViewState, scene_bounds};
 use common::{gpu, scene};
 use glam::{DAffine3, DQuat, DVec3};
 
@@ -61,13 +59,7 @@ fn shared_chain(levels: usize, uses: usize, shift: f64) -> Scene {
 }
 
 fn options() -> FrameOptions {
-    FrameOptions {
-        width: W,
-        height: H,
-        supersample: 1,
-        mode: DisplayMode::ShadedEdges,
-        ..FrameOptions::default()
-    }
+    common::shaded_edges(W, H)
 }
 
 /// Share of the pixels covered in both id buffers whose ids in `lane` agree, their

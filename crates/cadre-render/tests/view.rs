@@ -26,13 +26,7 @@ fn camera(scene: &Scene) -> Camera {
 }
 
 fn options() -> FrameOptions {
-    FrameOptions {
-        width: W,
-        height: H,
-        supersample: 1,
-        mode: DisplayMode::ShadedEdges,
-        ..FrameOptions::default()
-    }
+    common::shaded_edges(W, H)
 }
 
 /// The pixel a world point lands on.

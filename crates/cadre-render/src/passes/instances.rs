@@ -3,7 +3,7 @@
 //! the WGSL that composes them.
 
 use crate::layout::{Call, INSTANCE_BINDINGS};
-use crate::passes::common::{STORAGE, buffer_entry};
+use crate::passes::common::entries;
 
 /// The WGSL of bind group 1 and its `instance_draw` / `instance_ids` functions.
 pub(crate) const INSTANCES_WGSL: &str = include_str!("instances.wgsl");
@@ -18,21 +18,16 @@ impl InstanceLayout {
     /// The layout of [`INSTANCE_BINDINGS`]: the call uniform with a dynamic offset, then the
     /// records and locals, visible to vertex and fragment stages.
     pub fn new(device: &wgpu::Device) -> InstanceLayout {
-        let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let mut call = buffer_entry(0, wgpu::BufferBindingType::Uniform, stages);
-        call.ty = wgpu::BindingType::Buffer {
+        let mut entries = entries(INSTANCE_BINDINGS, wgpu::ShaderStages::VERTEX_FRAGMENT);
+        // The call: one `Call` wide, at a per-draw dynamic offset.
+        entries[0].ty = wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Uniform,
             has_dynamic_offset: true,
             min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<Call>() as u64),
         };
-        debug_assert_eq!(INSTANCE_BINDINGS.len(), 3);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("instances"),
-            entries: &[
-                call,
-                buffer_entry(1, STORAGE, stages),
-                buffer_entry(2, STORAGE, stages),
-            ],
+            entries: &entries,
         });
         InstanceLayout { layout }
     }

@@ -91,3 +91,15 @@ pub fn check_golden(name: &str, image: &RgbaImage) {
         );
     }
 }
+
+/// Options of a `width` × `height` frame, shaded with edges, without supersampling: what the
+/// id and viewer tests draw.
+pub fn shaded_edges(width: u32, height: u32) -> cadre_render::FrameOptions {
+    cadre_render::FrameOptions {
+        width,
+        height,
+        supersample: 1,
+        mode: cadre_render::DisplayMode::ShadedEdges,
+        ..cadre_render::FrameOptions::default()
+    }
+}
