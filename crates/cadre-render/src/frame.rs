@@ -503,6 +503,12 @@ struct FrameInput<'a> {
     size: (u32, u32),
 }
 
+/// The options' background (sRGB colour, straight alpha) in linear light.
+fn linear_background(options: &FrameOptions) -> [f32; 4] {
+    let [r, g, b, a] = options.background;
+    [srgb_to_linear(r), srgb_to_linear(g), srgb_to_linear(b), a]
+}
+
 /// The frame's uniform for a `w` × `h` target.
 fn frame_uniform(
     camera: &Camera,
@@ -511,7 +517,6 @@ fn frame_uniform(
     (w, h): (u32, u32),
 ) -> Frame {
     let aspect = f64::from(w) / f64::from(h);
-    let bg = options.background;
     let (fill, edge_mode) = options.mode.fill_and_edges();
     // Output pixels → target pixels (supersampling).
     let scale = w as f32 / options.width.max(1) as f32;
@@ -526,12 +531,7 @@ fn frame_uniform(
             .inverse()
             .as_mat4()
             .to_cols_array_2d(),
-        background: [
-            srgb_to_linear(bg[0]),
-            srgb_to_linear(bg[1]),
-            srgb_to_linear(bg[2]),
-            bg[3],
-        ],
+        background: linear_background(options),
         viewport: [
             w as f32,
             h as f32,
@@ -676,6 +676,10 @@ impl Renderer {
             materials: &scene.materials,
             lights: &light_buffer,
             selection,
+            background: {
+                let [r, g, b, a] = linear_background(options).map(f64::from);
+                wgpu::Color { r, g, b, a }
+            },
         };
         self.shade
             .record(device, encoder, targets, &inputs, colour_view);

@@ -1,9 +1,7 @@
 //! Shading pass: lights the visibility buffer into the colour target.
 
-use super::common::{
-    PipelineSpec, bind_group, colour_pass, entries, layouts, pipeline, shader, wgsl,
-};
-use super::visibility::VisibilityTargets;
+use super::common::{PipelineSpec, bind_group, entries, layouts, pipeline, shader, wgsl};
+use super::visibility::{DEPTH, VisibilityTargets};
 use crate::layout::{Binding, Frame, GpuStruct, LightGpu, Material};
 
 /// Bind group 0: frame, materials, the normal and id targets, lights, selection.
@@ -37,6 +35,23 @@ pub(crate) struct ShadeInputs<'a> {
     pub materials: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
     pub selection: &'a wgpu::Buffer,
+    /// The frame's background, linear (sRGB targets encode it on store).
+    pub background: wgpu::Color,
+}
+
+/// The shade pass's depth state: its screen triangle lies on the far plane (depth 0 in reverse
+/// Z) and passes only where the visibility pass left something nearer, so background pixels
+/// are cleared, never shaded. A CPU rasterizer (llvmpipe) tests depth before it runs the
+/// shader and skips blocks that fail whole: the shading cost follows the model's pixels,
+/// not the image's.
+fn faces_only() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH,
+        depth_write_enabled: Some(false),
+        depth_compare: Some(wgpu::CompareFunction::Less),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
 }
 
 /// The pass's pipeline and bind group layout.
@@ -60,14 +75,15 @@ impl ShadePass {
                 module: &module,
                 fragment: "fs_main",
                 buffers: &[],
-                depth: None,
+                depth: Some(faces_only()),
                 targets: &[Some(colour.into())],
             },
         );
         ShadePass { pipeline, layout }
     }
 
-    /// Records the pass into `target`.
+    /// Records the pass into `target`, cleared to `background` (linear): only the pixels
+    /// that a surface covers are shaded.
     pub fn record(
         &self,
         device: &wgpu::Device,
@@ -81,6 +97,7 @@ impl ShadePass {
             materials,
             lights,
             selection,
+            background,
         } = inputs;
         let bind = bind_group(
             device,
@@ -95,7 +112,27 @@ impl ShadePass {
                 selection.as_entire_binding(),
             ],
         );
-        let mut pass = colour_pass(encoder, "shade", target, Some(wgpu::Color::BLACK));
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("shade"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(*background),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            // Read only: the depth test keeps the shader off the background.
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &visibility.depth,
+                depth_ops: None,
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
         pass.draw(0..3, 0..1);

@@ -19,7 +19,8 @@
 
 @vertex
 fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    // One triangle covering the screen.
+    // One triangle covering the screen, on the far plane (reverse-Z depth 0): the pass's depth
+    // test (`faces_only` in mod.rs) leaves the background cleared and unshaded.
     let x = f32(i32(i & 1u) * 4 - 1);
     let y = f32(i32(i >> 1u) * 4 - 1);
     return vec4<f32>(x, y, 0.0, 1.0);
