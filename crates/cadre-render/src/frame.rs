@@ -11,7 +11,7 @@ use crate::layout::{
 use crate::passes::edges::EdgesPass;
 use crate::passes::instances::InstanceLayout;
 use crate::passes::pick::{PickInputs, PickPass};
-use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass};
+use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass, ShadeVariant};
 use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
 use crate::passes::xray::XrayPass;
 use crate::view::{MAX_HIGHLIGHTED, MAX_SECTIONS, ViewState};
@@ -446,6 +446,7 @@ impl Renderer {
             options,
             targets,
             frame: &frame_buffer,
+            uniform: &frame,
             scene: &frame_scene,
             selection: &selection,
             draw_lines,
@@ -637,6 +638,8 @@ struct Shading<'a> {
     options: &'a FrameOptions,
     targets: &'a VisibilityTargets,
     frame: &'a wgpu::Buffer,
+    /// The frame buffer's content.
+    uniform: &'a Frame,
     scene: &'a FrameScene<'a>,
     selection: &'a wgpu::Buffer,
     draw_lines: bool,
@@ -657,6 +660,7 @@ impl Renderer {
             options,
             targets,
             frame,
+            uniform,
             scene,
             selection,
             draw_lines,
@@ -680,6 +684,7 @@ impl Renderer {
                 let [r, g, b, a] = linear_background(options).map(f64::from);
                 wgpu::Color { r, g, b, a }
             },
+            variant: ShadeVariant::of(uniform, &lights),
         };
         self.shade
             .record(device, encoder, targets, &inputs, colour_view);

@@ -229,6 +229,8 @@ pub(crate) struct PipelineSpec<'a> {
     pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     pub depth: Option<wgpu::DepthStencilState>,
     pub targets: &'a [Option<wgpu::ColorTargetState>],
+    /// Values of the fragment shader's pipeline-overridable constants (none: their defaults).
+    pub constants: &'a [(&'a str, f64)],
 }
 
 /// A render pipeline with entry points `vs_main` and `spec.fragment`, triangle lists, no culling
@@ -249,7 +251,10 @@ pub(crate) fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::R
         fragment: Some(wgpu::FragmentState {
             module: spec.module,
             entry_point: Some(spec.fragment),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: spec.constants,
+                ..Default::default()
+            },
             targets: spec.targets,
         }),
         multiview_mask: None,

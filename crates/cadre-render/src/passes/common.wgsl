@@ -119,7 +119,8 @@ struct LineOut {
     @location(0) @interpolate(linear) across: f32,
     @location(1) @interpolate(linear) along: f32,
     @location(2) @interpolate(flat) segment: u32,
-    @location(3) @interpolate(flat) draw: u32,
+    // The instance number of the segment's draw.
+    @location(3) @interpolate(flat) instance: u32,
     // Camera-relative world position, for the section planes.
     @location(4) world: vec3<f32>,
 }
@@ -150,6 +151,7 @@ fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32) -> LineOut {
     out.across = sides[corner] * half;
     out.along = select(0.0, len, at_b);
     out.segment = vi / 6u;
+    out.instance = d.instance;
     // The corners past the ends keep the end's position: the fringe is a pixel or two.
     out.world = select(wa.xyz, wb.xyz, at_b);
     return out;

@@ -5,7 +5,8 @@
 use crate::layout::{Call, INSTANCE_BINDINGS};
 use crate::passes::common::entries;
 
-/// The WGSL of bind group 1 and its `instance_draw` / `instance_ids` functions.
+/// The WGSL of bind group 1, its `instance_draw` function and the flat-varying ids
+/// (`pack_instance` / `unpack_instance`).
 pub(crate) const INSTANCES_WGSL: &str = include_str!("instances.wgsl");
 
 /// Bind group 1's layout, built once per renderer and shared by its pipelines (the bind

@@ -29,13 +29,21 @@ fn instance_draw(i: u32) -> Draw {
     return d;
 }
 
-// What fragments read of the call's instance `i` (material, instance number, flags); the
-// placement is left as the record's.
-fn instance_ids(i: u32) -> Draw {
-    let at = instance_parts(i);
-    var d = draws[at.x];
-    let l = locals[at.y];
-    d.instance += l.offset;
-    d.flags ^= l.flags;
-    return d;
+// What a fragment needs of its instance (material, instance number, flags), looked up once
+// per vertex and carried as a flat varying: a fragment that looked it up again would pay
+// `instance_parts`' integer division and modulo per pixel, which a CPU rasterizer runs lane
+// by lane (no vector integer division).
+struct InstanceIds {
+    material: u32,
+    instance: u32,
+    flags: u32,
+}
+
+// `d`'s ids packed for a flat varying (`unpack_instance` reads them back).
+fn pack_instance(d: Draw) -> vec3<u32> {
+    return vec3<u32>(d.material, d.instance, d.flags);
+}
+
+fn unpack_instance(v: vec3<u32>) -> InstanceIds {
+    return InstanceIds(v.x, v.y, v.z);
 }

@@ -13,31 +13,29 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: 
     let seg = segments[vi / 6u];
     let d = instance_draw(draw_index);
     var width = frame.viewport.z;
-    if is_highlighted(seg, d) {
+    if is_highlighted(seg, d.instance) {
         width = max(2.0 * width, width + 2.0);
     }
-    var out = segment_quad(seg, vi, d, 0.5 * width);
-    out.draw = draw_index;
-    return out;
+    return segment_quad(seg, vi, d, 0.5 * width);
 }
 
-// Whether the segment's edge (or part) is hovered or selected.
-fn is_highlighted(seg: Segment, d: Draw) -> bool {
-    return highlight_of(seg, d).w > 0.0;
+// Whether the segment's edge (or part) of instance `instance` is hovered or selected.
+fn is_highlighted(seg: Segment, instance: u32) -> bool {
+    return highlight_of(seg, instance).w > 0.0;
 }
 
 // The highlight colour of the segment's edge: selection over hover, alpha 0 for none.
-fn highlight_of(seg: Segment, d: Draw) -> vec4<f32> {
+fn highlight_of(seg: Segment, instance: u32) -> vec4<f32> {
     let id = bitcast<u32>(seg.a.w);
     if bitcast<u32>(seg.b.w) != 1u {
         return vec4<f32>(0.0);
     }
     for (var i = 0u; i < frame.counts.y; i++) {
-        if is_target(selection[i], 2u, d.instance + 1u, id) {
+        if is_target(selection[i], 2u, instance + 1u, id) {
             return frame.selection_colour;
         }
     }
-    if is_target(frame.hover, 2u, d.instance + 1u, id) {
+    if is_target(frame.hover, 2u, instance + 1u, id) {
         return frame.hover_colour;
     }
     return vec4<f32>(0.0);
@@ -51,7 +49,7 @@ fn fs_main(in: LineOut) -> @location(0) vec4<f32> {
     let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy), 0);
     let scene_depth = scene_depth_at(ids);
     let seg = segments[in.segment];
-    let highlight = highlight_of(seg, instance_ids(in.draw));
+    let highlight = highlight_of(seg, in.instance);
     // Reverse Z: nearer is larger. The tolerance keeps an edge on its own faces visible.
     let hidden = in.clip.z < scene_depth * (1.0 - frame.tolerances.x);
     let mode = frame.modes.z;

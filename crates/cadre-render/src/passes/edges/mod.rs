@@ -50,6 +50,7 @@ impl EdgesPass {
                 buffers: &[],
                 depth: None,
                 targets: &[Some(blended(colour))],
+                constants: &[],
             },
         );
         EdgesPass { pipeline, layout }

@@ -55,6 +55,7 @@ impl PickPass {
                 buffers: &[],
                 depth: None,
                 targets: &[Some(PICK.into())],
+                constants: &[],
             },
         );
         PickPass { pipeline, layout }

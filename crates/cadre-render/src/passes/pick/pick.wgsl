@@ -12,9 +12,7 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: 
     let seg = segments[vi / 6u];
     // Vertices a little larger than the one-pixel edges, so an edge's end still shows them.
     let vertex = bitcast<u32>(seg.b.w) == 2u;
-    var out = segment_quad(seg, vi, instance_draw(draw_index), select(0.0, 1.0, vertex));
-    out.draw = draw_index;
-    return out;
+    return segment_quad(seg, vi, instance_draw(draw_index), select(0.0, 1.0, vertex));
 }
 
 @fragment
@@ -35,5 +33,5 @@ fn fs_main(in: LineOut) -> @location(0) vec4<u32> {
         discard;
     }
     let kind = select(2u, 3u, vertex);
-    return vec4<u32>(bitcast<u32>(seg.a.w), instance_ids(in.draw).instance + 1u, kind, 0u);
+    return vec4<u32>(bitcast<u32>(seg.a.w), in.instance + 1u, kind, 0u);
 }

@@ -11,6 +11,16 @@
 // dark 45° hatch lines in screen space (the other diagonal on every other part, as drawings
 // tell adjacent parts apart) and outlined where the cap ends.
 
+// The optional parts, compiled in or out per pipeline (`ShadeVariant` in mod.rs): a CPU
+// rasterizer runs both sides of every branch under lane masks, so code a frame cannot reach
+// would still cost its full price at every pixel.
+// Section caps (with outlines and hatching): set when the frame has section planes.
+override SECTIONS: bool = true;
+// Outlines where the depth jumps: set in the modes that draw visible edges.
+override SILHOUETTES: bool = true;
+// Point and spot lights; unset when every light is directional (the default rig).
+override POSITIONAL_LIGHTS: bool = true;
+
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
 @group(0) @binding(2) var normal_tex: texture_2d<f32>;
 @group(0) @binding(3) var ids_tex: texture_2d<u32>;
@@ -30,10 +40,10 @@ fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
 fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(pos.xy);
     let ids = textureLoad(ids_tex, p, 0);
-    if ids.y != 0u && frame.modes.w != 0u && on_silhouette(p) {
+    if SILHOUETTES && ids.y != 0u && frame.modes.w != 0u && on_silhouette(p) {
         return frame.edge_colour;
     }
-    let cap = is_cap(ids);
+    let cap = SECTIONS && is_cap(ids);
     // Caps are outlined whenever faces are filled (shaded or hidden-line).
     if cap && frame.modes.y != FILL_NONE && on_cap_boundary(p, ids) {
         return frame.edge_colour;
@@ -72,7 +82,7 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
         let kind = u32(li.position.w + 0.5);
         var l = normalize(li.direction.xyz);
         var radiance = li.colour.rgb;
-        if kind != 0u {
+        if POSITIONAL_LIGHTS && kind != 0u {
             let to_light = li.position.xyz - view_pos;
             let d = max(length(to_light), 1e-6);
             l = to_light / d;

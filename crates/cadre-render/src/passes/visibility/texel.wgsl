@@ -53,13 +53,13 @@ fn cap_of(p: vec3<f32>) -> Cap {
 }
 
 // The texel of the surface point `world` (camera-relative) with view-space `normal` (any
-// length), on face `face` of draw `d`, at reverse-Z `depth`, with parameters `uv`; `front`
+// length), on face `face` of instance `d`, at reverse-Z `depth`, with parameters `uv`; `front`
 // is whether the point is seen from the side its triangles (or surface) face.
 fn visibility_texel(
     world: vec3<f32>,
     normal: vec3<f32>,
     face: u32,
-    d: Draw,
+    d: InstanceIds,
     depth: f32,
     uv: vec2<f32>,
     front: bool,

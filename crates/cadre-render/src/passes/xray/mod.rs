@@ -49,6 +49,7 @@ impl XrayPass {
             buffers: &buffers,
             depth,
             targets: &targets,
+            constants: &[],
         };
         let xray = pipeline(device, spec("xray", "fs_main", None));
         let transparent = pipeline(

@@ -6,7 +6,7 @@
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) normal: vec3<f32>,
-    @location(1) @interpolate(flat) draw: u32,
+    @location(1) @interpolate(flat) material: u32,
     // Camera-relative world position, for the section planes.
     @location(2) world: vec3<f32>,
 }
@@ -19,12 +19,13 @@ fn vs_main(
     @location(3) uv: vec2<f32>,
     @builtin(instance_index) draw_index: u32,
 ) -> VertexOut {
-    let placed = place_vertex(instance_draw(draw_index), position, normal);
+    let d = instance_draw(draw_index);
+    let placed = place_vertex(d, position, normal);
     var out: VertexOut;
     out.clip = placed.clip;
     out.world = placed.world;
     out.normal = placed.normal;
-    out.draw = draw_index;
+    out.material = d.material;
     return out;
 }
 
@@ -33,7 +34,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     if section_cut(in.world) {
         discard;
     }
-    let m = materials[instance_ids(in.draw).material];
+    let m = materials[in.material];
     let len = length(in.normal);
     let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
     let rim = (1.0 - facing) * (1.0 - facing);
@@ -48,7 +49,7 @@ fn fs_transparent(in: VertexOut) -> @location(0) vec4<f32> {
     if section_cut(in.world) {
         discard;
     }
-    let m = materials[instance_ids(in.draw).material];
+    let m = materials[in.material];
     let len = length(in.normal);
     let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
     return vec4<f32>(m.base_color.rgb * (0.35 + 0.65 * facing), m.base_color.a);

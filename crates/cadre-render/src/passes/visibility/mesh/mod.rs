@@ -46,6 +46,7 @@ impl MeshBackend {
                 buffers: &[Some(mesh_vertex_layout())],
                 depth: Some(depth_state()),
                 targets: &TARGETS,
+                constants: &[],
             },
         );
         MeshBackend { pipeline, layout }
