@@ -217,3 +217,34 @@ impl ShadePass {
         pass.draw(0..3, 0..1);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_variant_follows_the_frame_and_its_lights() {
+        let mut frame = Frame::default();
+        let directional = LightGpu::default();
+        let mut point = LightGpu::default();
+        point.position[3] = 1.0;
+        let plain = ShadeVariant::of(&frame, &[directional]);
+        assert_eq!(
+            plain,
+            ShadeVariant {
+                sections: false,
+                silhouettes: false,
+                positional_lights: false
+            }
+        );
+        frame.counts[2] = 1;
+        frame.modes[3] = 1;
+        let all = ShadeVariant::of(&frame, &[directional, point]);
+        assert!(all.sections && all.silhouettes && all.positional_lights);
+        assert_eq!(
+            all.constants().map(|(_, v)| v),
+            [1.0; 3],
+            "every part compiled in"
+        );
+    }
+}
