@@ -413,11 +413,14 @@ impl Renderer {
             };
         // Wire bodies are drawn in every mode; B-Rep edges only in the modes with edges.
         let draw_lines = readback.shaded() && !frame_scene.edge_calls.is_empty();
+        // A viewer's frame draws into its kept targets; an image, or a frame that reads the
+        // (u, v) back (which a viewport has no target for), into fresh ones.
+        let with_uv = matches!(readback, Readback::Uv);
         let fresh;
         let targets = match &viewport {
-            Some(v) => &v.targets,
-            None => {
-                fresh = VisibilityTargets::new(device, w, h);
+            Some(v) if !with_uv => &v.targets,
+            _ => {
+                fresh = VisibilityTargets::new(device, (w, h), with_uv);
                 &fresh
             }
         };
@@ -453,7 +456,10 @@ impl Renderer {
         };
         let bytes = match readback {
             Readback::Ids => read_region(gpu, encoder, &targets.ids_texture, (0, 0), (w, h), 16)?,
-            Readback::Uv => read_region(gpu, encoder, &targets.uv_texture, (0, 0), (w, h), 8)?,
+            Readback::Uv => match &targets.uv {
+                Some((_, uv)) => read_region(gpu, encoder, uv, (0, 0), (w, h), 8)?,
+                None => Vec::new(),
+            },
             Readback::Into(view) => {
                 self.shade_into(&shading, &mut encoder, view);
                 gpu.queue.submit([encoder.finish()]);

@@ -47,7 +47,7 @@ impl Viewport {
         Viewport {
             width,
             height,
-            targets: VisibilityTargets::new(&gpu.device, width, height),
+            targets: VisibilityTargets::new(&gpu.device, (width, height), false),
             pick_view: pick_texture.create_view(&Default::default()),
             pick_texture,
             last: None,

@@ -37,24 +37,24 @@ pub(crate) fn depth_state() -> wgpu::DepthStencilState {
     }
 }
 
-/// Colour targets of every back-end: normal, ids, (u, v).
-pub(crate) const TARGETS: [Option<wgpu::ColorTargetState>; 3] = [
+/// A visibility target of `format`, written whole, not blended.
+const fn written(format: wgpu::TextureFormat) -> Option<wgpu::ColorTargetState> {
     Some(wgpu::ColorTargetState {
-        format: NORMAL,
+        format,
         blend: None,
         write_mask: wgpu::ColorWrites::ALL,
-    }),
-    Some(wgpu::ColorTargetState {
-        format: IDS,
-        blend: None,
-        write_mask: wgpu::ColorWrites::ALL,
-    }),
-    Some(wgpu::ColorTargetState {
-        format: UV,
-        blend: None,
-        write_mask: wgpu::ColorWrites::ALL,
-    }),
-];
+    })
+}
+
+/// Colour targets of every back-end: normal, ids, (u, v); [`TARGETS_NO_UV`] when nothing
+/// reads the (u, v).
+pub(crate) const TARGETS: [Option<wgpu::ColorTargetState>; 3] =
+    [written(NORMAL), written(IDS), written(UV)];
+
+/// [`TARGETS`] without the (u, v) target: only the exact-surface tests read it, and on a CPU
+/// rasterizer every target is memory to clear, write and fault in (8 of the 36 bytes a pixel).
+pub(crate) const TARGETS_NO_UV: [Option<wgpu::ColorTargetState>; 3] =
+    [written(NORMAL), written(IDS), None];
 
 /// The visibility buffer's textures, of one size.
 pub(crate) struct VisibilityTargets {
@@ -62,13 +62,17 @@ pub(crate) struct VisibilityTargets {
     pub normal: wgpu::TextureView,
     pub ids: wgpu::TextureView,
     pub ids_texture: wgpu::Texture,
-    pub uv: wgpu::TextureView,
-    pub uv_texture: wgpu::Texture,
+    /// The (u, v) target, made only for frames that read it back.
+    pub uv: Option<(wgpu::TextureView, wgpu::Texture)>,
 }
 
 impl VisibilityTargets {
-    /// Targets of `width` × `height`.
-    pub fn new(device: &wgpu::Device, width: u32, height: u32) -> VisibilityTargets {
+    /// Targets of `width` × `height`, with the (u, v) one when `with_uv`.
+    pub fn new(
+        device: &wgpu::Device,
+        (width, height): (u32, u32),
+        with_uv: bool,
+    ) -> VisibilityTargets {
         let make = |label, format, extra: wgpu::TextureUsages| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
@@ -90,14 +94,16 @@ impl VisibilityTargets {
         let depth = make("depth", DEPTH, wgpu::TextureUsages::empty());
         let normal = make("normal", NORMAL, wgpu::TextureUsages::empty());
         let ids = make("ids", IDS, wgpu::TextureUsages::COPY_SRC);
-        let uv = make("uv", UV, wgpu::TextureUsages::COPY_SRC);
+        let uv = with_uv.then(|| {
+            let texture = make("uv", UV, wgpu::TextureUsages::COPY_SRC);
+            (texture.create_view(&Default::default()), texture)
+        });
         VisibilityTargets {
             depth: depth.create_view(&Default::default()),
             normal: normal.create_view(&Default::default()),
             ids: ids.create_view(&Default::default()),
             ids_texture: ids,
-            uv: uv.create_view(&Default::default()),
-            uv_texture: uv,
+            uv,
         }
     }
 }
@@ -124,7 +130,8 @@ impl VisibilityPass {
         scene: &FrameScene<'_>,
     ) {
         let mut pass = open(encoder, targets);
-        self.mesh.draw(device, &mut pass, frame, scene);
+        self.mesh
+            .draw(device, &mut pass, frame, scene, targets.uv.is_some());
     }
 }
 
@@ -149,7 +156,7 @@ fn open<'e>(
         color_attachments: &[
             clear(&targets.normal),
             clear(&targets.ids),
-            clear(&targets.uv),
+            targets.uv.as_ref().and_then(|(uv, _)| clear(uv)),
         ],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
             view: &targets.depth,
