@@ -817,6 +817,21 @@ fn downsample(full: &RgbaImage, factor: u32) -> RgbaImage {
         .enumerate()
         .for_each(|(y, row)| {
             for (x, px) in row.chunks_exact_mut(4).enumerate() {
+                // A block of one colour (most of an image: background, flat faces) is that
+                // colour: 8-bit sRGB survives the trip through linear light unchanged
+                // (`every_srgb_byte_survives_linear_light`), so it is copied, not averaged.
+                let first = 4 * (y * f * fw + x * f);
+                let corner = &src[first..first + 4];
+                let uniform = (0..f).all(|dy| {
+                    let start = first + 4 * dy * fw;
+                    src[start..start + 4 * f]
+                        .chunks_exact(4)
+                        .all(|p| p == corner)
+                });
+                if uniform {
+                    px.copy_from_slice(corner);
+                    continue;
+                }
                 let mut sum = [0.0f32; 4];
                 for dy in 0..f {
                     for dx in 0..f {
@@ -841,6 +856,30 @@ fn downsample(full: &RgbaImage, factor: u32) -> RgbaImage {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_srgb_byte_survives_linear_light() {
+        for byte in 0..=255u8 {
+            for alpha in [0u8, 128, 255] {
+                let full = RgbaImage::from_pixel(3, 3, image::Rgba([byte, byte, byte, alpha]));
+                // A uniform block is copied; averaging it would give the same bytes.
+                let average = |c: u8| {
+                    let l = SRGB_TO_LINEAR[usize::from(c)];
+                    (linear_to_srgb(l) * 255.0).round() as u8
+                };
+                assert_eq!(average(byte), byte, "sRGB byte {byte}");
+                assert_eq!(downsample(&full, 3).get_pixel(0, 0).0, [byte, byte, byte, alpha]);
+            }
+        }
+    }
+
+    #[test]
+    fn a_block_that_differs_in_one_sample_is_averaged() {
+        let mut full = RgbaImage::from_pixel(2, 2, image::Rgba([255, 255, 255, 255]));
+        full.put_pixel(1, 1, image::Rgba([0, 0, 0, 255]));
+        // Three quarters white in linear light: 0.75 → 225 in sRGB.
+        assert_eq!(downsample(&full, 2).get_pixel(0, 0).0, [225, 225, 225, 255]);
+    }
 
     #[test]
     fn downsampling_averages_in_linear_light() {
