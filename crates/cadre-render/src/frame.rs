@@ -868,7 +868,10 @@ mod tests {
                     (linear_to_srgb(l) * 255.0).round() as u8
                 };
                 assert_eq!(average(byte), byte, "sRGB byte {byte}");
-                assert_eq!(downsample(&full, 3).get_pixel(0, 0).0, [byte, byte, byte, alpha]);
+                assert_eq!(
+                    downsample(&full, 3).get_pixel(0, 0).0,
+                    [byte, byte, byte, alpha]
+                );
             }
         }
     }

@@ -40,6 +40,10 @@ enum BenchWhat {
         /// Frames timed (after one warm-up frame).
         #[arg(long, default_value_t = 5)]
         frames: u32,
+        /// Display mode (as `cadre render --mode`); shaded-edges is what OCCT's ToPixMap
+        /// draws in `scripts/compare_render.py`.
+        #[arg(long, default_value = "shaded", value_parser = crate::commands::render::parse_mode)]
+        mode: cadre_render::DisplayMode,
     },
     /// The viewer's frame on the same heavy scene: the scene uploaded once, then each frame
     /// orbits the camera by 2°, draws into a kept viewport (the window's path, no readback)
@@ -81,7 +85,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             grid,
             size,
             frames,
-        } => bench_render(file, *grid, *size, *frames),
+            mode,
+        } => bench_render(file, *grid, *size, *frames, *mode),
         BenchWhat::View {
             file,
             grid,
@@ -281,7 +286,13 @@ fn bench_view(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) 
 }
 
 /// `cadre bench render`: see [`BenchWhat::Render`].
-fn bench_render(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) -> Result<()> {
+fn bench_render(
+    file: &Path,
+    grid: u32,
+    (width, height): (u32, u32),
+    frames: u32,
+    mode: cadre_render::DisplayMode,
+) -> Result<()> {
     use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset};
 
     let (scene, lo, hi) = grid_scene(file, grid)?;
@@ -299,6 +310,7 @@ fn bench_render(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32
         height,
         supersample: 1,
         background: [1.0; 4],
+        mode,
         ..FrameOptions::default()
     };
     renderer.render(&gpu, &scene, &camera, &options)?;

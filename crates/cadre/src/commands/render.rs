@@ -64,7 +64,7 @@ pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((n(w)?, n(h)?))
 }
 
-fn parse_mode(s: &str) -> Result<DisplayMode, String> {
+pub(crate) fn parse_mode(s: &str) -> Result<DisplayMode, String> {
     DisplayMode::from_name(s).ok_or_else(|| {
         format!("unknown mode {s:?} (shaded, shaded-edges, wireframe, hidden-line, xray)")
     })
