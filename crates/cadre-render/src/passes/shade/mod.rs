@@ -71,6 +71,10 @@ pub(crate) struct ShadeVariant {
     pub silhouettes: bool,
     /// Point or spot lights, not only directional ones (`POSITIONAL_LIGHTS`).
     pub positional_lights: bool,
+    /// The number of lights (`LIGHTS`, the frame's `counts[0]`).
+    pub lights: u32,
+    /// Something is selected (`SELECTION`, the frame's `counts[1] > 0`).
+    pub selection: bool,
 }
 
 impl ShadeVariant {
@@ -79,12 +83,19 @@ impl ShadeVariant {
         ShadeVariant {
             sections: frame.counts[2] > 0,
             silhouettes: frame.modes[3] != 0,
-            positional_lights: lights.iter().any(|l| l.position[3] != 0.0),
+            // Only the first `counts[0]` lights are lit (the buffer holds one when there is
+            // none: bindings may not be empty).
+            positional_lights: lights
+                .iter()
+                .take(frame.counts[0] as usize)
+                .any(|l| l.position[3] != 0.0),
+            lights: frame.counts[0],
+            selection: frame.counts[1] > 0,
         }
     }
 
     /// The pipeline constants of `shade.wgsl` for this variant.
-    fn constants(self) -> [(&'static str, f64); 3] {
+    fn constants(self) -> [(&'static str, f64); 5] {
         [
             ("SECTIONS", f64::from(u8::from(self.sections))),
             ("SILHOUETTES", f64::from(u8::from(self.silhouettes))),
@@ -92,6 +103,8 @@ impl ShadeVariant {
                 "POSITIONAL_LIGHTS",
                 f64::from(u8::from(self.positional_lights)),
             ),
+            ("LIGHTS", f64::from(self.lights)),
+            ("SELECTION", f64::from(u8::from(self.selection))),
         ]
     }
 }
@@ -122,6 +135,7 @@ impl ShadePass {
             colour,
             pipelines: Mutex::new(BTreeMap::new()),
         };
+        let rig_lights = crate::lights::Light::cad_rig().len() as u32;
         for silhouettes in [false, true] {
             pass.pipeline(
                 device,
@@ -129,6 +143,8 @@ impl ShadePass {
                     sections: false,
                     silhouettes,
                     positional_lights: false,
+                    lights: rig_lights,
+                    selection: false,
                 },
             );
         }
@@ -234,17 +250,22 @@ mod tests {
             ShadeVariant {
                 sections: false,
                 silhouettes: false,
-                positional_lights: false
+                positional_lights: false,
+                lights: 0,
+                selection: false,
             }
         );
-        frame.counts[2] = 1;
+        frame.counts = [2, 1, 1, 0];
         frame.modes[3] = 1;
         let all = ShadeVariant::of(&frame, &[directional, point]);
-        assert!(all.sections && all.silhouettes && all.positional_lights);
+        assert!(all.sections && all.silhouettes && all.positional_lights && all.selection);
         assert_eq!(
             all.constants().map(|(_, v)| v),
-            [1.0; 3],
-            "every part compiled in"
+            [1.0, 1.0, 1.0, 2.0, 1.0],
+            "every part compiled in, two lights"
         );
+        // A light past the frame's count is not lit: it does not ask for positional code.
+        frame.counts[0] = 1;
+        assert!(!ShadeVariant::of(&frame, &[directional, point]).positional_lights);
     }
 }

@@ -20,6 +20,12 @@ override SECTIONS: bool = true;
 override SILHOUETTES: bool = true;
 // Point and spot lights; unset when every light is directional (the default rig).
 override POSITIONAL_LIGHTS: bool = true;
+// The number of lights (the frame's `counts.x`): a loop of constant trip count is unrolled,
+// where a loop of uniform count costs a CPU rasterizer its mask bookkeeping per iteration
+// and one masked iteration even when empty.
+override LIGHTS: u32 = 1u;
+// Selected entities to tint (`counts.y > 0`).
+override SELECTION: bool = true;
 
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
 @group(0) @binding(2) var normal_tex: texture_2d<f32>;
@@ -77,7 +83,7 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
         n = -n;
     }
     var colour = vec3<f32>(0.0);
-    for (var i = 0u; i < frame.counts.x; i++) {
+    for (var i = 0u; i < LIGHTS; i++) {
         let li = lights[i];
         let kind = u32(li.position.w + 0.5);
         var l = normalize(li.direction.xyz);
@@ -111,9 +117,11 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
 
 // `colour` tinted when its face (or part) is selected or hovered.
 fn highlighted(colour: vec3<f32>, ids: vec4<u32>) -> vec3<f32> {
-    for (var i = 0u; i < frame.counts.y; i++) {
-        if is_target(selection[i], 1u, ids.y, ids.x) {
-            return mix(colour, frame.selection_colour.rgb, frame.selection_colour.w);
+    if SELECTION {
+        for (var i = 0u; i < frame.counts.y; i++) {
+            if is_target(selection[i], 1u, ids.y, ids.x) {
+                return mix(colour, frame.selection_colour.rgb, frame.selection_colour.w);
+            }
         }
     }
     if is_target(frame.hover, 1u, ids.y, ids.x) {
