@@ -71,6 +71,10 @@ pub struct FrameOptions {
     /// Supersampling factor per side (1 = none; 2 renders 4 samples per pixel and averages
     /// them in linear light).
     pub supersample: u32,
+    /// Smooth the image's jagged edges after the readback (and after downsampling), FXAA
+    /// style ([`crate::smooth_edges`]): anti-aliasing at the cost of one pass over the
+    /// image on the CPU, for CPU adapters where supersampling multiplies every pass's cost.
+    pub smooth: bool,
     /// Background colour, sRGB components in [0, 1] and alpha.
     pub background: [f32; 4],
     /// Display mode.
@@ -88,6 +92,7 @@ impl Default for FrameOptions {
             width: 800,
             height: 600,
             supersample: 2,
+            smooth: false,
             background: [1.0, 1.0, 1.0, 1.0],
             mode: DisplayMode::Shaded,
             edge_width: 1.5,
@@ -123,7 +128,7 @@ impl Renderer {
         let instances = InstanceLayout::new(&gpu.device);
         let renderer = Renderer {
             visibility: VisibilityPass::new(&gpu.device, &instances),
-            shade: ShadePass::new(&gpu.device, format),
+            shade: ShadePass::new(&gpu.device, format, gpu.read_only_depth),
             edges: EdgesPass::new(&gpu.device, format, &instances),
             xray: XrayPass::new(&gpu.device, format, &instances),
             pick: PickPass::new(&gpu.device, &instances),
@@ -199,7 +204,12 @@ impl Renderer {
             got,
             want: 4 * w as usize * h as usize,
         })?;
-        Ok(downsample(&full, ss))
+        let image = downsample(&full, ss);
+        Ok(if options.smooth {
+            crate::smooth::smooth_edges(&image)
+        } else {
+            image
+        })
     }
 
     /// The visibility buffer's ids at every pixel (no supersampling), row by row: STEP face
@@ -425,8 +435,14 @@ impl Renderer {
             }
         };
         let mut encoder = device.create_command_encoder(&Default::default());
-        self.visibility
-            .record(device, &mut encoder, targets, &frame_buffer, &frame_scene);
+        let sections = frame.counts[2] > 0;
+        self.visibility.record(
+            device,
+            &mut encoder,
+            targets,
+            (&frame_buffer, sections),
+            &frame_scene,
+        );
         let mut selection: Vec<[u32; 4]> = state
             .selection
             .iter()
@@ -786,7 +802,7 @@ fn srgb_to_linear(c: f32) -> f32 {
 }
 
 /// Linear component → sRGB.
-fn linear_to_srgb(c: f32) -> f32 {
+pub(crate) fn linear_to_srgb(c: f32) -> f32 {
     if c <= 0.003_130_8 {
         c * 12.92
     } else {
@@ -797,7 +813,7 @@ fn linear_to_srgb(c: f32) -> f32 {
 /// [`srgb_to_linear`] of every 8-bit value: a supersampled frame has 4 to 16 samples per
 /// output pixel, and a `powf` per sample channel, one row at a time, made the downsampling
 /// 66–90 ms of the 0.26 s an 800×600 render takes on llvmpipe (13–29 ms now, same bytes).
-static SRGB_TO_LINEAR: std::sync::LazyLock<[f32; 256]> =
+pub(crate) static SRGB_TO_LINEAR: std::sync::LazyLock<[f32; 256]> =
     std::sync::LazyLock::new(|| std::array::from_fn(|i| srgb_to_linear(i as f32 / 255.0)));
 
 /// Averages `factor` × `factor` blocks in linear light (colour) and linearly (alpha), rows in

@@ -10,6 +10,10 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     /// The adapter's description (name, backend, whether it is a software renderer).
     pub info: wgpu::AdapterInfo,
+    /// Whether a depth target can be read as a texture in a pass that depth-tests against it
+    /// (read-only attachment; `DownlevelFlags::READ_ONLY_DEPTH_STENCIL`, which GL lacks): the
+    /// shade pass then tests the visibility depth to skip the background.
+    pub read_only_depth: bool,
 }
 
 impl Gpu {
@@ -87,6 +91,10 @@ impl Gpu {
                 info.name, info.backend
             )));
         }
+        let read_only_depth = adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::READ_ONLY_DEPTH_STENCIL);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("cadre"),
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
@@ -97,7 +105,15 @@ impl Gpu {
             device,
             queue,
             info,
+            read_only_depth,
         })
+    }
+
+    /// Whether the adapter is a CPU rasterizer (Mesa's lavapipe or llvmpipe, WARP): there
+    /// every pass costs per pixel in CPU time, so images are anti-aliased by smoothing a 1×
+    /// image rather than by supersampling it.
+    pub fn is_cpu(&self) -> bool {
+        self.info.device_type == wgpu::DeviceType::Cpu
     }
 
     /// Largest texture side the device allows.

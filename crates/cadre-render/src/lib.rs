@@ -26,6 +26,7 @@ mod lights;
 mod passes;
 mod placements;
 pub mod raycast;
+mod smooth;
 mod solid;
 mod view;
 mod viewport;
@@ -39,6 +40,7 @@ pub use gpu::Gpu;
 pub use gpu_scene::{MAX_FRAME_TRIANGLES, PreparedScene};
 pub use lights::Light;
 pub use placements::{FLAT_LIMIT, MAX_LOCALS_PER_NODE};
+pub use smooth::smooth_edges;
 pub use view::{
     InstanceStyle, MAX_HIGHLIGHTED, MAX_SECTIONS, Pick, SECTION_CAP, SectionPlane, ViewState,
     section_cap,

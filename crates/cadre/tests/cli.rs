@@ -254,6 +254,7 @@ fn render_writes_a_png_of_the_asked_size_and_refuses_bad_options() {
         ["--size", "0x10"],
         ["--view", "sideways"],
         ["--background", "#12"],
+        ["--antialias", "fxaa"],
     ] {
         let run = cadre()
             .args(["render", EXAMPLE, "-o"])
@@ -446,4 +447,45 @@ fn mesh_refuses_an_assembly_wider_than_a_scene_holds() {
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
+}
+
+#[test]
+fn every_antialiasing_choice_renders_and_smoothing_changes_the_image() {
+    let dir = scratch_dir("cadre-antialias");
+    let render = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        let run = cadre()
+            .args([
+                "render",
+                EXAMPLE,
+                "--size",
+                "96x72",
+                "--mode",
+                "shaded-edges",
+                "-o",
+            ])
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(
+            run.status.success(),
+            "{extra:?}: {}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        image::open(&out).unwrap().to_rgba8()
+    };
+    let none = render("none.png", &["--antialias", "none"]);
+    let smooth = render("smooth.png", &["--antialias", "smooth"]);
+    let supersampled = render(
+        "ss.png",
+        &["--antialias", "supersample", "--supersample", "3"],
+    );
+    let default = render("default.png", &[]);
+    assert_ne!(none, smooth, "smoothing changed nothing");
+    assert_ne!(none, supersampled, "supersampling changed nothing");
+    // The default is one of the two anti-aliased images, never the aliased one.
+    assert_ne!(default, none, "the default is not anti-aliased");
+    // `--supersample 1` alone is an explicit choice of one sample: the aliased image.
+    assert_eq!(render("one.png", &["--supersample", "1"]), none);
 }

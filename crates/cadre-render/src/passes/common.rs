@@ -223,17 +223,20 @@ pub(crate) struct PipelineSpec<'a> {
     pub label: &'a str,
     pub layout: &'a wgpu::PipelineLayout,
     pub module: &'a wgpu::ShaderModule,
-    /// Fragment entry point (the vertex one is `vs_main`).
+    /// Vertex entry point (`vs_main` unless a pass has variants).
+    pub vertex: &'a str,
+    /// Fragment entry point.
     pub fragment: &'a str,
     /// Vertex buffers (none: vertices are built from storage buffers or the vertex index).
     pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     pub depth: Option<wgpu::DepthStencilState>,
     pub targets: &'a [Option<wgpu::ColorTargetState>],
-    /// Values of the fragment shader's pipeline-overridable constants (none: their defaults).
+    /// Values of the shader's pipeline-overridable constants (none: their defaults), for both
+    /// stages.
     pub constants: &'a [(&'a str, f64)],
 }
 
-/// A render pipeline with entry points `vs_main` and `spec.fragment`, triangle lists, no culling
+/// A render pipeline with entry points `spec.vertex` and `spec.fragment`, triangle lists, no culling
 /// (open shells and mirrored instances show both sides), no multisampling.
 pub(crate) fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -241,8 +244,11 @@ pub(crate) fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::R
         layout: Some(spec.layout),
         vertex: wgpu::VertexState {
             module: spec.module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
+            entry_point: Some(spec.vertex),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: spec.constants,
+                ..Default::default()
+            },
             buffers: spec.buffers,
         },
         primitive: wgpu::PrimitiveState::default(),

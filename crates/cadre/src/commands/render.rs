@@ -11,6 +11,34 @@ use image::RgbaImage;
 
 use crate::load::load_step;
 
+/// How `cadre render` anti-aliases its images.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Antialias {
+    /// Smoothing on a CPU adapter (where supersampling costs four times every pass), 2 × 2
+    /// supersampling on a GPU; `--supersample N` alone means supersampling by N.
+    Auto,
+    /// Supersampling by `--supersample` (2 by default) per side.
+    Supersample,
+    /// Edge smoothing of a 1× image (FXAA style, after the readback).
+    Smooth,
+    /// Neither.
+    None,
+}
+
+impl Antialias {
+    /// The supersampling factor and whether to smooth, on `gpu`.
+    pub fn resolve(self, supersample: Option<u32>, gpu: &Gpu) -> (u32, bool) {
+        match (self, supersample) {
+            (Antialias::Auto, Some(n)) | (Antialias::Supersample, Some(n)) => (n, false),
+            (Antialias::Supersample, None) => (2, false),
+            (Antialias::Auto, None) if gpu.is_cpu() => (1, true),
+            (Antialias::Auto, None) => (2, false),
+            (Antialias::Smooth, n) => (n.unwrap_or(1), true),
+            (Antialias::None, _) => (1, false),
+        }
+    }
+}
+
 /// Arguments of `cadre render`.
 #[derive(clap::Args)]
 pub struct RenderArgs {
@@ -37,9 +65,14 @@ pub struct RenderArgs {
     /// Background: a name (white, black, grey, transparent) or #rrggbb.
     #[arg(long, default_value = "white", value_parser = parse_colour)]
     background: [f32; 4],
-    /// Supersampling per side (1 to 4; 2 = four samples per pixel).
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
-    supersample: u32,
+    /// Anti-aliasing: auto (smoothing on a CPU adapter, supersampling on a GPU), supersample
+    /// (`--supersample` samples per side), smooth (edge smoothing of a 1× image) or none.
+    #[arg(long, default_value = "auto", value_enum)]
+    antialias: Antialias,
+    /// Supersampling per side (1 to 4; 2 = four samples per pixel); given alone, it asks for
+    /// supersampling whatever the adapter.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4))]
+    supersample: Option<u32>,
     /// Tessellation deflection relative to the model's bounding-box diagonal.
     #[arg(long, default_value_t = 0.0005, allow_negative_numbers = true)]
     deflection_rel: f64,
@@ -323,10 +356,12 @@ fn draw_file(
         );
     };
     let camera = Camera::fit(lo, hi, args.view, args.ortho, f64::from(w) / f64::from(h));
+    let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
     let options = FrameOptions {
         width: w,
         height: h,
-        supersample: args.supersample,
+        supersample,
+        smooth,
         background: args.background,
         mode: args.mode,
         edge_width: args.edge_width,

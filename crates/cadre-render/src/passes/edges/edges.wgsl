@@ -1,11 +1,12 @@
 // Edges pass: B-Rep edges as anti-aliased lines of constant pixel width. Each segment is a
 // quad of two triangles built here from a storage buffer (wgpu has no wide lines). Visibility
-// is decided against the depth kept in the visibility buffer's ids (a small relative
+// is decided against the visibility buffer's depth (a small relative
 // tolerance keeps edges from fighting with their own faces): hidden fragments are dropped,
 // drawn dashed, or drawn like the others, by the edge mode.
 
 @group(0) @binding(1) var<storage, read> segments: array<Segment>;
-@group(0) @binding(2) var ids_tex: texture_2d<u32>;
+// The visibility depth, 0 where nothing is (4 bytes a fragment, where the ids are 16).
+@group(0) @binding(2) var depth_tex: texture_2d<f32>;
 @group(0) @binding(3) var<storage, read> selection: array<vec4<u32>>;
 
 @vertex
@@ -46,8 +47,7 @@ fn fs_main(in: LineOut) -> @location(0) vec4<f32> {
     if section_cut(in.world) {
         discard;
     }
-    let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy), 0);
-    let scene_depth = scene_depth_at(ids);
+    let scene_depth = textureLoad(depth_tex, vec2<i32>(in.clip.xy), 0).x;
     let seg = segments[in.segment];
     let highlight = highlight_of(seg, in.instance);
     // Reverse Z: nearer is larger. The tolerance keeps an edge on its own faces visible.

@@ -10,11 +10,11 @@ use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, Frame, GpuStruct, Segment};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
-/// Bind group 0: frame, segments, the id target, selection (group 1: the instances).
+/// Bind group 0: frame, segments, the visibility depth, selection (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(Frame::WGSL_NAME),
     Binding::Storage(Segment::WGSL_NAME),
-    Binding::UintTexture,
+    Binding::FloatTexture,
     Binding::Storage("vec4<u32>"),
 ];
 
@@ -46,6 +46,7 @@ impl EdgesPass {
                 label: "edges",
                 layout: &pipeline_layout,
                 module: &module,
+                vertex: "vs_main",
                 fragment: "fs_main",
                 buffers: &[],
                 depth: None,
@@ -76,7 +77,7 @@ impl EdgesPass {
             &[
                 frame.as_entire_binding(),
                 scene.geometry.segments.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&visibility.ids),
+                wgpu::BindingResource::TextureView(&visibility.depth),
                 selection.as_entire_binding(),
             ],
         );

@@ -51,6 +51,7 @@ impl PickPass {
                 label: "pick",
                 layout: &pipeline_layout,
                 module: &module,
+                vertex: "vs_main",
                 fragment: "fs_main",
                 buffers: &[],
                 depth: None,

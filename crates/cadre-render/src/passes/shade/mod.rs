@@ -6,7 +6,8 @@ use crate::layout::{Binding, Frame, GpuStruct, LightGpu, Material};
 use std::collections::BTreeMap;
 use std::sync::Mutex;
 
-/// Bind group 0: frame, materials, the normal and id targets, lights, selection.
+/// Bind group 0: frame, materials, the normal and id targets, lights, selection, the depth
+/// target (read by the silhouettes: 4 bytes a neighbour where the ids are 16).
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(Frame::WGSL_NAME),
     Binding::Storage(Material::WGSL_NAME),
@@ -14,6 +15,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::UintTexture,
     Binding::Storage(LightGpu::WGSL_NAME),
     Binding::Storage("vec4<u32>"),
+    Binding::FloatTexture,
 ];
 
 /// The pass's whole WGSL: the shared declarations and its own sources, by job (lighting,
@@ -116,14 +118,18 @@ pub(crate) struct ShadePass {
     pipeline_layout: wgpu::PipelineLayout,
     layout: wgpu::BindGroupLayout,
     colour: wgpu::TextureFormat,
+    /// Whether the pass depth-tests against the visibility depth (`Gpu::read_only_depth`):
+    /// without it (GL) every pixel is shaded and the background is the shader's.
+    cull: bool,
     pipelines: Mutex<BTreeMap<ShadeVariant, wgpu::RenderPipeline>>,
 }
 
 impl ShadePass {
     /// Builds the pass for a `colour` target of that format, with the pipelines of the
     /// variants `cadre render` and the viewer start with (directional lights, no section;
-    /// with and without silhouettes) so that their first frame compiles nothing.
-    pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> ShadePass {
+    /// with and without silhouettes) so that their first frame compiles nothing; `cull`: test
+    /// against the visibility depth so that only covered pixels are shaded.
+    pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat, cull: bool) -> ShadePass {
         let module = shader(device, "shade", &source());
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let (layout, pipeline_layout) =
@@ -133,6 +139,7 @@ impl ShadePass {
             pipeline_layout,
             layout,
             colour,
+            cull,
             pipelines: Mutex::new(BTreeMap::new()),
         };
         let rig_lights = crate::lights::Light::cad_rig().len() as u32;
@@ -165,9 +172,10 @@ impl ShadePass {
                         label: "shade",
                         layout: &self.pipeline_layout,
                         module: &self.module,
+                        vertex: "vs_main",
                         fragment: "fs_main",
                         buffers: &[],
-                        depth: Some(faces_only()),
+                        depth: self.cull.then(faces_only),
                         targets: &[Some(self.colour.into())],
                         constants: &variant.constants(),
                     },
@@ -205,6 +213,7 @@ impl ShadePass {
                 wgpu::BindingResource::TextureView(&visibility.ids),
                 lights.as_entire_binding(),
                 selection.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&visibility.depth),
             ],
         );
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -219,7 +228,7 @@ impl ShadePass {
                 },
             })],
             // Read only: the depth test keeps the shader off the background.
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            depth_stencil_attachment: self.cull.then_some(wgpu::RenderPassDepthStencilAttachment {
                 view: &visibility.depth,
                 depth_ops: None,
                 stencil_ops: None,

@@ -5,23 +5,27 @@
 const FAR_AWAY: f32 = 1e30;
 
 // Distance from the eye (along the view axis) of the visibility buffer's surface at `p`;
-// `FAR_AWAY` for background or outside the image. The reverse-Z depth is unprojected through
-// the inverse projection: with a finite far plane depth is not proportional to 1/distance (it
-// reaches 0 at the far plane, not at infinity), and orthographic depth is linear in distance,
-// so relative gaps in depth are not relative gaps in distance.
+// `FAR_AWAY` for background (depth 0, the cleared far plane) or outside the image. The
+// reverse-Z depth is unprojected through the inverse projection: with a finite far plane
+// depth is not proportional to 1/distance (it reaches 0 at the far plane, not at infinity),
+// and orthographic depth is linear in distance, so relative gaps in depth are not relative
+// gaps in distance. The depth target is read, not the ids (4 bytes, not 16: five reads a
+// pixel), and only the view z and w rows of the unprojection are computed.
 fn distance_at(p: vec2<i32>) -> f32 {
     let size = vec2<i32>(frame.viewport.xy);
     if any(p < vec2<i32>(0)) || any(p >= size) {
         return FAR_AWAY;
     }
-    let ids = textureLoad(ids_tex, p, 0);
-    if ids.y == 0u {
+    let depth = textureLoad(depth_tex, p, 0).x;
+    if depth <= 0.0 {
         return FAR_AWAY;
     }
     let centre = vec2<f32>(p) + 0.5;
-    let ndc = vec2<f32>(centre.x / frame.viewport.x * 2.0 - 1.0, 1.0 - centre.y / frame.viewport.y * 2.0);
-    let view_h = frame.inv_proj * vec4<f32>(ndc, bitcast<f32>(ids.w), 1.0);
-    return -view_h.z / view_h.w;
+    let ndc = vec4<f32>(centre.x / frame.viewport.x * 2.0 - 1.0, 1.0 - centre.y / frame.viewport.y * 2.0, depth, 1.0);
+    let m = frame.inv_proj;
+    let z = dot(vec4<f32>(m[0].z, m[1].z, m[2].z, m[3].z), ndc);
+    let w = dot(vec4<f32>(m[0].w, m[1].w, m[2].w, m[3].w), ndc);
+    return -z / w;
 }
 
 // Whether `p` lies on a silhouette: a neighbour farther from the eye by more than the

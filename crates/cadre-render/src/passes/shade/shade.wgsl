@@ -32,6 +32,8 @@ override SELECTION: bool = true;
 @group(0) @binding(3) var ids_tex: texture_2d<u32>;
 @group(0) @binding(4) var<storage, read> lights: array<Light>;
 @group(0) @binding(5) var<storage, read> selection: array<vec4<u32>>;
+// The visibility depth (also the pass's read-only depth attachment): 0 where nothing is.
+@group(0) @binding(6) var depth_tex: texture_2d<f32>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {

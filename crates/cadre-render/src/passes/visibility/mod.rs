@@ -120,18 +120,18 @@ impl VisibilityPass {
     }
 
     /// Records the pass: opens it once on `targets` (cleared) and has every back-end draw
-    /// `scene` into it.
+    /// `scene` into it; `sections` says whether the frame has section planes.
     pub fn record(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         targets: &VisibilityTargets,
-        frame: &wgpu::Buffer,
+        (frame, sections): (&wgpu::Buffer, bool),
         scene: &FrameScene<'_>,
     ) {
         let mut pass = open(encoder, targets);
-        self.mesh
-            .draw(device, &mut pass, frame, scene, targets.uv.is_some());
+        let variant = mesh::MeshVariant::of(sections, targets.uv.is_some());
+        self.mesh.draw(device, &mut pass, frame, scene, variant);
     }
 }
 

@@ -12,6 +12,11 @@
 // a front face nearer than the back face (a non-convex solid whose cut shows through a hole)
 // correctly wins. The ids keep the cap's own depth.
 
+// Section planes and caps compiled in (`MeshVariant` in mesh/mod.rs): a CPU rasterizer runs
+// both sides of a branch under lane masks, so the cap search would cost every fragment of a
+// frame without sections its full price.
+override SECTIONS: bool = true;
+
 struct VisibilityOut {
     @location(0) normal: vec4<f32>,
     @location(1) ids: vec4<u32>,
@@ -71,7 +76,7 @@ fn visibility_texel(
     out.uv = bitcast<vec2<u32>>(uv);
     // Seen from inside: from the back, unless the draw is inside out.
     let from_inside = front == ((d.flags & DRAW_INSIDE_OUT) != 0u);
-    if frame.counts.z > 0u && (d.flags & DRAW_CLOSED) != 0u && from_inside {
+    if SECTIONS && frame.counts.z > 0u && (d.flags & DRAW_CLOSED) != 0u && from_inside {
         let cap = cap_of(world);
         if cap.plane >= 0 {
             let clip = frame.view_proj * vec4<f32>(cap.point, 1.0);

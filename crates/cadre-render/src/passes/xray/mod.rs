@@ -45,6 +45,7 @@ impl XrayPass {
             label,
             layout: &pipeline_layout,
             module: &module,
+            vertex: "vs_main",
             fragment,
             buffers: &buffers,
             depth,

@@ -33,9 +33,43 @@ fn vs_main(
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> VisibilityOut {
-    if section_cut(in.world) {
+    if SECTIONS && section_cut(in.world) {
         discard;
     }
     let ids = unpack_instance(in.instance);
     return visibility_texel(in.world, in.normal, in.face, ids, in.clip.z, in.uv, front);
+}
+
+// The entry points of frames without section planes that read no (u, v) (every image and
+// viewer frame but the exact-surface tests): only what the texel needs is interpolated.
+// A CPU rasterizer sets up and interpolates every varying of every triangle, and the
+// camera-relative position and the (u, v) are 5 of the 12 floats of `VertexOut`.
+struct PlainOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) @interpolate(flat) face: u32,
+    @location(2) @interpolate(flat) instance: vec3<u32>,
+}
+
+@vertex
+fn vs_plain(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) face: u32,
+    @builtin(instance_index) draw_index: u32,
+) -> PlainOut {
+    let d = instance_draw(draw_index);
+    let placed = place_vertex(d, position, normal);
+    var out: PlainOut;
+    out.clip = placed.clip;
+    out.normal = placed.normal;
+    out.face = face;
+    out.instance = pack_instance(d);
+    return out;
+}
+
+@fragment
+fn fs_plain(in: PlainOut, @builtin(front_facing) front: bool) -> VisibilityOut {
+    let ids = unpack_instance(in.instance);
+    return visibility_texel(vec3<f32>(0.0), in.normal, in.face, ids, in.clip.z, vec2<f32>(0.0), front);
 }

@@ -20,14 +20,39 @@ pub(crate) fn source() -> String {
     wgsl(&[INSTANCES_WGSL, TEXEL_WGSL, include_str!("mesh.wgsl")])
 }
 
-/// The back-end's pipelines (without the (u, v) target, and with it, built on first use)
-/// and bind group layout.
+/// The back-end's pipelines and bind group layout: the plain one (no section plane, no (u, v)
+/// target; `vs_plain`/`fs_plain`, every image and viewer frame without sections), and, built
+/// on first use, the one with section planes and caps, and the one that also writes the
+/// (u, v) target.
 pub(crate) struct MeshBackend {
     module: wgpu::ShaderModule,
     pipeline_layout: wgpu::PipelineLayout,
-    pipeline: wgpu::RenderPipeline,
+    plain: wgpu::RenderPipeline,
+    sections: OnceLock<wgpu::RenderPipeline>,
     with_uv: OnceLock<wgpu::RenderPipeline>,
     layout: wgpu::BindGroupLayout,
+}
+
+/// Which of the back-end's pipelines a frame draws with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum MeshVariant {
+    /// No section plane, no (u, v): only the varyings the texel needs.
+    Plain,
+    /// Section planes (cut fragments, caps), no (u, v).
+    Sections,
+    /// Sections and the (u, v) target (the exact-surface tests' readback).
+    WithUv,
+}
+
+impl MeshVariant {
+    /// The variant of a frame with `sections` planes that reads the (u, v) back or not.
+    pub fn of(sections: bool, with_uv: bool) -> MeshVariant {
+        match (sections, with_uv) {
+            (_, true) => MeshVariant::WithUv,
+            (true, false) => MeshVariant::Sections,
+            (false, false) => MeshVariant::Plain,
+        }
+    }
 }
 
 impl MeshBackend {
@@ -41,11 +66,12 @@ impl MeshBackend {
             &entries(BINDINGS, stages),
             Some(instances),
         );
-        let pipeline = mesh_pipeline(device, (&pipeline_layout, &module), &TARGETS_NO_UV);
+        let plain = mesh_pipeline(device, (&pipeline_layout, &module), MeshVariant::Plain);
         MeshBackend {
             module,
             pipeline_layout,
-            pipeline,
+            plain,
+            sections: OnceLock::new(),
             with_uv: OnceLock::new(),
             layout,
         }
@@ -58,7 +84,7 @@ impl MeshBackend {
         pass: &mut wgpu::RenderPass<'_>,
         frame: &wgpu::Buffer,
         scene: &FrameScene<'_>,
-        with_uv: bool,
+        variant: MeshVariant,
     ) {
         let bind = bind_group(
             device,
@@ -66,12 +92,15 @@ impl MeshBackend {
             &self.layout,
             &[frame.as_entire_binding()],
         );
-        let pipeline = if with_uv {
-            self.with_uv.get_or_init(|| {
-                mesh_pipeline(device, (&self.pipeline_layout, &self.module), &TARGETS)
-            })
-        } else {
-            &self.pipeline
+        let parts = (&self.pipeline_layout, &self.module);
+        let pipeline = match variant {
+            MeshVariant::Plain => &self.plain,
+            MeshVariant::Sections => self
+                .sections
+                .get_or_init(|| mesh_pipeline(device, parts, variant)),
+            MeshVariant::WithUv => self
+                .with_uv
+                .get_or_init(|| mesh_pipeline(device, parts, variant)),
         };
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);
@@ -79,23 +108,29 @@ impl MeshBackend {
     }
 }
 
-/// The back-end's pipeline writing `targets` (all three, or without the (u, v)).
+/// The back-end's pipeline of `variant`.
 fn mesh_pipeline(
     device: &wgpu::Device,
     (layout, module): (&wgpu::PipelineLayout, &wgpu::ShaderModule),
-    targets: &[Option<wgpu::ColorTargetState>],
+    variant: MeshVariant,
 ) -> wgpu::RenderPipeline {
+    let (vertex, fragment, sections, targets) = match variant {
+        MeshVariant::Plain => ("vs_plain", "fs_plain", 0.0, &TARGETS_NO_UV),
+        MeshVariant::Sections => ("vs_main", "fs_main", 1.0, &TARGETS_NO_UV),
+        MeshVariant::WithUv => ("vs_main", "fs_main", 1.0, &TARGETS),
+    };
     pipeline(
         device,
         PipelineSpec {
             label: "visibility mesh",
             layout,
             module,
-            fragment: "fs_main",
+            vertex,
+            fragment,
             buffers: &[Some(mesh_vertex_layout())],
             depth: Some(depth_state()),
             targets,
-            constants: &[],
+            constants: &[("SECTIONS", sections)],
         },
     )
 }
