@@ -18,7 +18,8 @@ figure so that a noisy machine loads both alike:
   image        one process making one PNG, each side's defaults: OCCT's GL context
                (`setup_s`, once per process) + `to_image_s` (read, mesh, display, first
                redraw, dump) against the wall time of `cadre render --mode shaded-edges`
-               (2×2 supersampling, GPU start-up and exit included).
+               (its default anti-aliasing: edge smoothing of the 1× image on a CPU adapter,
+               2×2 supersampling on a GPU; GPU start-up and exit included).
   image_aa     the same, anti-aliased both: OCCT `--msaa 4` against cadre's default.
   image_1x     the same, matched: OCCT without AA against cadre `--supersample 1
                --deflection-rel 0.001` (OCCT's deflection here).
@@ -166,7 +167,7 @@ def report(rows):
         ("image_1x", "occt_image_s", "cadre_image_1x_s"),
     ]
     print("| file | frame ms OCCT / cadre (ratio) | pixmap ms | image s (default) | "
-          "image s (AA: OCCT MSAA 4 vs cadre 2×2) | image s (1×, matched) |")
+          "image s (AA: OCCT MSAA 4 vs cadre default) | image s (1×, matched) |")
     print("|---|---|---|---|---|---|")
     ratios = {f: [] for f, _, _ in figures}
     for row in rows:
