@@ -346,6 +346,7 @@ impl Renderer {
             frame: &last.frame,
             instances: &last.instances,
             segments: &scene.segments,
+            quads: &scene.quad_indices,
             calls: &last.pick_calls,
         };
         self.pick.record(

@@ -92,6 +92,12 @@ pub struct PreparedScene {
     pub(crate) vertices: Vec<wgpu::Buffer>,
     pub(crate) indices: Vec<wgpu::Buffer>,
     pub(crate) segments: wgpu::Buffer,
+    /// The index buffer of the segments' quads: corners `4k + [0, 1, 3, 0, 3, 2]` for every
+    /// segment `k` of the longest run drawn (a call offsets them by its first segment with
+    /// the base vertex). Indexed, a quad's four corners are shaded once each where six
+    /// vertices were: a CPU rasterizer's vertex cache reuses the two shared ones, and every
+    /// corner places both of the segment's ends.
+    pub(crate) quad_indices: wgpu::Buffer,
     meshes: Vec<MeshRanges>,
     materials: Vec<Material>,
     /// Where the meshes are placed: runs over local placement lists.
@@ -172,7 +178,23 @@ impl PreparedScene {
             .collect();
         materials.push(DEFAULT_MATERIAL);
         let placements = Placements::new(scene, |m| meshes[m].solid.is_some(), flat_limit);
+        // A call draws at most one mesh's lines, edges or points.
+        let longest = meshes
+            .iter()
+            .map(|m| m.lines.1.max(m.edges.1).max(m.points.1))
+            .max()
+            .unwrap_or(0)
+            .max(1);
+        let quads: Vec<u32> = (0..longest)
+            .flat_map(|k| [0, 1, 3, 0, 3, 2].map(|c| 4 * k + c))
+            .collect();
         PreparedScene {
+            quad_indices: buffer(
+                device,
+                "segment quads",
+                bytemuck::cast_slice(&quads),
+                wgpu::BufferUsages::INDEX,
+            ),
             locals: buffer(
                 device,
                 "local placements",

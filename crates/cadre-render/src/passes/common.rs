@@ -202,17 +202,21 @@ pub(crate) fn draw_meshes(
     }
 }
 
-/// Draws segment `calls` (six vertices per segment), each over its instances read through
-/// `instances` (bind group 1).
+/// Draws segment `calls` (a quad of four indexed corners per segment, `quads` being
+/// `PreparedScene::quad_indices`), each over its instances read through `instances` (bind
+/// group 1).
 pub(crate) fn draw_segments(
     pass: &mut wgpu::RenderPass<'_>,
     instances: &FrameInstances,
     calls: &[EdgeCall],
+    quads: &wgpu::Buffer,
 ) {
+    pass.set_index_buffer(quads.slice(..), wgpu::IndexFormat::Uint32);
     for call in calls {
         pass.set_bind_group(1, &instances.bind, &[instances.offset(call.slot)]);
-        pass.draw(
-            call.first * 6..(call.first + call.count) * 6,
+        pass.draw_indexed(
+            0..call.count * 6,
+            (call.first * 4) as i32,
             0..call.instances,
         );
     }

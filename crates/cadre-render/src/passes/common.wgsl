@@ -111,7 +111,7 @@ fn section_cut(p: vec3<f32>) -> bool {
 }
 
 // A segment of `segments` as a screen-aligned quad `half` pixels wide each side (plus one
-// pixel of fringe, and past the ends): corner `vi % 6` of segment `vi / 6`, placed by draw
+// pixel of fringe, and past the ends): corner `vi % 4` of segment `vi / 4`, placed by draw
 // record `d`. A segment of zero length is a square (a B-Rep vertex).
 struct LineOut {
     @builtin(position) clip: vec4<f32>,
@@ -126,7 +126,9 @@ struct LineOut {
 }
 
 fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32) -> LineOut {
-    let corner = vi % 6u;
+    // Corner `vi % 4`: bit 0 the end (a or b), bit 1 the side (−, +); the index buffer
+    // makes the triangles (a−, b−, b+) and (a−, b+, a+).
+    let corner = vi % 4u;
     let wa = d.model * vec4<f32>(seg.a.xyz, 1.0);
     let wb = d.model * vec4<f32>(seg.b.xyz, 1.0);
     let ca = frame.view_proj * wa;
@@ -139,18 +141,16 @@ fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32) -> LineOut {
     dir = select(vec2<f32>(1.0, 0.0), dir / len, len > 1e-6);
     let side = vec2<f32>(-dir.y, dir.x);
     let half = half_width + 1.0;
-    // Corners: (end, side) for the two triangles (0,0) (1,0) (1,1) / (0,0) (1,1) (0,1).
-    var ends = array<u32, 6>(0u, 1u, 1u, 0u, 1u, 0u);
-    var sides = array<f32, 6>(-1.0, -1.0, 1.0, -1.0, 1.0, 1.0);
-    let at_b = ends[corner] == 1u;
+    let at_b = (corner & 1u) == 1u;
+    let across = select(-1.0, 1.0, (corner & 2u) != 0u);
     let c = select(ca, cb, at_b);
-    let s = select(sa, sb, at_b) + side * sides[corner] * half
+    let s = select(sa, sb, at_b) + side * across * half
         + dir * select(-1.0, 1.0, at_b) * select(1.0, half, len <= 1e-6);
     var out: LineOut;
     out.clip = vec4<f32>(s / (0.5 * size) * c.w, c.z, c.w);
-    out.across = sides[corner] * half;
+    out.across = across * half;
     out.along = select(0.0, len, at_b);
-    out.segment = vi / 6u;
+    out.segment = vi / 4u;
     out.instance = d.instance;
     // The corners past the ends keep the end's position: the fringe is a pixel or two.
     out.world = select(wa.xyz, wb.xyz, at_b);

@@ -11,7 +11,7 @@
 
 @vertex
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> LineOut {
-    let seg = segments[vi / 6u];
+    let seg = segments[vi / 4u];
     let d = instance_draw(draw_index);
     var width = frame.viewport.z;
     if is_highlighted(seg, d.instance) {

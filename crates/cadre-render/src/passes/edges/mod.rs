@@ -84,6 +84,11 @@ impl EdgesPass {
         let mut pass = colour_pass(encoder, "edges", target, None);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        draw_segments(&mut pass, &scene.instances, &scene.edge_calls);
+        draw_segments(
+            &mut pass,
+            &scene.instances,
+            &scene.edge_calls,
+            &scene.geometry.quad_indices,
+        );
     }
 }

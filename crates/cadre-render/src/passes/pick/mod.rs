@@ -35,6 +35,8 @@ pub(crate) struct PickInputs<'a> {
     pub frame: &'a wgpu::Buffer,
     pub instances: &'a FrameInstances,
     pub segments: &'a wgpu::Buffer,
+    /// The segments' quad indices (`PreparedScene::quad_indices`).
+    pub quads: &'a wgpu::Buffer,
     pub calls: &'a [EdgeCall],
 }
 
@@ -84,6 +86,6 @@ impl PickPass {
         let mut pass = colour_pass(encoder, "pick", target, Some(wgpu::Color::TRANSPARENT));
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        draw_segments(&mut pass, inputs.instances, inputs.calls);
+        draw_segments(&mut pass, inputs.instances, inputs.calls, inputs.quads);
     }
 }
