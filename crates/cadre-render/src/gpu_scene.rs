@@ -43,6 +43,12 @@ pub(crate) struct DrawCall {
     pub count: u32,
     pub slot: u32,
     pub instances: u32,
+    /// The triangles that can be culled: for a closed solid placed without a local list, the
+    /// back faces (`Back` when its records are wound outward, `Front` when inside out; a
+    /// consistently wound closed mesh never shows them from outside, unless a section plane
+    /// opens it). `None` for open shells, see-through runs and shared sub-assemblies (whose
+    /// local placements may mirror some instances and not others).
+    pub cull: Option<wgpu::Face>,
 }
 
 /// One instanced segment draw: `count` segments from `first` of the segment buffer,
@@ -403,9 +409,18 @@ impl<'a> FrameScene<'a> {
             });
         }
         let mut out = FrameCalls::default();
-        for (&(mesh, list), group) in &groups {
+        for (&(mesh, list_index), group) in &groups {
             let ranges = &geometry.meshes[mesh];
-            let list = placements.lists[list];
+            let list = placements.lists[list_index];
+            // (see-through, wound inside out) of each call of a primitive: the opaque records
+            // of a closed solid without local placements are split by winding so that each
+            // call can cull its back faces (the setup and binning of half the triangles, on a
+            // CPU rasterizer).
+            let parts: &[(bool, Option<bool>)] = if ranges.solid.is_some() && list_index == 0 {
+                &[(false, Some(false)), (false, Some(true)), (true, None)]
+            } else {
+                &[(false, None), (true, None)]
+            };
             let locals = (list.first, list.count);
             let n = group.len() as u32;
             let instances = n * list.count;
@@ -445,12 +460,16 @@ impl<'a> FrameScene<'a> {
                         (Draw { material: m, ..d }, see_through)
                     })
                     .collect();
-                for see_through in [false, true] {
+                for &(see_through, inside_out) in parts {
                     let start = out.draws.len() as u32;
                     out.draws.extend(
                         resolved
                             .iter()
-                            .filter(|(_, t)| *t == see_through)
+                            .filter(|(d, t)| {
+                                *t == see_through
+                                    && inside_out
+                                        .is_none_or(|i| i == ((d.flags & DRAW_INSIDE_OUT) != 0))
+                            })
                             .map(|(d, _)| *d),
                     );
                     let records = out.draws.len() as u32 - start;
@@ -463,6 +482,13 @@ impl<'a> FrameScene<'a> {
                         count,
                         slot: out.slot(start, locals),
                         instances: records * list.count,
+                        cull: inside_out.map(|i| {
+                            if i {
+                                wgpu::Face::Front
+                            } else {
+                                wgpu::Face::Back
+                            }
+                        }),
                     };
                     out.triangles += u64::from(count / 3) * u64::from(call.instances);
                     if see_through {

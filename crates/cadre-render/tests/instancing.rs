@@ -105,8 +105,12 @@ fn factored_instances_draw_like_one_record_each() {
     let (flat_ids, factored_ids) = (ids(&flat), ids(&factored));
     let (share, covered, one) = agreement(&flat_ids, &factored_ids, 1);
     assert!(covered > 1000, "{covered} covered pixels");
+    // Not all: the flat drawing culls the back faces of its closed parts, the factored one
+    // cannot (its local placements may mirror), and a pixel whose centre lies on a
+    // silhouette edge belongs to the back face by the rasterization rule, so there the
+    // culled drawing shows what is behind (2 of 1,069 pixels here).
     assert!(
-        share >= 0.999,
+        share >= 0.995,
         "instances: {share} of {covered} pixels agree"
     );
     // Faces: a pixel on the border of two faces of one part may fall either way.

@@ -186,20 +186,29 @@ pub(crate) fn draw_meshes(
     scene: &FrameScene<'_>,
     calls: &[DrawCall],
 ) {
-    let geometry = scene.geometry;
     for call in calls {
-        pass.set_bind_group(
-            1,
-            &scene.instances.bind,
-            &[scene.instances.offset(call.slot)],
-        );
-        pass.set_vertex_buffer(0, geometry.vertices[call.mesh].slice(..));
-        pass.set_index_buffer(
-            geometry.indices[call.mesh].slice(..),
-            wgpu::IndexFormat::Uint32,
-        );
-        pass.draw_indexed(call.first..call.first + call.count, 0, 0..call.instances);
+        draw_mesh_call(pass, scene, call);
     }
+}
+
+/// Draws one mesh call with the pipeline already set.
+pub(crate) fn draw_mesh_call(
+    pass: &mut wgpu::RenderPass<'_>,
+    scene: &FrameScene<'_>,
+    call: &DrawCall,
+) {
+    let geometry = scene.geometry;
+    pass.set_bind_group(
+        1,
+        &scene.instances.bind,
+        &[scene.instances.offset(call.slot)],
+    );
+    pass.set_vertex_buffer(0, geometry.vertices[call.mesh].slice(..));
+    pass.set_index_buffer(
+        geometry.indices[call.mesh].slice(..),
+        wgpu::IndexFormat::Uint32,
+    );
+    pass.draw_indexed(call.first..call.first + call.count, 0, 0..call.instances);
 }
 
 /// Draws segment `calls` (a quad of four indexed corners per segment, `quads` being
@@ -229,6 +238,8 @@ pub(crate) struct PipelineSpec<'a> {
     pub module: &'a wgpu::ShaderModule,
     /// Vertex entry point (`vs_main` unless a pass has variants).
     pub vertex: &'a str,
+    /// Faces culled (none: both sides drawn).
+    pub cull: Option<wgpu::Face>,
     /// Fragment entry point.
     pub fragment: &'a str,
     /// Vertex buffers (none: vertices are built from storage buffers or the vertex index).
@@ -240,8 +251,9 @@ pub(crate) struct PipelineSpec<'a> {
     pub constants: &'a [(&'a str, f64)],
 }
 
-/// A render pipeline with entry points `spec.vertex` and `spec.fragment`, triangle lists, no culling
-/// (open shells and mirrored instances show both sides), no multisampling.
+/// A render pipeline with entry points `spec.vertex` and `spec.fragment`, triangle lists
+/// (counter-clockwise in front), culling `spec.cull` (none but for closed solids: open shells
+/// and mirrored instances show both sides), no multisampling.
 pub(crate) fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(spec.label),
@@ -255,7 +267,10 @@ pub(crate) fn pipeline(device: &wgpu::Device, spec: PipelineSpec<'_>) -> wgpu::R
             },
             buffers: spec.buffers,
         },
-        primitive: wgpu::PrimitiveState::default(),
+        primitive: wgpu::PrimitiveState {
+            cull_mode: spec.cull,
+            ..Default::default()
+        },
         depth_stencil: spec.depth,
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {

@@ -47,6 +47,7 @@ impl EdgesPass {
                 layout: &pipeline_layout,
                 module: &module,
                 vertex: "vs_main",
+                cull: None,
                 fragment: "fs_main",
                 buffers: &[],
                 depth: None,

@@ -54,6 +54,7 @@ impl PickPass {
                 layout: &pipeline_layout,
                 module: &module,
                 vertex: "vs_main",
+                cull: None,
                 fragment: "fs_main",
                 buffers: &[],
                 depth: None,

@@ -173,6 +173,7 @@ impl ShadePass {
                         layout: &self.pipeline_layout,
                         module: &self.module,
                         vertex: "vs_main",
+                        cull: None,
                         fragment: "fs_main",
                         buffers: &[],
                         depth: self.cull.then(faces_only),

@@ -46,6 +46,7 @@ impl XrayPass {
             layout: &pipeline_layout,
             module: &module,
             vertex: "vs_main",
+            cull: None,
             fragment,
             buffers: &buffers,
             depth,

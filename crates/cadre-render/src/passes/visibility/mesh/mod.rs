@@ -5,8 +5,8 @@ use super::{TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state};
 use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, Frame, GpuStruct};
 use crate::passes::common::{
-    PipelineSpec, bind_group, draw_meshes, entries, layouts, mesh_vertex_layout, pipeline, shader,
-    wgsl,
+    PipelineSpec, bind_group, draw_mesh_call, entries, layouts, mesh_vertex_layout, pipeline,
+    shader, wgsl,
 };
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 use std::sync::OnceLock;
@@ -28,6 +28,9 @@ pub(crate) struct MeshBackend {
     module: wgpu::ShaderModule,
     pipeline_layout: wgpu::PipelineLayout,
     plain: wgpu::RenderPipeline,
+    /// The plain pipeline culling back faces, then front faces (closed solids' calls,
+    /// `DrawCall::cull`), built on first use.
+    plain_culling: [OnceLock<wgpu::RenderPipeline>; 2],
     sections: OnceLock<wgpu::RenderPipeline>,
     with_uv: OnceLock<wgpu::RenderPipeline>,
     layout: wgpu::BindGroupLayout,
@@ -66,11 +69,16 @@ impl MeshBackend {
             &entries(BINDINGS, stages),
             Some(instances),
         );
-        let plain = mesh_pipeline(device, (&pipeline_layout, &module), MeshVariant::Plain);
+        let plain = mesh_pipeline(
+            device,
+            (&pipeline_layout, &module),
+            (MeshVariant::Plain, None),
+        );
         MeshBackend {
             module,
             pipeline_layout,
             plain,
+            plain_culling: [OnceLock::new(), OnceLock::new()],
             sections: OnceLock::new(),
             with_uv: OnceLock::new(),
             layout,
@@ -93,26 +101,38 @@ impl MeshBackend {
             &[frame.as_entire_binding()],
         );
         let parts = (&self.pipeline_layout, &self.module);
-        let pipeline = match variant {
-            MeshVariant::Plain => &self.plain,
-            MeshVariant::Sections => self
+        let pipeline = |cull: Option<wgpu::Face>| match (variant, cull) {
+            (MeshVariant::Plain, None) => &self.plain,
+            (MeshVariant::Plain, Some(face)) => {
+                let k = usize::from(face == wgpu::Face::Front);
+                self.plain_culling[k].get_or_init(|| mesh_pipeline(device, parts, (variant, cull)))
+            }
+            // With section planes back faces show the caps: nothing is culled.
+            (MeshVariant::Sections, _) => self
                 .sections
-                .get_or_init(|| mesh_pipeline(device, parts, variant)),
-            MeshVariant::WithUv => self
+                .get_or_init(|| mesh_pipeline(device, parts, (variant, None))),
+            (MeshVariant::WithUv, _) => self
                 .with_uv
-                .get_or_init(|| mesh_pipeline(device, parts, variant)),
+                .get_or_init(|| mesh_pipeline(device, parts, (variant, None))),
         };
-        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        draw_meshes(pass, scene, &scene.calls);
+        // The pipeline is set again only when the culling changes between calls.
+        let mut current: Option<Option<wgpu::Face>> = None;
+        for call in &scene.calls {
+            if current != Some(call.cull) {
+                pass.set_pipeline(pipeline(call.cull));
+                current = Some(call.cull);
+            }
+            draw_mesh_call(pass, scene, call);
+        }
     }
 }
 
-/// The back-end's pipeline of `variant`.
+/// The back-end's pipeline of `variant`, culling `cull`.
 fn mesh_pipeline(
     device: &wgpu::Device,
     (layout, module): (&wgpu::PipelineLayout, &wgpu::ShaderModule),
-    variant: MeshVariant,
+    (variant, cull): (MeshVariant, Option<wgpu::Face>),
 ) -> wgpu::RenderPipeline {
     let (vertex, fragment, sections, targets) = match variant {
         MeshVariant::Plain => ("vs_plain", "fs_plain", 0.0, &TARGETS_NO_UV),
@@ -126,6 +146,7 @@ fn mesh_pipeline(
             layout,
             module,
             vertex,
+            cull,
             fragment,
             buffers: &[Some(mesh_vertex_layout())],
             depth: Some(depth_state()),
