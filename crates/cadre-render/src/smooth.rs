@@ -12,7 +12,7 @@
 //! two cores), where a GPU pass on llvmpipe would pay its per-pixel cost for every pixel of
 //! the image, flat ones included.
 
-use crate::frame::{SRGB_TO_LINEAR, linear_to_srgb};
+use crate::frame::{SRGB_TO_LINEAR, linear_to_srgb, unit_to_byte};
 use image::RgbaImage;
 use rayon::prelude::*;
 
@@ -88,9 +88,7 @@ fn blend(px: &mut [u8], a: &[u8], b: &[u8], t: f32) {
     let lut = &*SRGB_TO_LINEAR;
     for c in 0..3 {
         let (la, lb) = (lut[usize::from(a[c])], lut[usize::from(b[c])]);
-        px[c] = (linear_to_srgb(la + (lb - la) * t) * 255.0)
-            .round()
-            .clamp(0.0, 255.0) as u8;
+        px[c] = unit_to_byte(linear_to_srgb(la + (lb - la) * t));
     }
     let (aa, ab) = (f32::from(a[3]), f32::from(b[3]));
     px[3] = (aa + (ab - aa) * t).round().clamp(0.0, 255.0) as u8;
