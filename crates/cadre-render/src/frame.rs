@@ -10,12 +10,12 @@ use crate::layout::{
 };
 use crate::passes::edges::EdgesPass;
 use crate::passes::instances::InstanceLayout;
-use crate::passes::pick::{PickInputs, PickPass};
+use crate::passes::pick::PickPass;
 use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass, ShadeVariant};
 use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
 use crate::passes::xray::XrayPass;
 use crate::view::{MAX_HIGHLIGHTED, MAX_SECTIONS, ViewState};
-use crate::viewport::{LastFrame, PickWindow, Viewport};
+use crate::viewport::{LastFrame, Viewport};
 use crate::{Camera, Gpu, Light, RenderError};
 
 /// How faces and edges are drawn.
@@ -107,9 +107,9 @@ pub struct Renderer {
     shade: ShadePass,
     edges: EdgesPass,
     xray: XrayPass,
-    pick: PickPass,
+    pub(crate) pick: PickPass,
     /// Bind group 1 of the passes that draw instances.
-    instances: InstanceLayout,
+    pub(crate) instances: InstanceLayout,
     /// Format of the colour target the pipelines write.
     colour: wgpu::TextureFormat,
 }
@@ -321,63 +321,6 @@ impl Renderer {
             .map(drop)
     }
 
-    /// What lies around pixel (`x`, `y`) of the viewport's last frame, `radius` pixels each
-    /// way: its face ids and, drawn now by the pick pass, its edge and vertex ids. `scene`
-    /// must be the one that frame drew.
-    pub fn pick(
-        &self,
-        gpu: &Gpu,
-        viewport: &Viewport,
-        scene: &PreparedScene,
-        (x, y): (u32, u32),
-        radius: u32,
-    ) -> Result<PickWindow, RenderError> {
-        let Some(last) = &viewport.last else {
-            return Err(RenderError::NoFrame);
-        };
-        let window = PickWindow::around(viewport.width, viewport.height, (x, y), radius);
-        if window.width == 0 || window.height == 0 {
-            return Ok(window);
-        }
-        let device = &gpu.device;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let inputs = PickInputs {
-            frame: &last.frame,
-            instances: &last.instances,
-            segments: &scene.segments,
-            quads: &scene.quad_indices,
-            calls: &last.pick_calls,
-        };
-        self.pick.record(
-            device,
-            &mut encoder,
-            &viewport.targets,
-            &inputs,
-            &viewport.pick_view,
-        );
-        let origin = (window.x, window.y);
-        let size = (window.width, window.height);
-        let faces = read_region(
-            gpu,
-            encoder,
-            &viewport.targets.ids_texture,
-            origin,
-            size,
-            16,
-        )?;
-        let encoder = device.create_command_encoder(&Default::default());
-        let lines = read_region(gpu, encoder, &viewport.pick_texture, origin, size, 16)?;
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(RenderError::Gpu(e));
-        }
-        Ok(PickWindow {
-            faces: words4(&faces),
-            lines: words4(&lines),
-            ..window
-        })
-    }
-
     /// Records and runs the passes and reads back the asked target; with a viewport, into
     /// its targets, which keep the frame for picking.
     fn run(
@@ -506,10 +449,11 @@ impl Renderer {
             return Err(RenderError::Gpu(e));
         }
         if let Some(v) = viewport {
+            let aspect = f64::from(w) / f64::from(h);
             v.last = Some(LastFrame {
-                frame: frame_buffer,
-                instances: frame_scene.instances,
-                pick_calls: frame_scene.pick_calls,
+                frame,
+                view_proj: camera.projection_matrix(aspect) * camera.view_rotation(),
+                pick_runs: frame_scene.pick_runs,
             });
         }
         Ok(bytes)

@@ -60,6 +60,21 @@ pub(crate) struct EdgeCall {
     pub instances: u32,
 }
 
+/// One visible run's B-Rep edges and vertices, for the pick pass: its draw record, where it
+/// lies (a bounding sphere relative to the eye, world units) and its segments. The pick pass
+/// draws only the runs whose sphere reaches the pick window ([`crate::pick`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PickRun {
+    pub record: Draw,
+    /// Centre relative to the eye and radius.
+    pub sphere: (DVec3, f64),
+    /// The run's local placement list (first, count), as [`Call`].
+    pub locals: (u32, u32),
+    /// Its B-Rep edges and vertices in the segment buffer (first, count).
+    pub edges: (u32, u32),
+    pub points: (u32, u32),
+}
+
 /// A frame's bind group 1: its calls (one [`Call`] per `stride` bytes, bound at a dynamic
 /// offset), draw records and the scene's local placements.
 pub(crate) struct FrameInstances {
@@ -68,6 +83,81 @@ pub(crate) struct FrameInstances {
 }
 
 impl FrameInstances {
+    /// Bind group 1 over `headers` (one call slot each), the draw `records` and the scene's
+    /// `locals`; errors when a buffer would pass the device's limits.
+    pub fn new(
+        device: &wgpu::Device,
+        layout: &InstanceLayout,
+        headers: &[Call],
+        records: &[Draw],
+        locals: &wgpu::Buffer,
+    ) -> Result<FrameInstances, RenderError> {
+        // Storage bindings may not be empty.
+        let (no_record, no_call) = ([Draw::default()], [Call::default()]);
+        let records: &[Draw] = if records.is_empty() {
+            &no_record
+        } else {
+            records
+        };
+        let headers: &[Call] = if headers.is_empty() {
+            &no_call
+        } else {
+            headers
+        };
+        let draws = checked_buffer(
+            device,
+            "draw records",
+            bytemuck::cast_slice(records),
+            wgpu::BufferUsages::STORAGE,
+        )?;
+        let stride = InstanceLayout::call_stride(device);
+        let mut call_bytes = vec![0u8; headers.len() * stride as usize];
+        for (k, header) in headers.iter().enumerate() {
+            let at = k * stride as usize;
+            call_bytes[at..at + std::mem::size_of::<Call>()]
+                .copy_from_slice(bytemuck::bytes_of(header));
+        }
+        // Bound one call wide at a dynamic offset, so only the buffer limit applies, not the
+        // uniform binding limit (16 KiB on downlevel devices: 64 calls).
+        let limit = device.limits().max_buffer_size;
+        if call_bytes.len() as u64 > limit {
+            return Err(RenderError::TooLarge {
+                what: "draw calls".to_string(),
+                bytes: call_bytes.len() as u64,
+                limit,
+            });
+        }
+        let calls = buffer(
+            device,
+            "draw calls",
+            &call_bytes,
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("instances"),
+            layout: &layout.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &calls,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(std::mem::size_of::<Call>() as u64),
+                    }),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: draws.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: locals.as_entire_binding(),
+                },
+            ],
+        });
+        Ok(FrameInstances { bind, stride })
+    }
+
     /// The dynamic offset of call `slot`.
     pub fn offset(&self, slot: u32) -> u32 {
         (u64::from(slot) * self.stride) as u32
@@ -109,7 +199,7 @@ pub struct PreparedScene {
     /// Where the meshes are placed: runs over local placement lists.
     placements: Placements,
     /// [`Placements::locals`] on the GPU.
-    locals: wgpu::Buffer,
+    pub(crate) locals: wgpu::Buffer,
 }
 
 impl PreparedScene {
@@ -302,12 +392,13 @@ pub(crate) struct FrameScene<'a> {
     pub transparent: Vec<DrawCall>,
     /// Lines and edges of visible instances.
     pub edge_calls: Vec<EdgeCall>,
-    /// B-Rep edges and vertices of visible instances, for the pick pass.
-    pub pick_calls: Vec<EdgeCall>,
+    /// B-Rep edges and vertices of visible runs, for the pick pass.
+    pub pick_runs: Vec<PickRun>,
 }
 
-/// A visible run's base draw record and the material of its view colour, if any.
-type RunRecord = (Draw, Option<u32>);
+/// A visible run's base draw record, the material of its view colour, if any, and its
+/// bounding sphere relative to the eye.
+type RunRecord = (Draw, Option<u32>, (DVec3, f64));
 
 /// The records of one frame and the calls that draw them, while they are built.
 #[derive(Default)]
@@ -317,7 +408,7 @@ struct FrameCalls {
     calls: Vec<DrawCall>,
     transparent: Vec<DrawCall>,
     edge_calls: Vec<EdgeCall>,
-    pick_calls: Vec<EdgeCall>,
+    pick_runs: Vec<PickRun>,
     /// Triangles the calls draw, all instances counted.
     triangles: u64,
 }
@@ -375,11 +466,15 @@ impl<'a> FrameScene<'a> {
             });
             let ranges = &geometry.meshes[run.mesh];
             let list = placements.lists[run.list];
+            let mut spheres = SphereUnion::default();
             if run.list == 0 {
                 coverage.add(run.world, ranges.sphere);
+                spheres.add(run.world, ranges.sphere);
             } else {
                 for l in placements.list(list) {
-                    coverage.add(run.world * l.affine(), ranges.sphere);
+                    let world = run.world * l.affine();
+                    coverage.add(world, ranges.sphere);
+                    spheres.add(world, ranges.sphere);
                 }
             }
             visible += list.count as usize;
@@ -394,10 +489,11 @@ impl<'a> FrameScene<'a> {
                     }
             });
             let record = placement(camera, rotation, run.world, (run.instance, flags));
-            groups
-                .entry((run.mesh, run.list))
-                .or_default()
-                .push((record(geometry.default_material()), colour_material));
+            groups.entry((run.mesh, run.list)).or_default().push((
+                record(geometry.default_material()),
+                colour_material,
+                spheres.around(camera.eye),
+            ));
         }
         // Refused before anything is drawn: a frame covering the image thousands of times
         // over would run for hours on a software rasterizer.
@@ -426,7 +522,7 @@ impl<'a> FrameScene<'a> {
             let instances = n * list.count;
             // One record per run for its segments (the default material's).
             let own = out.draws.len() as u32;
-            out.draws.extend(group.iter().map(|(d, _)| *d));
+            out.draws.extend(group.iter().map(|(d, _, _)| *d));
             let own_slot = out.slot(own, locals);
             let segment_call = |calls: &mut Vec<EdgeCall>, (first, count): (u32, u32)| {
                 if count > 0 {
@@ -442,8 +538,16 @@ impl<'a> FrameScene<'a> {
             if with_edges {
                 segment_call(&mut out.edge_calls, ranges.edges);
             }
-            segment_call(&mut out.pick_calls, ranges.edges);
-            segment_call(&mut out.pick_calls, ranges.points);
+            if ranges.edges.1 + ranges.points.1 > 0 {
+                out.pick_runs
+                    .extend(group.iter().map(|&(record, _, sphere)| PickRun {
+                        record,
+                        sphere,
+                        locals,
+                        edges: ranges.edges,
+                        points: ranges.points,
+                    }));
+            }
             for &(first, count, material) in &ranges.primitives {
                 if count == 0 {
                     continue;
@@ -454,7 +558,7 @@ impl<'a> FrameScene<'a> {
                 // Opaque runs first, then see-through ones, each a contiguous run of records.
                 let resolved: Vec<(Draw, bool)> = group
                     .iter()
-                    .map(|&(d, colour)| {
+                    .map(|&(d, colour, _)| {
                         let m = colour.unwrap_or(own_material);
                         let see_through = materials[m as usize].base_color[3] < 0.999;
                         (Draw { material: m, ..d }, see_through)
@@ -505,67 +609,11 @@ impl<'a> FrameScene<'a> {
                 limit: MAX_FRAME_TRIANGLES,
             });
         }
-        if out.draws.is_empty() {
-            // Storage bindings may not be empty.
-            out.draws.push(Draw::default());
-        }
-        if out.headers.is_empty() {
-            out.headers.push(Call::default());
-        }
-        let draws = checked_buffer(
-            device,
-            "draw records",
-            bytemuck::cast_slice(&out.draws),
-            wgpu::BufferUsages::STORAGE,
-        )?;
-        let stride = InstanceLayout::call_stride(device);
-        let mut call_bytes = vec![0u8; out.headers.len() * stride as usize];
-        for (k, header) in out.headers.iter().enumerate() {
-            let at = k * stride as usize;
-            call_bytes[at..at + std::mem::size_of::<Call>()]
-                .copy_from_slice(bytemuck::bytes_of(header));
-        }
-        // Bound one call wide at a dynamic offset, so only the buffer limit applies, not the
-        // uniform binding limit (16 KiB on downlevel devices: 64 calls).
-        let limit = device.limits().max_buffer_size;
-        if call_bytes.len() as u64 > limit {
-            return Err(RenderError::TooLarge {
-                what: "draw calls".to_string(),
-                bytes: call_bytes.len() as u64,
-                limit,
-            });
-        }
-        let calls = buffer(
-            device,
-            "draw calls",
-            &call_bytes,
-            wgpu::BufferUsages::UNIFORM,
-        );
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("instances"),
-            layout: &layout.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &calls,
-                        offset: 0,
-                        size: wgpu::BufferSize::new(std::mem::size_of::<Call>() as u64),
-                    }),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: draws.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: geometry.locals.as_entire_binding(),
-                },
-            ],
-        });
+        let instances =
+            FrameInstances::new(device, layout, &out.headers, &out.draws, &geometry.locals)?;
         Ok(FrameScene {
             geometry,
-            instances: FrameInstances { bind, stride },
+            instances,
             materials: checked_buffer(
                 device,
                 "materials",
@@ -575,8 +623,51 @@ impl<'a> FrameScene<'a> {
             calls: out.calls,
             transparent: out.transparent,
             edge_calls: out.edge_calls,
-            pick_calls: out.pick_calls,
+            pick_runs: out.pick_runs,
         })
+    }
+}
+
+/// A sphere around placed bounding spheres (the box of their boxes' centre, the farthest
+/// sphere's reach): loose, but it holds every one of them.
+#[derive(Default)]
+struct SphereUnion {
+    placed: Vec<(DVec3, f64)>,
+}
+
+impl SphereUnion {
+    /// Adds the mesh-local sphere (`centre`, `radius`) placed by `world`.
+    fn add(&mut self, world: DAffine3, (centre, radius): (DVec3, f64)) {
+        let m = world.matrix3;
+        let scale = m
+            .x_axis
+            .length()
+            .max(m.y_axis.length())
+            .max(m.z_axis.length());
+        self.placed
+            .push((world.transform_point3(centre), radius * scale));
+    }
+
+    /// The union's sphere, its centre relative to `eye`.
+    fn around(&self, eye: DVec3) -> (DVec3, f64) {
+        let lo = self
+            .placed
+            .iter()
+            .fold(DVec3::INFINITY, |a, (c, r)| a.min(*c - *r));
+        let hi = self
+            .placed
+            .iter()
+            .fold(DVec3::NEG_INFINITY, |a, (c, r)| a.max(*c + *r));
+        if !(lo.is_finite() && hi.is_finite()) {
+            return (DVec3::ZERO, f64::INFINITY);
+        }
+        let centre = 0.5 * (lo + hi);
+        let radius = self
+            .placed
+            .iter()
+            .map(|(c, r)| (*c - centre).length() + r)
+            .fold(0.0, f64::max);
+        (centre - eye, radius)
     }
 }
 

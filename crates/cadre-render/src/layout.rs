@@ -284,6 +284,17 @@ pub const INSTANCE_BINDINGS: &[Binding] = &[
     Binding::Storage(Local::WGSL_NAME),
 ];
 
+/// Where the pick pass's small target lies in the frame: the window's top-left pixel, so
+/// that its fragments read the visibility buffer's ids at their frame pixel.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct PickRegion {
+    /// Column and row of the window's top-left pixel in the frame.
+    pub origin: [u32; 2],
+    /// Padding to 16 bytes.
+    pub pad: [u32; 2],
+}
+
 /// A metallic-roughness material.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
@@ -327,3 +338,4 @@ gpu_struct!(
 gpu_struct!(Material, "Material", [base_color, params]);
 gpu_struct!(Local, "Local", [model, normal, offset, flags, pad]);
 gpu_struct!(Call, "Call", [record, locals_first, locals_count, pad]);
+gpu_struct!(PickRegion, "PickRegion", [origin, pad]);

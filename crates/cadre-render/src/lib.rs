@@ -24,6 +24,7 @@ mod gpu_scene;
 pub mod layout;
 mod lights;
 mod passes;
+mod pick;
 mod placements;
 pub mod raycast;
 mod smooth;
@@ -39,6 +40,7 @@ pub use frame::{DisplayMode, FrameOptions, Renderer};
 pub use gpu::Gpu;
 pub use gpu_scene::{MAX_FRAME_TRIANGLES, PreparedScene};
 pub use lights::Light;
+pub use pick::PendingPick;
 pub use placements::{FLAT_LIMIT, MAX_LOCALS_PER_NODE};
 pub use smooth::smooth_edges;
 pub use view::{

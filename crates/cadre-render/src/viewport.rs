@@ -1,16 +1,18 @@
 //! A viewer's viewport: render targets kept between frames, and picking from the last frame.
 
-use crate::gpu_scene::{EdgeCall, FrameInstances};
-use crate::passes::pick::PICK;
+use crate::gpu_scene::PickRun;
+use crate::layout::Frame;
 use crate::passes::visibility::VisibilityTargets;
 use crate::view::{Pick, section_cap};
 use crate::{Gpu, RenderError};
 
-/// The buffers of the last frame drawn into a viewport, which the pick pass draws with again.
+/// What the pick pass needs of the last frame drawn into a viewport: its uniform, its
+/// camera-relative view-projection in `f64` (cropped to the pick window) and its visible
+/// runs' edges and vertices.
 pub(crate) struct LastFrame {
-    pub frame: wgpu::Buffer,
-    pub instances: FrameInstances,
-    pub pick_calls: Vec<EdgeCall>,
+    pub frame: Frame,
+    pub view_proj: glam::DMat4,
+    pub pick_runs: Vec<PickRun>,
 }
 
 /// Render targets of one size, kept between a viewer's frames (made once per window size),
@@ -21,8 +23,6 @@ pub struct Viewport {
     /// Height in pixels.
     pub height: u32,
     pub(crate) targets: VisibilityTargets,
-    pub(crate) pick_texture: wgpu::Texture,
-    pub(crate) pick_view: wgpu::TextureView,
     pub(crate) last: Option<LastFrame>,
 }
 
@@ -30,26 +30,10 @@ impl Viewport {
     /// Targets of `width` × `height` (at least 1 × 1).
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Viewport {
         let (width, height) = (width.max(1), height.max(1));
-        let pick_texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("pick"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: PICK,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
         Viewport {
             width,
             height,
             targets: VisibilityTargets::new(&gpu.device, (width, height), false),
-            pick_view: pick_texture.create_view(&Default::default()),
-            pick_texture,
             last: None,
         }
     }

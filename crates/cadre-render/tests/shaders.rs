@@ -7,7 +7,7 @@ use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders}
 use cadre_render::layout::{
     Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE,
     FILL_BACKGROUND, FILL_NONE, FILL_SHADED, Frame, GpuStruct, LightGpu, Local, Material, Member,
-    PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, Segment,
+    PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Segment,
 };
 
 /// The renderer's shader named `name`, as it compiles it.
@@ -124,6 +124,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
             "Light",
             "Local",
             "Call",
+            "PickRegion",
             "VisibilityOut",
         ] {
             assert!(
@@ -145,6 +146,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
             ("Light", check::<LightGpu>(pass, &m)),
             ("Local", check::<Local>(pass, &m)),
             ("Call", check::<Call>(pass, &m)),
+            ("PickRegion", check::<PickRegion>(pass, &m)),
         ] {
             if hit.unwrap_or_else(|e| panic!("{e}")) {
                 *found.entry(name).or_default() += 1;
@@ -152,7 +154,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         }
     }
     // Every layout was really compared somewhere (naga drops nothing we rely on).
-    assert_eq!(found.len(), 7, "{found:?}");
+    assert_eq!(found.len(), 8, "{found:?}");
 }
 
 #[test]

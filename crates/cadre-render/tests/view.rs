@@ -163,6 +163,78 @@ fn picking_finds_faces_edges_and_vertices_under_the_cursor() {
     );
 }
 
+#[test]
+fn a_hover_pick_answers_on_a_later_poll_what_a_click_finds() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let scene = pin_assembly();
+    let prepared = renderer.prepare(&gpu, &scene);
+    let camera = camera(&scene);
+    let mut viewport = Viewport::new(&gpu, W, H);
+    let view = target(&gpu);
+    renderer
+        .draw(
+            &gpu,
+            &mut viewport,
+            &prepared,
+            &camera,
+            &options(),
+            &ViewState::default(),
+            &view,
+        )
+        .expect("frame");
+    // Edge midpoints (the pick pass draws there), the image's corners (windows clipped at
+    // the borders) and its centre.
+    let mut cursors = vec![(0, 0), (W - 1, H - 1), (W / 2, H / 2)];
+    for (node, world) in scene.instances() {
+        let Some(mesh) = scene.nodes[node].mesh else {
+            continue;
+        };
+        for edge in &scene.meshes[mesh].edges {
+            let mid = edge.points[edge.points.len() / 2];
+            let p = world.transform_point3(DVec3::from(mid.map(f64::from)));
+            cursors.extend(pixel_of(&camera, p));
+        }
+    }
+    let mut with_edges = 0;
+    for (k, &cursor) in cursors.iter().enumerate() {
+        let clicked = renderer
+            .pick(&gpu, &viewport, &prepared, cursor, 4)
+            .expect("click");
+        let mut pending = renderer
+            .request_pick(&gpu, &viewport, &prepared, cursor, 4)
+            .expect("hover");
+        assert_eq!(pending.window().cursor, cursor);
+        let started = std::time::Instant::now();
+        let hovered = loop {
+            if let Some(answer) = pending.poll(&gpu) {
+                break answer.expect("hover answer");
+            }
+            assert!(started.elapsed().as_secs() < 30, "no answer at {cursor:?}");
+            std::thread::yield_now();
+        };
+        // Once answered, nothing more comes.
+        assert!(pending.poll(&gpu).is_none());
+        assert_eq!(hovered, clicked, "cursor {cursor:?}");
+        assert!(clicked.width <= 9 && clicked.height <= 9);
+        // The edge midpoints' windows show edges (most are visible in this view).
+        with_edges += usize::from(k >= 3 && clicked.lines.iter().any(|l| l[2] == 2));
+    }
+    assert_eq!(
+        renderer
+            .pick(&gpu, &viewport, &prepared, (0, 0), 4)
+            .expect("corner")
+            .width,
+        5,
+        "clipped at the left border"
+    );
+    let midpoints = cursors.len() - 3;
+    assert!(
+        midpoints >= 4 && with_edges * 2 >= midpoints,
+        "{with_edges} of {midpoints}"
+    );
+}
+
 /// Mean linear-ish colour of the pixels where `mask` holds.
 fn mean(image: &image::RgbaImage, mask: &[bool]) -> [f64; 3] {
     let mut sum = [0.0; 3];

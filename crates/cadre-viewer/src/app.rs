@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use cadre_render::{FrameOptions, Gpu, PreparedScene, Renderer, Viewport};
+use cadre_render::{FrameOptions, Gpu, PendingPick, PickWindow, PreparedScene, Renderer, Viewport};
 use cadre_spacenav::{NavSettings, SpaceEvent, SpaceNav};
 use glam::{DVec2, DVec3, DVec4};
 use winit::application::ApplicationHandler;
@@ -62,6 +62,11 @@ struct App {
     prepared: Option<PreparedScene>,
     /// Orbit pivot of the drag in progress.
     pivot: Option<DVec3>,
+    /// The hover pick asked for and not yet answered, with the cursor it is for: answered
+    /// on a later frame, so a pointer move never waits for the GPU.
+    hover_pick: Option<(egui::Pos2, PendingPick)>,
+    /// The cursor position whose answer `session.hover` holds.
+    hovered_at: Option<egui::Pos2>,
     /// The 3D view's rectangle in the window, physical pixels.
     view_rect: egui::Rect,
     last_frame: Instant,
@@ -85,6 +90,8 @@ pub(crate) fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         session: Session::new(),
         prepared: None,
         pivot: None,
+        hover_pick: None,
+        hovered_at: None,
         view_rect: egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1.0, 1.0)),
         last_frame: Instant::now(),
         spacenav: None,
@@ -277,8 +284,10 @@ impl App {
             .viewport_output
             .get(&egui::ViewportId::ROOT)
             .is_some_and(|v| v.repaint_delay.is_zero());
-        // A transition started by this frame's input runs from the next frame on.
+        // A transition started by this frame's input runs from the next frame on; a hover
+        // pick's answer is taken on a later frame.
         busy |= self.session.nav.as_ref().is_some_and(|n| n.animating());
+        busy |= self.hover_pick.is_some();
         if busy || repaint || self.session.loading.is_some() {
             window.request_redraw();
         }
@@ -291,15 +300,31 @@ impl App {
         if let Some(p) = input.drag_started {
             self.pivot = self.pick_at(p).map(|h| h.point);
         }
-        // Hover picking costs a pass and a readback: not while the camera moves (the item
-        // under a moving cursor changes every frame), except for the zoom's own point.
+        // Hover picking costs a small pass and a readback: not while the camera moves (the
+        // item under a moving cursor changes every frame), except for the zoom's own point,
+        // which is waited for.
         let moving = input.orbit != egui::Vec2::ZERO
             || input.pan != egui::Vec2::ZERO
             || self.session.nav.as_ref().is_some_and(|n| n.animating());
-        self.session.hover = match input.hover {
-            Some(p) if !moving || input.zoom != 0.0 => self.pick_at(p),
-            _ => None,
-        };
+        match input.hover {
+            Some(p) if input.zoom != 0.0 => {
+                self.session.hover = self.pick_at(p);
+                self.hovered_at = Some(p);
+                self.hover_pick = None;
+            }
+            Some(p) if !moving => {
+                let asked = self.hover_pick.as_ref().map(|(q, _)| *q);
+                if self.hovered_at != Some(p) && asked != Some(p) {
+                    self.hover_pick = self.request_pick_at(p).map(|pending| (p, pending));
+                }
+            }
+            _ => {
+                self.session.hover = None;
+                self.hovered_at = None;
+                self.hover_pick = None;
+            }
+        }
+        self.take_hover_answer();
         if let Some((p, add)) = input.click {
             let mut picked = self.pick_at(p);
             // Alt + click: the part the item belongs to.
@@ -355,21 +380,48 @@ impl App {
         }
     }
 
-    /// What is under window pixel `p` (physical) of the last frame, with its world point.
+    /// What is under window pixel `p` (physical) of the last frame, with its world point,
+    /// waiting for the GPU (clicks, drag pivots, the zoom's point).
     fn pick_at(&self, p: egui::Pos2) -> Option<Picked> {
+        let gfx = self.gfx.as_ref()?;
+        let window = self.request_pick_at(p)?.wait(&gfx.gpu).ok()?;
+        self.picked_in(&window)
+    }
+
+    /// Asks the renderer what is under window pixel `p` (physical) of the last frame.
+    fn request_pick_at(&self, p: egui::Pos2) -> Option<PendingPick> {
         let gfx = self.gfx.as_ref()?;
         let viewport = gfx.viewport.as_ref()?;
         let prepared = self.prepared.as_ref()?;
-        let nav = self.session.nav.as_ref()?;
         let p = p - self.view_rect.min.to_vec2();
         if p.x < 0.0 || p.y < 0.0 {
             return None;
         }
         let (x, y) = (p.x as u32, p.y as u32);
-        let window = gfx
-            .renderer
-            .pick(&gfx.gpu, viewport, prepared, (x, y), PICK_RADIUS)
-            .ok()?;
+        gfx.renderer
+            .request_pick(&gfx.gpu, viewport, prepared, (x, y), PICK_RADIUS)
+            .ok()
+    }
+
+    /// Takes the hover pick's answer if the GPU has given it.
+    fn take_hover_answer(&mut self) {
+        let (Some(gfx), Some((p, pending))) = (&self.gfx, &mut self.hover_pick) else {
+            return;
+        };
+        let Some(answer) = pending.poll(&gfx.gpu) else {
+            return;
+        };
+        let p = *p;
+        self.hover_pick = None;
+        self.session.hover = answer.ok().and_then(|w| self.picked_in(&w));
+        self.hovered_at = Some(p);
+    }
+
+    /// The nearest item of a pick window (vertex, edge, then face) with its world point.
+    fn picked_in(&self, window: &PickWindow) -> Option<Picked> {
+        let gfx = self.gfx.as_ref()?;
+        let viewport = gfx.viewport.as_ref()?;
+        let nav = self.session.nav.as_ref()?;
         let hit = window.nearest(PICK_RADIUS as f32)?;
         let camera = nav.camera();
         let (w, h) = (f64::from(viewport.width), f64::from(viewport.height));
@@ -752,6 +804,9 @@ impl ApplicationHandler<UserEvent> for App {
                 self.session.loading = None;
                 match *result {
                     Ok(doc) => {
+                        // A hover asked of the last model answers about it.
+                        self.hover_pick = None;
+                        self.hovered_at = None;
                         if let Some(gfx) = &self.gfx {
                             self.prepared = Some(gfx.renderer.prepare(&gfx.gpu, &doc.scene));
                             gfx.window.set_title(&format!("{} — cadre", doc.title()));

@@ -56,6 +56,11 @@ struct Segment {
     b: vec4<f32>,
 }
 
+struct PickRegion {
+    origin: vec2<u32>,
+    pad: vec2<u32>,
+}
+
 struct Light {
     position: vec4<f32>,
     direction: vec4<f32>,

@@ -47,7 +47,8 @@ enum BenchWhat {
     },
     /// The viewer's frame on the same heavy scene: the scene uploaded once, then each frame
     /// orbits the camera by 2°, draws into a kept viewport (the window's path, no readback)
-    /// and waits for the GPU; then picks (edge/vertex pass + window readback) are timed.
+    /// and waits for the GPU; then picks are timed: a click's (waited for), a hover's ask
+    /// (what holds the viewer's frame) and its answer (polled until there).
     /// Prints one JSON object.
     View {
         /// The STEP file.
@@ -252,18 +253,28 @@ fn bench_view(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) 
         wait(&gpu)?;
         ms.push(t.elapsed().as_secs_f64() * 1e3);
     }
+    // A click waits for its pick; a hover asks (the time the viewer's frame is held) and
+    // takes the answer on a later frame (the time until it is there, polled).
     let mut pick_ms = Vec::new();
+    let mut hover_ask_ms = Vec::new();
+    let mut hover_answer_ms = Vec::new();
     for k in 0..10u32 {
+        let cursor = (width / 2 + 7 * k, height / 2);
         let t = Instant::now();
-        let window = renderer.pick(
-            &gpu,
-            &viewport,
-            &prepared,
-            (width / 2 + 7 * k, height / 2),
-            5,
-        )?;
+        let window = renderer.pick(&gpu, &viewport, &prepared, cursor, 5)?;
         std::hint::black_box(window.nearest(5.0));
         pick_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        let t = Instant::now();
+        let mut pending = renderer.request_pick(&gpu, &viewport, &prepared, cursor, 5)?;
+        hover_ask_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        let answer = loop {
+            if let Some(answer) = pending.poll(&gpu) {
+                break answer?;
+            }
+            std::thread::yield_now();
+        };
+        hover_answer_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        anyhow::ensure!(answer == window, "the hover and the click picks differ");
     }
     println!(
         "{}",
@@ -280,6 +291,8 @@ fn bench_view(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) 
             "median_frame_ms": median(&ms),
             "fps": 1e3 / median(&ms),
             "median_pick_ms": median(&pick_ms),
+            "median_hover_ask_ms": median(&hover_ask_ms),
+            "median_hover_answer_ms": median(&hover_answer_ms),
         })
     );
     Ok(())

@@ -6,14 +6,16 @@ use super::common::{
 };
 use super::visibility::VisibilityTargets;
 use crate::gpu_scene::{EdgeCall, FrameInstances};
-use crate::layout::{Binding, Frame, GpuStruct, Segment};
+use crate::layout::{Binding, Frame, GpuStruct, PickRegion, Segment};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
-/// Bind group 0: frame, segments, the id target (group 1: the instances).
+/// Bind group 0: frame (its projection cropped to the pick window), segments, the
+/// visibility buffer's ids, where the window lies in them (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(Frame::WGSL_NAME),
     Binding::Storage(Segment::WGSL_NAME),
     Binding::UintTexture,
+    Binding::Uniform(PickRegion::WGSL_NAME),
 ];
 
 /// The pass's whole WGSL: the shared declarations and its own source.
@@ -30,9 +32,11 @@ pub(crate) struct PickPass {
     layout: wgpu::BindGroupLayout,
 }
 
-/// The buffers a pick pass reads: the frame's uniform and instances, the segments.
+/// The buffers a pick pass reads: the frame's uniform (cropped) and the window's place, the
+/// instances, the segments.
 pub(crate) struct PickInputs<'a> {
     pub frame: &'a wgpu::Buffer,
+    pub region: &'a wgpu::Buffer,
     pub instances: &'a FrameInstances,
     pub segments: &'a wgpu::Buffer,
     /// The segments' quad indices (`PreparedScene::quad_indices`).
@@ -65,7 +69,7 @@ impl PickPass {
         PickPass { pipeline, layout }
     }
 
-    /// Records the pass into `target` (cleared first).
+    /// Records the pass into `target` (the pick window's size, cleared first).
     pub fn record(
         &self,
         device: &wgpu::Device,
@@ -82,6 +86,7 @@ impl PickPass {
                 inputs.frame.as_entire_binding(),
                 inputs.segments.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&visibility.ids),
+                inputs.region.as_entire_binding(),
             ],
         );
         let mut pass = colour_pass(encoder, "pick", target, Some(wgpu::Color::TRANSPARENT));

@@ -2,10 +2,14 @@
 // (STEP id, instance + 1, kind: 2 edge, 3 vertex), one pixel wide and hidden by the
 // visibility depth like the edges pass, vertices after edges so they win where both fall. The
 // viewer reads a small window around the cursor and takes the nearest vertex, else the
-// nearest edge, else the face under the cursor.
+// nearest edge, else the face under the cursor. Only the window around the cursor is drawn
+// (pick.rs: cropped projection, runs culled by their bounding spheres).
 
 @group(0) @binding(1) var<storage, read> segments: array<Segment>;
 @group(0) @binding(2) var ids_tex: texture_2d<u32>;
+// The target is the pick window alone (the frame's projection cropped to it): its pixel
+// (0, 0) is the frame's pixel `region.origin`.
+@group(0) @binding(3) var<uniform> region: PickRegion;
 
 @vertex
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> LineOut {
@@ -27,7 +31,7 @@ fn fs_main(in: LineOut) -> @location(0) vec4<u32> {
     if abs(in.across) > select(0.5, 1.5, vertex) {
         discard;
     }
-    let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy), 0);
+    let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy) + vec2<i32>(region.origin), 0);
     // Reverse Z: nearer is larger; the tolerance keeps edges on their own faces.
     if in.clip.z < scene_depth_at(ids) * (1.0 - frame.tolerances.x) {
         discard;
