@@ -112,6 +112,9 @@ pub struct Renderer {
     pub(crate) instances: InstanceLayout,
     /// Format of the colour target the pipelines write.
     colour: wgpu::TextureFormat,
+    /// The analytic back-end writes its proxies' depth, not the hits' (a wrong depth, for
+    /// the tests' negative control).
+    proxy_depth: bool,
 }
 
 impl Renderer {
@@ -134,6 +137,7 @@ impl Renderer {
             pick: PickPass::new(&gpu.device, &instances),
             instances,
             colour: format,
+            proxy_depth: false,
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e)),
@@ -144,7 +148,28 @@ impl Renderer {
     /// Uploads `scene`'s geometry once, for any number of frames ([`Renderer::draw`],
     /// [`Renderer::render_prepared`]).
     pub fn prepare(&self, gpu: &Gpu, scene: &Scene) -> PreparedScene {
-        PreparedScene::new(&gpu.device, scene, crate::FLAT_LIMIT)
+        PreparedScene::new(&gpu.device, scene, &[], crate::FLAT_LIMIT)
+    }
+
+    /// [`Renderer::prepare`] with analytic primitives drawn by ray casting beside the
+    /// scene's meshes, in the same visibility buffer (instances after the meshes':
+    /// [`PreparedScene::primitive_instance`]).
+    pub fn prepare_with_primitives(
+        &self,
+        gpu: &Gpu,
+        scene: &Scene,
+        primitives: &[crate::AnalyticPrimitive],
+    ) -> PreparedScene {
+        PreparedScene::new(&gpu.device, scene, primitives, crate::FLAT_LIMIT)
+    }
+
+    /// This renderer with its analytic back-end writing each proxy's depth instead of the
+    /// ray's hit: wrong wherever the proxy is not the surface. Only for the tests' negative
+    /// control, which must see it disagree with the CPU ray caster.
+    #[doc(hidden)]
+    pub fn with_proxy_depth(mut self) -> Renderer {
+        self.proxy_depth = true;
+        self
     }
 
     /// [`Renderer::prepare`] with its placements factored past `flat_limit` instances
@@ -156,7 +181,7 @@ impl Renderer {
         scene: &Scene,
         flat_limit: usize,
     ) -> PreparedScene {
-        PreparedScene::new(&gpu.device, scene, flat_limit)
+        PreparedScene::new(&gpu.device, scene, &[], flat_limit)
     }
 
     /// Renders `scene` seen by `camera` into an sRGB image.
@@ -257,8 +282,19 @@ impl Renderer {
         options: &FrameOptions,
     ) -> Result<Vec<[f32; 2]>, RenderError> {
         let prepared = self.prepare(gpu, scene);
+        self.render_uv_prepared(gpu, &prepared, camera, options)
+    }
+
+    /// [`Renderer::render_uv`] of a prepared scene.
+    pub fn render_uv_prepared(
+        &self,
+        gpu: &Gpu,
+        scene: &PreparedScene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<Vec<[f32; 2]>, RenderError> {
         let frame = FrameInput {
-            scene: &prepared,
+            scene,
             camera,
             options,
             state: &ViewState::default(),
@@ -384,7 +420,7 @@ impl Renderer {
             device,
             &mut encoder,
             targets,
-            (&frame_buffer, sections),
+            (&frame_buffer, sections, self.proxy_depth),
             &frame_scene,
         );
         let mut selection: Vec<[u32; 4]> = state

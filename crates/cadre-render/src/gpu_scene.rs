@@ -9,11 +9,15 @@ use wgpu::util::DeviceExt;
 use std::collections::BTreeMap;
 
 use crate::Camera;
+use crate::analytic::AnalyticPrimitive;
 use crate::coverage::{ImageCoverage, MAX_IMAGE_COVERAGE, bounding_sphere};
 use crate::edges::feature_edges;
 use crate::error::RenderError;
-use crate::layout::{Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Segment, Vertex};
+use crate::layout::{
+    Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Primitive, Segment, Vertex,
+};
 use crate::passes::instances::InstanceLayout;
+use crate::passes::visibility::analytic::FramePrimitives;
 use crate::placements::{Placements, normal_columns, normal_matrix};
 use crate::solid::closed_orientation;
 use crate::view::{InstanceStyle, ViewState};
@@ -200,13 +204,22 @@ pub struct PreparedScene {
     placements: Placements,
     /// [`Placements::locals`] on the GPU.
     pub(crate) locals: wgpu::Buffer,
+    /// Analytic primitives drawn by ray casting, instances after the meshes' (each with its
+    /// material at `primitive_materials + k`).
+    primitives: Vec<AnalyticPrimitive>,
+    primitive_materials: u32,
 }
 
 impl PreparedScene {
     /// Uploads `scene`'s geometry.
     /// Uploads `scene`'s geometry; past `flat_limit` instances its placements are factored
     /// ([`Placements`]).
-    pub(crate) fn new(device: &wgpu::Device, scene: &Scene, flat_limit: usize) -> PreparedScene {
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        scene: &Scene,
+        primitives: &[AnalyticPrimitive],
+        flat_limit: usize,
+    ) -> PreparedScene {
         let mut segments: Vec<Segment> = Vec::new();
         let mut meshes = Vec::with_capacity(scene.meshes.len());
         let mut vertices = Vec::with_capacity(scene.meshes.len());
@@ -272,6 +285,11 @@ impl PreparedScene {
                 params: [m.metallic, m.roughness, 0.0, 0.0],
             })
             .collect();
+        let primitive_materials = materials.len() as u32;
+        materials.extend(primitives.iter().map(|p| Material {
+            base_color: p.colour,
+            params: DEFAULT_MATERIAL.params,
+        }));
         materials.push(DEFAULT_MATERIAL);
         let placements = Placements::new(scene, |m| meshes[m].solid.is_some(), flat_limit);
         // A call draws at most one mesh's lines, edges or points.
@@ -308,6 +326,48 @@ impl PreparedScene {
             meshes,
             materials,
             placements,
+            primitives: primitives.to_vec(),
+            primitive_materials,
+        }
+    }
+
+    /// The instance number of analytic primitive `k` (after every mesh instance), as the
+    /// visibility buffer and picking give it.
+    pub fn primitive_instance(&self, k: usize) -> u32 {
+        (self.placements.instances + k) as u32
+    }
+
+    /// The visible primitives' records for a frame seen by `camera`.
+    fn frame_primitives(
+        &self,
+        device: &wgpu::Device,
+        camera: &Camera,
+        state: &ViewState,
+    ) -> FramePrimitives {
+        let records: Vec<Primitive> = self
+            .primitives
+            .iter()
+            .enumerate()
+            .filter_map(|(k, p)| {
+                let instance = self.primitive_instance(k);
+                let style = state
+                    .instances
+                    .get(instance as usize)
+                    .copied()
+                    .unwrap_or_default();
+                style
+                    .visible
+                    .then(|| p.record(camera, (instance, self.primitive_materials + k as u32)))
+            })
+            .collect();
+        FramePrimitives {
+            buffer: buffer(
+                device,
+                "primitives",
+                bytemuck::cast_slice(&records),
+                wgpu::BufferUsages::STORAGE,
+            ),
+            count: records.len() as u32,
         }
     }
 
@@ -394,6 +454,8 @@ pub(crate) struct FrameScene<'a> {
     pub edge_calls: Vec<EdgeCall>,
     /// B-Rep edges and vertices of visible runs, for the pick pass.
     pub pick_runs: Vec<PickRun>,
+    /// Visible analytic primitives, for the analytic back-end.
+    pub primitives: FramePrimitives,
 }
 
 /// A visible run's base draw record, the material of its view colour, if any, and its
@@ -624,6 +686,7 @@ impl<'a> FrameScene<'a> {
             transparent: out.transparent,
             edge_calls: out.edge_calls,
             pick_runs: out.pick_runs,
+            primitives: geometry.frame_primitives(device, camera, state),
         })
     }
 }

@@ -50,6 +50,12 @@ pub fn pass_shaders() -> Vec<PassShader> {
             visibility::mesh::BINDINGS,
             true,
         ),
+        shader(
+            "visibility/analytic",
+            visibility::analytic::source(),
+            visibility::analytic::BINDINGS,
+            false,
+        ),
         shader("shade", shade::source(), shade::BINDINGS, false),
         shader("edges", edges::source(), edges::BINDINGS, true),
         shader("xray", xray::source(), xray::BINDINGS, true),
@@ -295,6 +301,33 @@ pub struct PickRegion {
     pub pad: [u32; 2],
 }
 
+/// An analytic primitive placed for one frame, as the analytic back-end ray casts it
+/// ([`crate::AnalyticPrimitive`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct Primitive {
+    /// Shape-local → camera-relative world (column-major).
+    pub model: [[f32; 4]; 4],
+    /// Camera-relative world → shape-local: the pixel's ray is cast in the shape's frame.
+    pub to_local: [[f32; 4]; 4],
+    /// Shape-local normals → view space (columns, xyz used).
+    pub normal: [[f32; 4]; 3],
+    /// Sphere: radius (x); rectangle: half width and half height (x, y); unused lanes 0.
+    pub size: [f32; 4],
+    /// [`crate::analytic::PRIMITIVE_SPHERE`] or [`crate::analytic::PRIMITIVE_RECTANGLE`].
+    pub kind: u32,
+    /// Face id written into the visibility buffer.
+    pub face: u32,
+    /// Instance number (after the scene's mesh instances).
+    pub instance: u32,
+    /// Index into the material buffer.
+    pub material: u32,
+    /// [`DRAW_CLOSED`] for spheres (section planes cap them).
+    pub flags: u32,
+    /// Padding to the struct's 16-byte alignment.
+    pub pad: [u32; 3],
+}
+
 /// A metallic-roughness material.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
@@ -339,3 +372,10 @@ gpu_struct!(Material, "Material", [base_color, params]);
 gpu_struct!(Local, "Local", [model, normal, offset, flags, pad]);
 gpu_struct!(Call, "Call", [record, locals_first, locals_count, pad]);
 gpu_struct!(PickRegion, "PickRegion", [origin, pad]);
+gpu_struct!(
+    Primitive,
+    "Primitive",
+    [
+        model, to_local, normal, size, kind, face, instance, material, flags, pad
+    ]
+);

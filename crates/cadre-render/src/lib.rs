@@ -12,6 +12,7 @@
 //! Up to three [`SectionPlane`]s of a [`ViewState`] cut the model; closed solids show hatched
 //! caps where they are cut.
 
+pub mod analytic;
 mod bounds;
 mod camera;
 pub mod compare;
@@ -32,6 +33,7 @@ mod solid;
 mod view;
 mod viewport;
 
+pub use analytic::{AnalyticPrimitive, AnalyticShape};
 pub use bounds::scene_bounds;
 pub use camera::{Camera, Projection, ViewPreset};
 pub use coverage::MAX_IMAGE_COVERAGE;

@@ -116,9 +116,52 @@ impl RayCaster {
         }
     }
 
+    /// Adds an analytic primitive, cast like a face with the primitive's face id: a sphere
+    /// is its whole spherical surface, a rectangle its plane trimmed to it.
+    pub fn add_primitive(&mut self, primitive: &crate::AnalyticPrimitive) {
+        use crate::AnalyticShape;
+        use std::f64::consts::{FRAC_PI_2, TAU};
+        let frame = primitive.frame;
+        // The trim: a rectangle of (u, v); a sphere's covers its whole domain.
+        let (surface, (u0, u1), (v0, v1)) = match primitive.shape {
+            AnalyticShape::Sphere { radius } => (
+                Surface::Sphere { frame, radius },
+                (-0.1, TAU + 0.1),
+                (-FRAC_PI_2 - 0.1, FRAC_PI_2 + 0.1),
+            ),
+            AnalyticShape::Rectangle {
+                half_width: a,
+                half_height: b,
+            } => (Surface::Plane { frame }, (-a, a), (-b, b)),
+        };
+        let rectangle = vec![
+            DVec2::new(u0, v0),
+            DVec2::new(u1, v0),
+            DVec2::new(u1, v1),
+            DVec2::new(u0, v1),
+        ];
+        self.faces.push(CastFace {
+            step_id: u64::from(primitive.face_id),
+            loops: vec![rectangle],
+            period_u: surface.u_period(),
+            period_v: surface.v_period(),
+            surface,
+        });
+        self.instances
+            .push((Transform::IDENTITY, vec![self.faces.len() - 1]));
+    }
+
     /// The STEP id of the face seen at the centre of every pixel of a `width` × `height`
     /// image from `camera` (0 for background), row by row.
     pub fn face_ids(&self, camera: &Camera, width: u32, height: u32) -> Vec<u64> {
+        self.hits(camera, width, height)
+            .into_iter()
+            .map(|h| h.map_or(0, |(id, _)| id))
+            .collect()
+    }
+
+    /// The face (STEP id) and world point seen at the centre of every pixel, row by row.
+    pub fn hits(&self, camera: &Camera, width: u32, height: u32) -> Vec<Option<(u64, DVec3)>> {
         let aspect = f64::from(width) / f64::from(height);
         let unproject = (camera.projection_matrix(aspect) * camera.view_rotation()).inverse();
         let mut out = Vec::with_capacity((width * height) as usize);
@@ -134,14 +177,14 @@ impl RayCaster {
                 let (near, far) = (near.truncate() / near.w, far.truncate() / far.w);
                 let origin = camera.eye + near;
                 let dir = (far - near).normalize();
-                out.push(self.cast(origin, dir));
+                out.push(self.cast(origin, dir).map(|(t, id)| (id, origin + dir * t)));
             }
         }
         out
     }
 
-    /// The STEP id of the nearest face hit by the ray, or 0.
-    fn cast(&self, origin: DVec3, dir: DVec3) -> u64 {
+    /// The ray parameter and STEP id of the nearest face hit by the ray.
+    fn cast(&self, origin: DVec3, dir: DVec3) -> Option<(f64, u64)> {
         let mut best = (f64::INFINITY, 0);
         for (to_part, ids) in &self.instances {
             let o = to_part.transform_point3(origin);
@@ -155,7 +198,7 @@ impl RayCaster {
                 }
             }
         }
-        best.1
+        best.0.is_finite().then_some(best)
     }
 }
 

@@ -7,7 +7,7 @@ use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders}
 use cadre_render::layout::{
     Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE,
     FILL_BACKGROUND, FILL_NONE, FILL_SHADED, Frame, GpuStruct, LightGpu, Local, Material, Member,
-    PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Segment,
+    PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Primitive, Segment,
 };
 
 /// The renderer's shader named `name`, as it compiles it.
@@ -125,6 +125,8 @@ fn shaders_validate_and_share_the_rust_layouts() {
             "Local",
             "Call",
             "PickRegion",
+            "Primitive",
+            "InstanceIds",
             "VisibilityOut",
         ] {
             assert!(
@@ -147,6 +149,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
             ("Local", check::<Local>(pass, &m)),
             ("Call", check::<Call>(pass, &m)),
             ("PickRegion", check::<PickRegion>(pass, &m)),
+            ("Primitive", check::<Primitive>(pass, &m)),
         ] {
             if hit.unwrap_or_else(|e| panic!("{e}")) {
                 *found.entry(name).or_default() += 1;
@@ -154,7 +157,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         }
     }
     // Every layout was really compared somewhere (naga drops nothing we rely on).
-    assert_eq!(found.len(), 8, "{found:?}");
+    assert_eq!(found.len(), 9, "{found:?}");
 }
 
 #[test]
@@ -324,6 +327,17 @@ fn the_shaders_flags_are_the_rust_flags() {
         ("EDGES_HIDDEN_DASHED", EDGES_HIDDEN_DASHED),
     ] {
         assert_eq!(constant_u32(&visibility, name), Some(value), "{name}");
+    }
+    let analytic = module("visibility/analytic");
+    for (name, value) in [
+        ("PRIMITIVE_SPHERE", cadre_render::analytic::PRIMITIVE_SPHERE),
+        (
+            "PRIMITIVE_RECTANGLE",
+            cadre_render::analytic::PRIMITIVE_RECTANGLE,
+        ),
+        ("DRAW_CLOSED", DRAW_CLOSED),
+    ] {
+        assert_eq!(constant_u32(&analytic, name), Some(value), "{name}");
     }
     // Negative control: a constant the shaders do not declare is not found.
     assert_eq!(constant_u32(&visibility, "FILL_SOMETHING"), None);

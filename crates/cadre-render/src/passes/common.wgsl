@@ -56,6 +56,20 @@ struct Segment {
     b: vec4<f32>,
 }
 
+struct Primitive {
+    model: mat4x4<f32>,
+    to_local: mat4x4<f32>,
+    normal: array<vec4<f32>, 3>,
+    size: vec4<f32>,
+    kind: u32,
+    face: u32,
+    instance: u32,
+    material: u32,
+    flags: u32,
+    // Not vec3<u32>, which would align to 16 bytes: the Rust twin is [u32; 3].
+    pad: array<u32, 3>,
+}
+
 struct PickRegion {
     origin: vec2<u32>,
     pad: vec2<u32>,
@@ -69,6 +83,15 @@ struct Light {
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
+
+// What the visibility texel writer needs of the instance a surface point belongs to
+// (instances.wgsl carries it from the draw records for meshes; the analytic primitives
+// hold it themselves).
+struct InstanceIds {
+    material: u32,
+    instance: u32,
+    flags: u32,
+}
 
 // Whether the item (kind: 1 face, 2 edge, 3 vertex; instance + 1; STEP id) is `wanted`
 // itself or, for a whole part (kind 4), belongs to its instance.

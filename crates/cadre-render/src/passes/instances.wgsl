@@ -29,15 +29,10 @@ fn instance_draw(i: u32) -> Draw {
     return d;
 }
 
-// What a fragment needs of its instance (material, instance number, flags), looked up once
-// per vertex and carried as a flat varying: a fragment that looked it up again would pay
+// What a fragment needs of its instance (`InstanceIds`, common.wgsl) is looked up once per
+// vertex and carried as a flat varying: a fragment that looked it up again would pay
 // `instance_parts`' integer division and modulo per pixel, which a CPU rasterizer runs lane
 // by lane (no vector integer division).
-struct InstanceIds {
-    material: u32,
-    instance: u32,
-    flags: u32,
-}
 
 // `d`'s ids packed for a flat varying (`unpack_instance` reads them back).
 fn pack_instance(d: Draw) -> vec3<u32> {

@@ -40,10 +40,15 @@ pub fn fixture(name: &str) -> PathBuf {
 
 /// The fixture's model and its tessellated scene (0.01 mm, 0.3 rad).
 pub fn model_and_scene(name: &str) -> (cadre_brep::Model, Scene) {
+    model_and_scene_at(name, 0.01)
+}
+
+/// The fixture's model and its scene tessellated to `deflection` (mm; 0.3 rad).
+pub fn model_and_scene_at(name: &str, deflection: f64) -> (cadre_brep::Model, Scene) {
     let file = cadre_step::syntax::StepFile::read(&fixture(name)).expect("fixture reads");
     let model = cadre_step::map_file(&file);
     let params = MeshParams {
-        deflection: 0.01,
+        deflection,
         angle: 0.3,
         ..MeshParams::default()
     };

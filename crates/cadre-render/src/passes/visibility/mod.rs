@@ -2,8 +2,10 @@
 //! back-ends that write it. The pass is opened once per frame (targets cleared) and every
 //! back-end draws into it in turn; each back-end's fragments go through the one texel writer
 //! of `texel.wgsl` (section caps, id packing), so shading, edges, picking and sections read
-//! the same buffer whatever drew it. Back-ends: [`mesh`] (the scene's triangles).
+//! the same buffer whatever drew it. Back-ends: [`mesh`] (the scene's triangles), then
+//! [`analytic`] (spheres and rectangles ray cast per pixel).
 
+pub(crate) mod analytic;
 pub(crate) mod mesh;
 
 use crate::gpu_scene::FrameScene;
@@ -24,6 +26,7 @@ pub(crate) const UV: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// The surface back-ends, drawn in this order into one opened pass.
 pub(crate) struct VisibilityPass {
     mesh: mesh::MeshBackend,
+    analytic: analytic::AnalyticBackend,
 }
 
 /// Depth state of every back-end: reverse Z (nearer is larger), written.
@@ -116,22 +119,33 @@ impl VisibilityPass {
     ) -> VisibilityPass {
         VisibilityPass {
             mesh: mesh::MeshBackend::new(device, instances),
+            analytic: analytic::AnalyticBackend::new(device),
         }
     }
 
     /// Records the pass: opens it once on `targets` (cleared) and has every back-end draw
-    /// `scene` into it; `sections` says whether the frame has section planes.
+    /// `scene` into it; `sections` says whether the frame has section planes;
+    /// `proxy_depth` has the analytic back-end write its proxies' depth (the tests' negative
+    /// control).
     pub fn record(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         targets: &VisibilityTargets,
-        (frame, sections): (&wgpu::Buffer, bool),
+        (frame, sections, proxy_depth): (&wgpu::Buffer, bool, bool),
         scene: &FrameScene<'_>,
     ) {
         let mut pass = open(encoder, targets);
-        let variant = mesh::MeshVariant::of(sections, targets.uv.is_some());
+        let with_uv = targets.uv.is_some();
+        let variant = mesh::MeshVariant::of(sections, with_uv);
         self.mesh.draw(device, &mut pass, frame, scene, variant);
+        self.analytic.draw(
+            device,
+            &mut pass,
+            frame,
+            &scene.primitives,
+            (with_uv, proxy_depth),
+        );
     }
 }
 
