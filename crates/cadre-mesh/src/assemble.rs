@@ -8,7 +8,9 @@ use cadre_brep::trim::EdgeSamples;
 use cadre_brep::{Body, EdgeId, FaceId, LoopKind, Model, PartId, ShellId, SolidId, Style};
 
 use crate::ModelMesh;
-use crate::export::{Material, Primitive, Scene, SceneEdge, SceneMesh, SceneNode, SceneVertex};
+use crate::export::{
+    Material, Primitive, Scene, SceneEdge, SceneIds, SceneMesh, SceneNode, SceneVertex,
+};
 
 /// Most nodes the scene may get (about 1 GB of scene and 2 GB of glTF at the most); wider
 /// assembly expansions are cut. Commands that export check
@@ -41,6 +43,8 @@ struct Builder<'a> {
     material_index: HashMap<[u16; 4], usize>,
     /// Faces added to the part being built, for its edges and vertices.
     part_faces: Vec<FaceId>,
+    /// The model's dense ids.
+    ids: SceneIds,
 }
 
 impl Builder<'_> {
@@ -106,7 +110,7 @@ impl Builder<'_> {
             out.normals.push((p.normal * sign).as_vec3().to_array());
             out.surface_uv.push(p.uv.as_vec2().to_array());
         }
-        let step_id = u32::try_from(self.model.faces[face.index()].step_id).unwrap_or(0);
+        let face_id = SceneIds::face_id(face);
         let surface = &self.model.surfaces[self.model.faces[face.index()].surface.index()];
         // Which parameter each point leaves undefined (a pole, an apex): there its (u, v) is a
         // convention, and every triangle needs its own copy with the value that continues its
@@ -149,7 +153,7 @@ impl Builder<'_> {
         for [a, b, c] in triangles {
             prim.indices
                 .extend(if forward { [a, b, c] } else { [a, c, b] });
-            prim.face_ids.push(step_id);
+            prim.face_ids.push(face_id);
         }
     }
 
@@ -214,7 +218,7 @@ impl Builder<'_> {
                     out.primitives.push(Primitive {
                         indices: tm.triangles.iter().flatten().map(|i| base + i).collect(),
                         material,
-                        face_ids: vec![u32::try_from(tm.step_id).unwrap_or(0); tm.triangles.len()],
+                        face_ids: vec![self.ids.mesh_face_id(*m); tm.triangles.len()],
                     });
                 }
                 Body::Edge(e) => {
@@ -282,13 +286,13 @@ impl Builder<'_> {
                     && seen_vertices.insert(v)
                 {
                     out.vertices.push(SceneVertex {
-                        step_id: u32::try_from(vertex.step_id).unwrap_or(0),
+                        id: SceneIds::vertex_id(v),
                         position: vertex.point.as_vec3().to_array(),
                     });
                 }
             }
             out.edges.push(SceneEdge {
-                step_id: u32::try_from(edge.step_id).unwrap_or(0),
+                id: SceneIds::edge_id(e),
                 points,
             });
         }
@@ -357,6 +361,7 @@ pub fn build_scene(model: &Model, mesh: &ModelMesh) -> Scene {
         materials: Vec::new(),
         material_index: HashMap::new(),
         part_faces: Vec::new(),
+        ids: SceneIds::of(model),
     };
     let mut scene = Scene::new("mm");
     let mut part_mesh: Vec<Option<usize>> = Vec::with_capacity(model.parts.len());
@@ -368,6 +373,7 @@ pub fn build_scene(model: &Model, mesh: &ModelMesh) -> Scene {
         }));
     }
     scene.materials = b.materials;
+    scene.ids = b.ids;
     let name_of = |part: PartId| {
         let p = model.part(part);
         if p.name.is_empty() {

@@ -329,7 +329,7 @@ fn scene_surface_uv_continue_across_an_apex() {
     let mut apex_corners = 0;
     for prim in &mesh.primitives {
         for (t, tri) in prim.indices.chunks_exact(3).enumerate() {
-            if prim.face_ids[t] != 56 {
+            if scene.ids.face_step_id(prim.face_ids[t]) != 56 {
                 continue;
             }
             let uv: Vec<[f32; 2]> = tri.iter().map(|&i| mesh.surface_uv[i as usize]).collect();

@@ -111,6 +111,7 @@ fn test_scene() -> Scene {
         ],
         roots: vec![0],
         unit_name: "mm".into(),
+        ids: Default::default(),
     }
 }
 

@@ -237,7 +237,7 @@ impl Renderer {
         })
     }
 
-    /// The visibility buffer's ids at every pixel (no supersampling), row by row: STEP face
+    /// The visibility buffer's ids at every pixel (no supersampling), row by row: face
     /// id, instance + 1 (0 = background), material index, depth (`f32` bits).
     pub fn render_ids(
         &self,

@@ -186,7 +186,7 @@ struct MeshRanges {
 }
 
 /// A scene's geometry on the GPU, uploaded once and drawn by any number of frames: vertex and
-/// index buffers per mesh, the segments of its edges (with their STEP ids), its materials and
+/// index buffers per mesh, the segments of its edges (with their ids), its materials and
 /// its instances' placements. Made by [`crate::Renderer::prepare`].
 pub struct PreparedScene {
     pub(crate) vertices: Vec<wgpu::Buffer>,
@@ -208,6 +208,8 @@ pub struct PreparedScene {
     /// material at `primitive_materials + k`).
     primitives: Vec<AnalyticPrimitive>,
     primitive_materials: u32,
+    /// What the face, edge and vertex ids stand for (model entities, STEP ids).
+    ids: cadre_mesh::export::SceneIds,
 }
 
 impl PreparedScene {
@@ -253,7 +255,7 @@ impl PreparedScene {
                     mesh.edges.iter().flat_map(|e| {
                         e.points
                             .windows(2)
-                            .map(move |w| (w[0], w[1], e.step_id, SEGMENT_EDGE))
+                            .map(move |w| (w[0], w[1], e.id, SEGMENT_EDGE))
                     }),
                 )
             };
@@ -261,7 +263,7 @@ impl PreparedScene {
                 &mut segments,
                 mesh.vertices
                     .iter()
-                    .map(|v| (v.position, v.position, v.step_id, SEGMENT_VERTEX)),
+                    .map(|v| (v.position, v.position, v.id, SEGMENT_VERTEX)),
             );
             meshes.push(MeshRanges {
                 primitives,
@@ -328,7 +330,14 @@ impl PreparedScene {
             placements,
             primitives: primitives.to_vec(),
             primitive_materials,
+            ids: scene.ids.clone(),
         }
+    }
+
+    /// What the ids in the visibility buffer and picks stand for: the model's entities and
+    /// their STEP ids.
+    pub fn ids(&self) -> &cadre_mesh::export::SceneIds {
+        &self.ids
     }
 
     /// The instance number of analytic primitive `k` (after every mesh instance), as the

@@ -96,7 +96,7 @@ macro_rules! gpu_struct {
     };
 }
 
-/// One mesh vertex: position and unit normal (mesh-local), and the STEP id of its B-Rep face.
+/// One mesh vertex: position and unit normal (mesh-local), and the id of its B-Rep face.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct Vertex {
@@ -104,7 +104,7 @@ pub struct Vertex {
     pub position: [f32; 3],
     /// Unit normal, mesh-local.
     pub normal: [f32; 3],
-    /// STEP id of the face (0 = none).
+    /// Face id (the scene's dense model id, 0 = none).
     pub face_id: u32,
     /// Parameters on the face's exact surface (0, 0 for meshes from the file).
     pub uv: [f32; 2],
@@ -139,7 +139,7 @@ pub struct Frame {
     /// unused.
     pub counts: [u32; 4],
     /// What the cursor is over: kind (0 nothing, 1 face, 2 edge, 3 vertex, 4 part),
-    /// instance + 1, STEP id, unused.
+    /// instance + 1, model id, unused.
     pub hover: [u32; 4],
     /// Tint of hovered items, linear RGB and strength.
     pub hover_colour: [f32; 4],
@@ -193,7 +193,7 @@ pub struct LightGpu {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct Segment {
-    /// First end (xyz); STEP id of its edge or vertex as `u32` bits (w, 0 for none).
+    /// First end (xyz); model id of its edge or vertex as `u32` bits (w, 0 for none).
     pub a: [f32; 4],
     /// Second end (xyz); kind as `u32` bits (w: 0 wire line, 1 edge, 2 vertex).
     pub b: [f32; 4],

@@ -22,29 +22,31 @@ impl Default for InstanceStyle {
     }
 }
 
-/// Something a user can point at: a B-Rep face, edge or vertex of one instance (by STEP
-/// entity id, the ids the visibility and pick buffers hold), or a whole instance.
+/// Something a user can point at: a B-Rep face, edge or vertex of one instance (by the
+/// scene's dense model id, the ids the visibility and pick buffers hold:
+/// [`cadre_mesh::export::SceneIds`] gives the model entity and its STEP id), or a whole
+/// instance.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Pick {
     /// A face of an instance.
     Face {
         /// Instance number (scene instance order).
         instance: u32,
-        /// STEP id of the face.
+        /// Face id (the model's face index + 1).
         face: u32,
     },
     /// An edge of an instance.
     Edge {
         /// Instance number.
         instance: u32,
-        /// STEP id of the edge.
+        /// Edge id (the model's edge index + 1).
         edge: u32,
     },
     /// A vertex of an instance.
     Vertex {
         /// Instance number.
         instance: u32,
-        /// STEP id of the vertex.
+        /// Vertex id (the model's vertex index + 1).
         vertex: u32,
     },
     /// A whole instance (a part of the assembly).

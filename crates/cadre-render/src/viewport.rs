@@ -68,10 +68,10 @@ pub struct PickWindow {
     pub height: u32,
     /// The cursor's pixel in the frame.
     pub cursor: (u32, u32),
-    /// Per pixel, row by row: STEP face id, instance + 1 (0 = background), material (with
+    /// Per pixel, row by row: face id, instance + 1 (0 = background), material (with
     /// [`crate::SECTION_CAP`] on section caps), depth (`f32` bits).
     pub faces: Vec<[u32; 4]>,
-    /// Per pixel: STEP id, instance + 1 (0 = nothing), kind (2 edge, 3 vertex), 0.
+    /// Per pixel: edge or vertex id, instance + 1 (0 = nothing), kind (2 edge, 3 vertex), 0.
     pub lines: Vec<[u32; 4]>,
 }
 

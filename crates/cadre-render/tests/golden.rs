@@ -176,10 +176,12 @@ fn agreement(
         caster.skipped
     );
     let exact = caster.face_ids(&oracle_camera, w, h);
+    // The GPU holds dense model ids; the oracle, STEP ids.
+    let step = |g: &[u32; 4]| scene.ids.face_step_id(g[0]);
     let same = gpu_ids
         .iter()
         .zip(&exact)
-        .filter(|(g, e)| u64::from(g[0]) == **e)
+        .filter(|(g, e)| step(g) == **e)
         .count();
     let covered = exact.iter().filter(|&&e| e != 0).count();
     assert!(covered > 300, "the fixture covers {covered} pixels");
@@ -188,7 +190,7 @@ fn agreement(
         .iter()
         .zip(&exact)
         .filter(|(g, e)| g[0] != 0 || **e != 0)
-        .map(|(g, e)| u64::from(g[0]) == *e)
+        .map(|(g, e)| step(g) == *e)
         .collect();
     let on_model = either.iter().filter(|&&b| b).count() as f64 / either.len().max(1) as f64;
     let all = same as f64 / exact.len() as f64;
@@ -315,10 +317,12 @@ fn surface_uv_in_the_visibility_buffer_lands_on_its_pixel() {
         let uvs = renderer
             .render_uv(&gpu, &scene, &camera, &options(w, h))
             .expect("uv");
+        // Face ids are the model's dense ids: face k is id k + 1.
         let surfaces: std::collections::HashMap<u32, &cadre_geom::Surface> = model
             .faces
             .iter()
-            .map(|f| (f.step_id as u32, &model.surfaces[f.surface.index()]))
+            .enumerate()
+            .map(|(k, f)| (k as u32 + 1, &model.surfaces[f.surface.index()]))
             .collect();
         let placements: Vec<DAffine3> = scene.instances().map(|(_, world)| world).collect();
         let to_ndc = camera.projection_matrix(aspect) * camera.view_rotation();

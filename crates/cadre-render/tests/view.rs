@@ -127,7 +127,7 @@ fn picking_finds_faces_edges_and_vertices_under_the_cursor() {
                 && hit.pick
                     == (Pick::Edge {
                         instance: instance as u32,
-                        edge: edge.step_id,
+                        edge: edge.id,
                     })
             {
                 hits += 1;
@@ -147,7 +147,7 @@ fn picking_finds_faces_edges_and_vertices_under_the_cursor() {
                 hit.map(|h| h.pick)
                     == Some(Pick::Vertex {
                         instance: instance as u32,
-                        vertex: vertex.step_id,
+                        vertex: vertex.id,
                     }),
             );
         }
@@ -358,4 +358,86 @@ fn hidden_recoloured_see_through_and_highlighted_parts_draw_as_asked() {
         (0..3).all(|k| (h_off[k] - p_off[k]).abs() < 1.0),
         "other faces unchanged: {h_off:?} vs {p_off:?}"
     );
+}
+
+#[test]
+fn a_file_whose_step_ids_pass_u32_picks_and_names_the_right_entities() {
+    // Every id of the pin assembly moved past 2³²: cut to u32 (as the id lanes once held
+    // STEP ids), they would all have become 0 and shared one id.
+    let offset = (1u64 << 32) + 1000;
+    let (model, scene) =
+        common::model_and_scene_of(common::renumbered("pin-assembly.step", offset), 0.01);
+    assert!(model.faces.iter().all(|f| f.step_id > u64::from(u32::MAX)));
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let prepared = renderer.prepare(&gpu, &scene);
+    let camera = camera(&scene);
+    let mut viewport = Viewport::new(&gpu, W, H);
+    renderer
+        .draw(
+            &gpu,
+            &mut viewport,
+            &prepared,
+            &camera,
+            &options(),
+            &ViewState::default(),
+            &target(&gpu),
+        )
+        .expect("frame");
+    // Faces: the picked face's STEP id is the one the exact ray caster sees there.
+    let exact = cadre_render::raycast::RayCaster::new(&model, 0.001).face_ids(&camera, W, H);
+    let ids = prepared.ids();
+    let (mut checked, mut agree) = (0, 0);
+    let mut seen = std::collections::BTreeSet::new();
+    for (i, &e) in exact.iter().enumerate().step_by(7) {
+        let (x, y) = (i as u32 % W, i as u32 / W);
+        let hit = renderer
+            .pick(&gpu, &viewport, &prepared, (x, y), 0)
+            .expect("pick")
+            .face();
+        let Some(Pick::Face { face, .. }) = hit.map(|h| h.pick) else {
+            continue;
+        };
+        let brep = ids.brep_face(face).expect("a B-Rep face");
+        assert_eq!(ids.face_step_id(face), model.faces[brep.index()].step_id);
+        checked += 1;
+        agree += usize::from(ids.face_step_id(face) == e);
+        seen.insert(face);
+    }
+    assert!(checked > 50, "{checked} face pixels");
+    assert!(
+        agree * 100 >= checked * 98,
+        "{agree} of {checked} agree with the oracle"
+    );
+    assert!(
+        seen.len() >= 3,
+        "distinct faces keep distinct ids: {seen:?}"
+    );
+    // Edges: the midpoint of each picks the edge whose STEP id is the model's.
+    let mut edges = 0;
+    for (node, world) in scene.instances() {
+        let Some(mesh) = scene.nodes[node].mesh else {
+            continue;
+        };
+        for edge in &scene.meshes[mesh].edges {
+            let mid = edge.points[edge.points.len() / 2];
+            let p = world.transform_point3(DVec3::from(mid.map(f64::from)));
+            let Some(px) = pixel_of(&camera, p) else {
+                continue;
+            };
+            let hit = renderer
+                .pick(&gpu, &viewport, &prepared, px, 4)
+                .expect("pick")
+                .nearest(3.0);
+            if let Some(Pick::Edge { edge: id, .. }) = hit.map(|h| h.pick)
+                && id == edge.id
+            {
+                let e = ids.edge(id).expect("a model edge");
+                assert_eq!(ids.edge_step_id(id), model.edges[e.index()].step_id);
+                assert!(ids.edge_step_id(id) > u64::from(u32::MAX));
+                edges += 1;
+            }
+        }
+    }
+    assert!(edges >= 2, "{edges} edges picked");
 }

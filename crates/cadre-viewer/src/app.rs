@@ -469,8 +469,7 @@ impl App {
                 let Some(doc) = &self.session.doc else { return };
                 let boxes = self.session.selection.iter().filter_map(|p| match p.pick {
                     cadre_render::Pick::Face { instance, face } => doc
-                        .index
-                        .face(u64::from(face))
+                        .face(face)
                         .and_then(|f| doc.face_bounds(instance as usize, f)),
                     other => doc.instance_bounds(other.instance() as usize),
                 });

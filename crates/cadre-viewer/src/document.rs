@@ -1,10 +1,10 @@
 //! An open model: the STEP file read, mapped to B-Rep, tessellated and assembled into a
 //! scene, with what the viewer looks up by STEP id and by instance.
 
+use cadre_render::Pick;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use cadre_brep::measure::StepIndex;
 use cadre_brep::{FaceId, Model};
 use cadre_mesh::export::Scene;
 use cadre_mesh::{Deflection, MeshParams, ModelMesh, deflection_diagonal, mesh_model};
@@ -76,10 +76,9 @@ pub struct Document {
     pub model: Model,
     /// Its tessellation.
     pub mesh: ModelMesh,
-    /// The assembled scene (meshes, materials, assembly tree).
+    /// The assembled scene (meshes, materials, assembly tree; its `ids` say which model
+    /// entity and STEP id each picked id is).
     pub scene: Scene,
-    /// STEP id → face, edge, vertex.
-    pub index: StepIndex,
     /// Placed parts, in the renderer's instance order.
     pub instances: Vec<InstanceInfo>,
     /// Per scene node: its parent.
@@ -131,13 +130,11 @@ impl Document {
         );
         progress(LoadStage::Assembling);
         let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
-        let index = StepIndex::new(&model);
         Ok(Document::assemble(
             path.to_path_buf(),
             model,
             mesh,
             scene,
-            index,
             warnings,
             t0.elapsed().as_secs_f64(),
         ))
@@ -149,7 +146,6 @@ impl Document {
         model: Model,
         mesh: ModelMesh,
         scene: Scene,
-        index: StepIndex,
         warnings: Vec<String>,
         load_seconds: f64,
     ) -> Document {
@@ -182,7 +178,6 @@ impl Document {
             model,
             mesh,
             scene,
-            index,
             instances,
             parents,
             instance_of_node,
@@ -198,6 +193,38 @@ impl Document {
             || self.path.display().to_string(),
             |n| n.to_string_lossy().into_owned(),
         )
+    }
+
+    /// The B-Rep face of a picked face id (the scene's dense ids, `SceneIds`).
+    pub fn face(&self, id: u32) -> Option<FaceId> {
+        self.scene.ids.brep_face(id)
+    }
+
+    /// The edge of a picked edge id.
+    pub fn edge(&self, id: u32) -> Option<cadre_brep::EdgeId> {
+        self.scene.ids.edge(id)
+    }
+
+    /// The vertex of a picked vertex id.
+    pub fn vertex(&self, id: u32) -> Option<cadre_brep::VertexId> {
+        self.scene.ids.vertex(id)
+    }
+
+    /// The picked item's name as the file writes it: its STEP id (`#123`; `#?` for an entity
+    /// without one).
+    pub fn step_label(&self, pick: Pick) -> String {
+        let ids = &self.scene.ids;
+        let step = match pick {
+            Pick::Face { face, .. } => ids.face_step_id(face),
+            Pick::Edge { edge, .. } => ids.edge_step_id(edge),
+            Pick::Vertex { vertex, .. } => ids.vertex_step_id(vertex),
+            Pick::Part { .. } => 0,
+        };
+        if step == 0 {
+            "#?".to_string()
+        } else {
+            format!("#{step}")
+        }
     }
 
     /// The world box of a B-Rep face as placed by `instance`.

@@ -71,7 +71,7 @@ pub fn vertex_position(doc: &Document, pick: Pick) -> Option<DVec3> {
     let Pick::Vertex { instance, vertex } = pick else {
         return None;
     };
-    let v = doc.index.vertex(u64::from(vertex))?;
+    let v = doc.vertex(vertex)?;
     let world = doc.instances.get(instance as usize)?.world;
     Some(world.transform_point3(doc.model.vertices.get(v.index())?.point))
 }
@@ -81,7 +81,7 @@ pub fn world_plane(doc: &Document, pick: Pick) -> Option<(DVec3, DVec3)> {
     let Pick::Face { instance, face } = pick else {
         return None;
     };
-    let plane = face_properties(&doc.model, doc.index.face(u64::from(face))?)?.plane?;
+    let plane = face_properties(&doc.model, doc.face(face)?)?.plane?;
     let world = doc.instances.get(instance as usize)?.world;
     let normal = (world.matrix3.inverse().transpose() * plane.normal).normalize_or_zero();
     (normal != DVec3::ZERO).then(|| (world.transform_point3(plane.origin), normal))
@@ -96,8 +96,8 @@ pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
     }
     match pick {
         Pick::Face { instance, face } => {
-            rows.push(("Face".into(), format!("#{face}")));
-            if let Some(f) = doc.index.face(u64::from(face)) {
+            rows.push(("Face".into(), doc.step_label(pick)));
+            if let Some(f) = doc.face(face) {
                 if let Some(p) = face_properties(&doc.model, f) {
                     rows.extend(face_in_world(p, doc, instance as usize).rows());
                 }
@@ -109,15 +109,15 @@ pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
             }
         }
         Pick::Edge { instance, edge } => {
-            rows.push(("Edge".into(), format!("#{edge}")));
-            if let Some(e) = doc.index.edge(u64::from(edge))
+            rows.push(("Edge".into(), doc.step_label(pick)));
+            if let Some(e) = doc.edge(edge)
                 && let Some(p) = edge_properties(&doc.model, e)
             {
                 rows.extend(edge_in_world(p, doc, instance as usize).rows());
             }
         }
-        Pick::Vertex { vertex, .. } => {
-            rows.push(("Vertex".into(), format!("#{vertex}")));
+        Pick::Vertex { .. } => {
+            rows.push(("Vertex".into(), doc.step_label(pick)));
             if let Some(p) = vertex_position(doc, pick) {
                 rows.push((
                     "Position".into(),
@@ -249,36 +249,39 @@ pub fn measure(doc: &Document, tool: Tool, picks: &[Picked]) -> Result<Measureme
                 return Err("pick an edge".into());
             };
             let e = doc
-                .index
-                .edge(u64::from(edge))
-                .ok_or_else(|| format!("edge #{edge} is not in the model"))?;
+                .edge(edge)
+                .ok_or_else(|| format!("edge {} is not in the model", doc.step_label(a.pick)))?;
             let p = edge_properties(&doc.model, e).ok_or("the edge has no geometry")?;
             let length = p.length.ok_or("the edge's curve does not evaluate")?
                 * scale_of(doc, instance as usize);
             Ok(Measurement {
                 tool,
                 value: length,
-                text: format!("Edge #{edge}: length {length:.4} mm ({})", p.kind),
+                text: format!(
+                    "Edge {}: length {length:.4} mm ({})",
+                    doc.step_label(a.pick),
+                    p.kind
+                ),
                 points: Vec::new(),
             })
         }
         (Tool::Radius, [a]) => {
             let (radius, what) = match a.pick {
                 Pick::Face { face, .. } => {
-                    let f = doc
-                        .index
-                        .face(u64::from(face))
-                        .ok_or("face not in the model")?;
+                    let f = doc.face(face).ok_or("face not in the model")?;
                     let p = face_properties(&doc.model, f).ok_or("the face has no surface")?;
-                    (p.radius, format!("Face #{face} ({})", p.kind))
+                    (
+                        p.radius,
+                        format!("Face {} ({})", doc.step_label(a.pick), p.kind),
+                    )
                 }
                 Pick::Edge { edge, .. } => {
-                    let e = doc
-                        .index
-                        .edge(u64::from(edge))
-                        .ok_or("edge not in the model")?;
+                    let e = doc.edge(edge).ok_or("edge not in the model")?;
                     let p = edge_properties(&doc.model, e).ok_or("the edge has no geometry")?;
-                    (p.radius, format!("Edge #{edge} ({})", p.kind))
+                    (
+                        p.radius,
+                        format!("Edge {} ({})", doc.step_label(a.pick), p.kind),
+                    )
                 }
                 _ => return Err("pick a cylinder, sphere, circle or arc".into()),
             };
@@ -293,10 +296,7 @@ pub fn measure(doc: &Document, tool: Tool, picks: &[Picked]) -> Result<Measureme
         }
         (Tool::Angle, [a, b]) => {
             let face_of = |p: Pick| match p {
-                Pick::Face { face, instance } => doc
-                    .index
-                    .face(u64::from(face))
-                    .map(|f| (f, instance as usize)),
+                Pick::Face { face, instance } => doc.face(face).map(|f| (f, instance as usize)),
                 _ => None,
             };
             let ((fa, ia), (fb, ib)) = face_of(a.pick)
@@ -341,6 +341,8 @@ pub fn measure(doc: &Document, tool: Tool, picks: &[Picked]) -> Result<Measureme
 #[cfg(test)]
 mod tests {
     use super::*;
+    use cadre_brep::{EdgeId, FaceId};
+    use cadre_mesh::export::SceneIds;
     use std::path::Path;
 
     fn doc(name: &str) -> Document {
@@ -367,15 +369,16 @@ mod tests {
         let doc = doc("pin-assembly.step");
         // Every cylindrical face's radius, and a circle edge's length 2πr.
         let mut cylinders = 0;
-        for f in &doc.model.faces {
-            let Some(p) = face_properties(&doc.model, doc.index.face(f.step_id).unwrap()) else {
+        for k in 0..doc.model.faces.len() {
+            let f = FaceId(k as u32);
+            let Some(p) = face_properties(&doc.model, f) else {
                 continue;
             };
             let Some(r) = p.radius else { continue };
             cylinders += 1;
             let pick = Pick::Face {
                 instance: 0,
-                face: f.step_id as u32,
+                face: SceneIds::face_id(f),
             };
             let m = measure(&doc, Tool::Radius, &[pick_of(&doc, pick)]).expect("radius");
             assert!(
@@ -390,20 +393,17 @@ mod tests {
             assert!(rows.iter().any(|(k, _)| k == "Part"), "{rows:?}");
         }
         assert!(cylinders > 0);
-        let circle = doc
-            .model
-            .edges
-            .iter()
-            .find(|e| {
-                edge_properties(&doc.model, doc.index.edge(e.step_id).unwrap())
-                    .is_some_and(|p| p.radius.is_some() && p.closed)
+        let circle = (0..doc.model.edges.len() as u32)
+            .map(EdgeId)
+            .find(|&e| {
+                edge_properties(&doc.model, e).is_some_and(|p| p.radius.is_some() && p.closed)
             })
             .expect("a full circle");
         let pick = Pick::Edge {
             instance: 0,
-            edge: circle.step_id as u32,
+            edge: SceneIds::edge_id(circle),
         };
-        let p = edge_properties(&doc.model, doc.index.edge(circle.step_id).unwrap()).unwrap();
+        let p = edge_properties(&doc.model, circle).unwrap();
         let m = measure(&doc, Tool::EdgeLength, &[pick_of(&doc, pick)]).expect("length");
         let expected = 2.0 * std::f64::consts::PI * p.radius.unwrap();
         assert!(
@@ -422,12 +422,10 @@ mod tests {
             (a.translation - b.translation).length() > 1e-6,
             "the pins are apart"
         );
-        let face = doc
-            .model
-            .faces
-            .iter()
-            .find(|f| {
-                face_properties(&doc.model, doc.index.face(f.step_id).unwrap())
+        let face = (0..doc.model.faces.len() as u32)
+            .map(FaceId)
+            .find(|&f| {
+                face_properties(&doc.model, f)
                     .is_some_and(|p| p.axis.is_some() && p.radius.is_some())
             })
             .expect("a cylinder");
@@ -436,7 +434,7 @@ mod tests {
                 &doc,
                 Pick::Face {
                     instance,
-                    face: face.step_id as u32,
+                    face: SceneIds::face_id(face),
                 },
             )
         };
@@ -452,7 +450,7 @@ mod tests {
             "{r0:?} {r1:?}"
         );
         // The shown origin is the part's axis origin placed by the instance.
-        let p = face_properties(&doc.model, doc.index.face(face.step_id).unwrap()).unwrap();
+        let p = face_properties(&doc.model, face).unwrap();
         let placed = face_in_world(p.clone(), &doc, 1).axis.unwrap().origin;
         assert!((placed - b.transform_point3(p.axis.unwrap().origin)).length() < 1e-12);
     }
@@ -460,11 +458,8 @@ mod tests {
     #[test]
     fn distance_between_vertices_is_exact_and_angles_need_planes() {
         let doc = doc("pin-assembly.step");
-        let v: Vec<u32> = doc
-            .model
-            .vertices
-            .iter()
-            .map(|v| v.step_id as u32)
+        let v: Vec<u32> = (0..doc.model.vertices.len() as u32)
+            .map(|k| SceneIds::vertex_id(cadre_brep::VertexId(k)))
             .collect();
         assert!(v.len() >= 2);
         let (a, b) = (
@@ -483,15 +478,10 @@ mod tests {
         assert!((m.value - expected).abs() < 1e-12);
         assert_eq!(m.points.len(), 2);
         // Planar faces: the pins' end caps are parallel (0°) or not planar at all.
-        let planar: Vec<u32> = doc
-            .model
-            .faces
-            .iter()
-            .filter(|f| {
-                face_properties(&doc.model, doc.index.face(f.step_id).unwrap())
-                    .is_some_and(|p| p.plane.is_some())
-            })
-            .map(|f| f.step_id as u32)
+        let planar: Vec<u32> = (0..doc.model.faces.len() as u32)
+            .map(FaceId)
+            .filter(|&f| face_properties(&doc.model, f).is_some_and(|p| p.plane.is_some()))
+            .map(SceneIds::face_id)
             .collect();
         assert!(planar.len() >= 2);
         let fa = Pick::Face {
@@ -508,5 +498,52 @@ mod tests {
         assert!(measure(&doc, Tool::Angle, &[pick_of(&doc, a), pick_of(&doc, fb)]).is_err());
         assert!(measure(&doc, Tool::EdgeLength, &[pick_of(&doc, fa)]).is_err());
         assert!(measure(&doc, Tool::Distance, &[pick_of(&doc, fa)]).is_err());
+    }
+
+    #[test]
+    fn step_ids_past_u32_are_shown_whole() {
+        // The pin assembly with every id moved past 2³²: the panel shows the file's ids.
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let text = std::fs::read_to_string(root.join("examples/pin-assembly.step")).unwrap();
+        let offset = (1u64 << 32) + 1000;
+        let data = text.find("DATA;").unwrap();
+        let mut out = text[..data].to_string();
+        let mut rest = &text[data..];
+        while let Some(hash) = rest.find('#') {
+            out.push_str(&rest[..=hash]);
+            rest = &rest[hash + 1..];
+            let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
+            if digits > 0 {
+                let n: u64 = rest[..digits].parse().unwrap();
+                out.push_str(&(n + offset).to_string());
+                rest = &rest[digits..];
+            }
+        }
+        out.push_str(rest);
+        let path = std::env::temp_dir().join(format!("cadre-big-ids-{}.step", std::process::id()));
+        std::fs::write(&path, out).unwrap();
+        let doc = Document::load(&path, &|_| {}).expect("loads");
+        let _ = std::fs::remove_file(&path);
+        let face = FaceId(0);
+        let step = doc.model.faces[0].step_id;
+        assert!(step > u64::from(u32::MAX));
+        let pick = Pick::Face {
+            instance: 0,
+            face: SceneIds::face_id(face),
+        };
+        let rows = properties(&doc, pick);
+        assert!(
+            rows.iter()
+                .any(|(k, v)| k == "Face" && *v == format!("#{step}")),
+            "{rows:?}"
+        );
+        let edge = Pick::Edge {
+            instance: 0,
+            edge: SceneIds::edge_id(EdgeId(0)),
+        };
+        assert_eq!(
+            doc.step_label(edge),
+            format!("#{}", doc.model.edges[0].step_id)
+        );
     }
 }

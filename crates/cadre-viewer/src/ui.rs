@@ -474,8 +474,8 @@ fn status_bar(ui: &mut egui::Ui, s: &mut Session) -> egui::Rect {
                     if let Some(m) = &s.spacemouse {
                         ui.label(m);
                     }
-                    if let Some(h) = &s.hover {
-                        ui.label(pick_label(h.pick));
+                    if let (Some(h), Some(doc)) = (&s.hover, &s.doc) {
+                        ui.label(pick_label(doc, h.pick));
                     }
                 });
             });
@@ -484,12 +484,13 @@ fn status_bar(ui: &mut egui::Ui, s: &mut Session) -> egui::Rect {
         .rect
 }
 
-/// A short name for a picked item.
-fn pick_label(pick: Pick) -> String {
+/// A short name for a picked item, with its STEP id.
+fn pick_label(doc: &crate::document::Document, pick: Pick) -> String {
+    let step = doc.step_label(pick);
     match pick {
-        Pick::Face { instance, face } => format!("part {instance} · face #{face}"),
-        Pick::Edge { instance, edge } => format!("part {instance} · edge #{edge}"),
-        Pick::Vertex { instance, vertex } => format!("part {instance} · vertex #{vertex}"),
+        Pick::Face { instance, .. } => format!("part {instance} · face {step}"),
+        Pick::Edge { instance, .. } => format!("part {instance} · edge {step}"),
+        Pick::Vertex { instance, .. } => format!("part {instance} · vertex {step}"),
         Pick::Part { instance } => format!("part {instance}"),
     }
 }

@@ -30,7 +30,7 @@ use glam::{DAffine3, DMat4, DVec3};
 use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 
-use super::scene::{Scene, SceneError, SceneMesh, Visit};
+use super::scene::{Scene, SceneError, SceneIds, SceneMesh, Visit};
 
 /// Largest face id that `_FACE_ID` (a `FLOAT` attribute) stores exactly: 2^24.
 pub const MAX_EXACT_FACE_ID: u32 = 1 << 24;
@@ -53,8 +53,8 @@ pub enum GltfError {
     FaceIdTooLarge {
         /// The mesh.
         mesh: usize,
-        /// The face id.
-        id: u32,
+        /// The face's STEP id.
+        id: u64,
     },
     /// The binary buffer or the GLB file exceeds the 4 GiB GLB limit.
     #[error("{0} bytes exceed the 4 GiB GLB size limit")]
@@ -321,7 +321,7 @@ impl Builder {
         if mesh.positions.is_empty() || mesh.primitives.iter().all(|p| p.indices.is_empty()) {
             return Ok(None);
         }
-        let face_ids = vertex_face_ids(m, mesh)?;
+        let face_ids = vertex_face_ids(m, mesh, &scene.ids)?;
         let position = self.vec3_accessor(&mesh.positions, true);
         let normal = (!mesh.normals.is_empty()).then(|| self.vec3_accessor(&mesh.normals, false));
         let face_id = face_ids.map(|ids| {
@@ -414,9 +414,13 @@ impl Builder {
     }
 }
 
-/// Per-vertex face ids of `mesh` (first triangle wins, 0 for unused vertices), or `None`
-/// when no primitive has face ids.
-fn vertex_face_ids(m: usize, mesh: &SceneMesh) -> Result<Option<Vec<u32>>, GltfError> {
+/// Per-vertex STEP face ids of `mesh` (looked up in `ids`; first triangle wins, 0 for unused
+/// vertices), or `None` when no primitive has face ids.
+fn vertex_face_ids(
+    m: usize,
+    mesh: &SceneMesh,
+    scene_ids: &SceneIds,
+) -> Result<Option<Vec<u32>>, GltfError> {
     if mesh.primitives.iter().all(|p| p.face_ids.is_empty()) {
         return Ok(None);
     }
@@ -424,9 +428,16 @@ fn vertex_face_ids(m: usize, mesh: &SceneMesh) -> Result<Option<Vec<u32>>, GltfE
     let mut set = vec![false; mesh.positions.len()];
     for prim in &mesh.primitives {
         for (tri, &id) in prim.indices.chunks_exact(3).zip(&prim.face_ids) {
-            if id > MAX_EXACT_FACE_ID {
-                return Err(GltfError::FaceIdTooLarge { mesh: m, id });
-            }
+            let step_id = scene_ids.face_step_id(id);
+            let id = match u32::try_from(step_id) {
+                Ok(id) if id <= MAX_EXACT_FACE_ID => id,
+                _ => {
+                    return Err(GltfError::FaceIdTooLarge {
+                        mesh: m,
+                        id: step_id,
+                    });
+                }
+            };
             for &v in tri {
                 let v = v as usize;
                 if !set[v] {
@@ -563,7 +574,7 @@ mod tests {
             ..SceneMesh::default()
         };
         assert!(matches!(
-            vertex_face_ids(0, &mesh),
+            vertex_face_ids(0, &mesh, &SceneIds::default()),
             Err(GltfError::FaceIdTooLarge { .. })
         ));
     }

@@ -24,7 +24,7 @@ pub use self::gltf::{
 pub use self::obj::{ObjError, write_mtl, write_obj, write_obj_file};
 pub use self::scene::{
     Instances, MAX_DEPTH, MAX_NODE_VISITS, Material, Primitive, Scene, SceneEdge, SceneError,
-    SceneMesh, SceneNode, SceneVertex,
+    SceneIds, SceneMesh, SceneNode, SceneVertex,
 };
 pub use self::stl::{StlError, write_stl, write_stl_file};
 

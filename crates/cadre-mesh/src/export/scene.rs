@@ -34,6 +34,118 @@ pub struct Scene {
     /// Length unit of positions and translations: `"mm"` for cadre. The glTF writer converts
     /// to metres with a root scale (see [`Scene::metres_per_unit`] for the names it knows).
     pub unit_name: String,
+    /// What the ids of faces, edges and vertices stand for: dense model ids with their STEP
+    /// ids ([`SceneIds`]).
+    pub ids: SceneIds,
+}
+
+/// The ids a scene's faces, edges and vertices carry ([`Primitive::face_ids`],
+/// [`SceneEdge::id`], [`SceneVertex::id`]): dense model ids, `index + 1` in the model's
+/// arenas (0 = none), so that every entity has its own id whatever its STEP id (which may
+/// exceed 2³² or be shared by healed entities); face ids past the B-Rep faces are the file's
+/// tessellated items. The STEP ids are kept here for display and for the file writers. A
+/// scene made without a model (by hand, in tests) has empty tables: its ids are their own
+/// STEP ids.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SceneIds {
+    /// STEP id of face id `k + 1`: the model's B-Rep faces, then its tessellated items.
+    pub face_step_ids: Vec<u64>,
+    /// How many face ids are B-Rep faces (face id `k + 1` is `FaceId(k)` below it,
+    /// `MeshId(k - brep_faces)` from it).
+    pub brep_faces: usize,
+    /// STEP id of edge id `k + 1` (`EdgeId(k)`).
+    pub edge_step_ids: Vec<u64>,
+    /// STEP id of vertex id `k + 1` (`VertexId(k)`).
+    pub vertex_step_ids: Vec<u64>,
+}
+
+/// The dense id of arena index `index` (`index + 1`, 0 past `u32`).
+fn dense(index: usize) -> u32 {
+    u32::try_from(index + 1).unwrap_or(0)
+}
+
+/// `table[id - 1]`, or `id` itself when the table is empty (a scene without a model).
+fn step_id_in(table: &[u64], id: u32) -> u64 {
+    if table.is_empty() || id == 0 {
+        return u64::from(id);
+    }
+    table.get(id as usize - 1).copied().unwrap_or(0)
+}
+
+impl SceneIds {
+    /// The ids of `model`'s faces, tessellated items, edges and vertices.
+    pub fn of(model: &cadre_brep::Model) -> SceneIds {
+        SceneIds {
+            face_step_ids: model
+                .faces
+                .iter()
+                .map(|f| f.step_id)
+                .chain(model.meshes.iter().map(|m| m.step_id))
+                .collect(),
+            brep_faces: model.faces.len(),
+            edge_step_ids: model.edges.iter().map(|e| e.step_id).collect(),
+            vertex_step_ids: model.vertices.iter().map(|v| v.step_id).collect(),
+        }
+    }
+
+    /// The face id of B-Rep face `face`.
+    pub fn face_id(face: cadre_brep::FaceId) -> u32 {
+        dense(face.index())
+    }
+
+    /// The face id of the tessellated item `mesh` (after the B-Rep faces).
+    pub fn mesh_face_id(&self, mesh: cadre_brep::MeshId) -> u32 {
+        dense(self.brep_faces + mesh.index())
+    }
+
+    /// The edge id of `edge`.
+    pub fn edge_id(edge: cadre_brep::EdgeId) -> u32 {
+        dense(edge.index())
+    }
+
+    /// The vertex id of `vertex`.
+    pub fn vertex_id(vertex: cadre_brep::VertexId) -> u32 {
+        dense(vertex.index())
+    }
+
+    /// The B-Rep face of face id `id`, if it is one.
+    pub fn brep_face(&self, id: u32) -> Option<cadre_brep::FaceId> {
+        let k = (id as usize).checked_sub(1)?;
+        (k < self.brep_faces).then_some(cadre_brep::FaceId(k as u32))
+    }
+
+    /// The tessellated item of face id `id`, if it is one.
+    pub fn tessellated(&self, id: u32) -> Option<cadre_brep::MeshId> {
+        let k = (id as usize).checked_sub(1)?.checked_sub(self.brep_faces)?;
+        (k + self.brep_faces < self.face_step_ids.len()).then_some(cadre_brep::MeshId(k as u32))
+    }
+
+    /// The edge of edge id `id`.
+    pub fn edge(&self, id: u32) -> Option<cadre_brep::EdgeId> {
+        let k = (id as usize).checked_sub(1)?;
+        (k < self.edge_step_ids.len()).then_some(cadre_brep::EdgeId(k as u32))
+    }
+
+    /// The vertex of vertex id `id`.
+    pub fn vertex(&self, id: u32) -> Option<cadre_brep::VertexId> {
+        let k = (id as usize).checked_sub(1)?;
+        (k < self.vertex_step_ids.len()).then_some(cadre_brep::VertexId(k as u32))
+    }
+
+    /// The STEP id of face id `id` (0 for none).
+    pub fn face_step_id(&self, id: u32) -> u64 {
+        step_id_in(&self.face_step_ids, id)
+    }
+
+    /// The STEP id of edge id `id` (0 for none).
+    pub fn edge_step_id(&self, id: u32) -> u64 {
+        step_id_in(&self.edge_step_ids, id)
+    }
+
+    /// The STEP id of vertex id `id` (0 for none).
+    pub fn vertex_step_id(&self, id: u32) -> u64 {
+        step_id_in(&self.vertex_step_ids, id)
+    }
 }
 
 impl Default for Scene {
@@ -73,8 +185,9 @@ pub struct SceneMesh {
 /// A B-Rep edge of a [`SceneMesh`], as a polyline.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SceneEdge {
-    /// STEP entity id of the edge (`EDGE_CURVE`), 0 when it has none.
-    pub step_id: u32,
+    /// Edge id ([`SceneIds`]: the model's edge index + 1; its STEP id through
+    /// [`SceneIds::edge_step_id`]), 0 for none.
+    pub id: u32,
     /// Points from the edge's start to its end, mesh-local.
     pub points: Vec<[f32; 3]>,
 }
@@ -82,8 +195,9 @@ pub struct SceneEdge {
 /// A B-Rep vertex of a [`SceneMesh`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SceneVertex {
-    /// STEP entity id of the vertex (`VERTEX_POINT`), 0 when it has none.
-    pub step_id: u32,
+    /// Vertex id ([`SceneIds`]: the model's vertex index + 1; its STEP id through
+    /// [`SceneIds::vertex_step_id`]), 0 for none.
+    pub id: u32,
     /// Position, mesh-local.
     pub position: [f32; 3],
 }
@@ -96,8 +210,8 @@ pub struct Primitive {
     pub indices: Vec<u32>,
     /// Index into [`Scene::materials`], or `None` for a default material.
     pub material: Option<usize>,
-    /// Per triangle: the STEP entity id of the B-Rep face it comes from (0 = none). Either
-    /// empty (no ids) or exactly `indices.len() / 3` long.
+    /// Per triangle: the face id of the B-Rep face (or tessellated item) it comes from
+    /// ([`SceneIds`]; 0 = none). Either empty (no ids) or exactly `indices.len() / 3` long.
     ///
     /// The glTF writer stores these as a per-vertex attribute, which assumes every vertex
     /// belongs to a single face (vertices are duplicated along face boundaries by the mesher);
@@ -293,6 +407,7 @@ impl Scene {
             nodes: Vec::new(),
             roots: Vec::new(),
             unit_name: unit_name.into(),
+            ids: SceneIds::default(),
         }
     }
 

@@ -93,7 +93,7 @@ struct InstanceIds {
     flags: u32,
 }
 
-// Whether the item (kind: 1 face, 2 edge, 3 vertex; instance + 1; STEP id) is `wanted`
+// Whether the item (kind: 1 face, 2 edge, 3 vertex; instance + 1; model id) is `wanted`
 // itself or, for a whole part (kind 4), belongs to its instance.
 fn is_target(wanted: vec4<u32>, kind: u32, instance1: u32, id: u32) -> bool {
     if wanted.x == 0u || wanted.y != instance1 {

@@ -45,7 +45,13 @@ pub fn model_and_scene(name: &str) -> (cadre_brep::Model, Scene) {
 
 /// The fixture's model and its scene tessellated to `deflection` (mm; 0.3 rad).
 pub fn model_and_scene_at(name: &str, deflection: f64) -> (cadre_brep::Model, Scene) {
-    let file = cadre_step::syntax::StepFile::read(&fixture(name)).expect("fixture reads");
+    let bytes = std::fs::read(fixture(name)).expect("fixture reads");
+    model_and_scene_of(bytes, deflection)
+}
+
+/// The model of a STEP file's `bytes` and its scene tessellated to `deflection`.
+pub fn model_and_scene_of(bytes: Vec<u8>, deflection: f64) -> (cadre_brep::Model, Scene) {
+    let file = cadre_step::syntax::StepFile::parse(bytes).expect("the file parses");
     let model = cadre_step::map_file(&file);
     let params = MeshParams {
         deflection,
@@ -55,6 +61,27 @@ pub fn model_and_scene_at(name: &str, deflection: f64) -> (cadre_brep::Model, Sc
     let mesh = mesh_model(&model, &params, None);
     let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
     (model, scene)
+}
+
+/// The fixture's text with every entity id `#n` of its DATA section moved to `#(n + offset)`
+/// (ids past 2³² with `offset` ≥ 2³²).
+pub fn renumbered(name: &str, offset: u64) -> Vec<u8> {
+    let text = std::fs::read_to_string(fixture(name)).expect("fixture reads");
+    let data = text.find("DATA;").expect("a DATA section");
+    let mut out = text[..data].to_string();
+    let mut rest = &text[data..];
+    while let Some(hash) = rest.find('#') {
+        out.push_str(&rest[..=hash]);
+        rest = &rest[hash + 1..];
+        let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
+        if digits > 0 {
+            let n: u64 = rest[..digits].parse().expect("an id");
+            out.push_str(&(n + offset).to_string());
+            rest = &rest[digits..];
+        }
+    }
+    out.push_str(rest);
+    out.into_bytes()
 }
 
 /// The fixture's tessellated scene.

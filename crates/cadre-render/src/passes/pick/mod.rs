@@ -23,7 +23,7 @@ pub(crate) fn source() -> String {
     wgsl(&[INSTANCES_WGSL, include_str!("pick.wgsl")])
 }
 
-/// STEP id, instance + 1 (0 = nothing), kind (2 edge, 3 vertex), unused.
+/// Edge or vertex id, instance + 1 (0 = nothing), kind (2 edge, 3 vertex), unused.
 pub(crate) const PICK: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 /// The pass's pipeline and bind group layout.

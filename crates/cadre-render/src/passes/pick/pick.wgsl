@@ -1,5 +1,5 @@
 // Pick pass: the B-Rep edges and vertices of every visible instance drawn into an id target
-// (STEP id, instance + 1, kind: 2 edge, 3 vertex), one pixel wide and hidden by the
+// (model id, instance + 1, kind: 2 edge, 3 vertex), one pixel wide and hidden by the
 // visibility depth like the edges pass, vertices after edges so they win where both fall. The
 // viewer reads a small window around the cursor and takes the nearest vertex, else the
 // nearest edge, else the face under the cursor. Only the window around the cursor is drawn
