@@ -2,8 +2,8 @@
 
 use cadre_mesh::export::Scene;
 use image::RgbaImage;
-use wgpu::util::DeviceExt;
 
+use crate::frame_buffers::{BindCache, FrameBuffers};
 use crate::gpu_scene::{FrameScene, PreparedScene};
 use crate::layout::{
     EDGES_ALL, EDGES_VISIBLE, Frame, LightGpu, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE,
@@ -115,6 +115,8 @@ pub struct Renderer {
     /// The analytic back-end writes its proxies' depth, not the hits' (a wrong depth, for
     /// the tests' negative control).
     proxy_depth: bool,
+    /// Bind groups kept between frames while their resources stay.
+    binds: BindCache,
 }
 
 impl Renderer {
@@ -138,6 +140,7 @@ impl Renderer {
             instances,
             colour: format,
             proxy_depth: false,
+            binds: BindCache::default(),
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e)),
@@ -367,11 +370,9 @@ impl Renderer {
         viewport: Option<&mut Viewport>,
     ) -> Result<Vec<u8>, RenderError> {
         let FrameInput {
-            scene,
-            camera,
             options,
-            state,
             size: (w, h),
+            ..
         } = *input;
         let max = gpu.max_side();
         if options.width == 0 || options.height == 0 || w == 0 || h == 0 || w > max || h > max {
@@ -381,48 +382,66 @@ impl Renderer {
                 max: max * options.width.max(1) / w.max(1),
             });
         }
-        let device = &gpu.device;
         // Validation errors become a RenderError instead of wgpu's default panic.
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let (_, edge_mode) = options.mode.fill_and_edges();
-        let frame = frame_uniform(camera, options, state, (w, h));
-        let frame_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("frame"),
-            contents: bytemuck::bytes_of(&frame),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let with_edges = edge_mode.is_some() && readback.shaded();
-        let frame_scene =
-            match FrameScene::new(device, &self.instances, scene, (camera, state), with_edges) {
-                Ok(f) => f,
-                Err(e) => {
-                    // The scope must come off the device's stack before leaving.
-                    let _ = pollster::block_on(scope.pop());
-                    return Err(e);
-                }
-            };
-        // Wire bodies are drawn in every mode; B-Rep edges only in the modes with edges.
-        let draw_lines = readback.shaded() && !frame_scene.edge_calls.is_empty();
-        // A viewer's frame draws into its kept targets; an image, or a frame that reads the
-        // (u, v) back (which a viewport has no target for), into fresh ones.
+        let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let result = self.record_and_run(gpu, input, readback, viewport);
+        // Bind groups this frame did not use go (one frame's worth is kept).
+        self.binds.end_frame();
+        let error = pollster::block_on(scope.pop());
+        let bytes = result?;
+        match error {
+            Some(e) => Err(RenderError::Gpu(e)),
+            None => Ok(bytes),
+        }
+    }
+
+    /// [`Renderer::run`] inside its error scope.
+    fn record_and_run(
+        &self,
+        gpu: &Gpu,
+        input: &FrameInput<'_>,
+        readback: Readback<'_>,
+        mut viewport: Option<&mut Viewport>,
+    ) -> Result<Vec<u8>, RenderError> {
+        let FrameInput {
+            scene,
+            camera,
+            options,
+            state,
+            size: (w, h),
+        } = *input;
+        let device = &gpu.device;
+        // A viewer's frame writes into its viewport's kept buffers and draws into its kept
+        // targets; an image, or a frame that reads the (u, v) back (which a viewport has no
+        // target for), into fresh ones.
         let with_uv = matches!(readback, Readback::Uv);
-        let fresh;
-        let targets = match &viewport {
-            Some(v) if !with_uv => &v.targets,
-            _ => {
-                fresh = VisibilityTargets::new(device, (w, h), with_uv);
-                &fresh
+        let (mut fresh_buffers, fresh_targets);
+        let (kept_targets, buffers) = match viewport.as_deref_mut() {
+            Some(v) => (Some(&v.targets), &mut v.buffers),
+            None => {
+                fresh_buffers = FrameBuffers::new(device);
+                (None, &mut fresh_buffers)
             }
         };
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let sections = frame.counts[2] > 0;
-        self.visibility.record(
-            device,
-            &mut encoder,
-            targets,
-            (&frame_buffer, sections, self.proxy_depth),
-            &frame_scene,
-        );
+        let targets = match kept_targets {
+            Some(t) if !with_uv => t,
+            _ => {
+                fresh_targets = VisibilityTargets::new(device, (w, h), with_uv);
+                &fresh_targets
+            }
+        };
+        let (_, edge_mode) = options.mode.fill_and_edges();
+        let frame = frame_uniform(camera, options, state, (w, h));
+        buffers.frame.write(gpu, bytemuck::bytes_of(&frame))?;
+        let with_edges = edge_mode.is_some() && readback.shaded();
+        let frame_scene = FrameScene::new(
+            gpu,
+            (&self.instances, &self.binds),
+            buffers,
+            scene,
+            (camera, state),
+            with_edges,
+        )?;
         let mut selection: Vec<[u32; 4]> = state
             .selection
             .iter()
@@ -433,21 +452,36 @@ impl Renderer {
             // Storage bindings may not be empty; the count stays 0.
             selection.push([0; 4]);
         }
-        let selection = crate::gpu_scene::buffer(
-            device,
-            "selection",
-            bytemuck::cast_slice(&selection),
-            wgpu::BufferUsages::STORAGE,
+        buffers
+            .selection
+            .write(gpu, bytemuck::cast_slice(&selection))?;
+        let mut lights: Vec<LightGpu> = options.lights.iter().map(|l| l.to_gpu(camera)).collect();
+        if lights.is_empty() {
+            // Storage bindings may not be empty; the count stays 0.
+            lights.push(LightGpu::default());
+        }
+        buffers.lights.write(gpu, bytemuck::cast_slice(&lights))?;
+        // Wire bodies are drawn in every mode; B-Rep edges only in the modes with edges.
+        let draw_lines = readback.shaded() && !frame_scene.edge_calls.is_empty();
+        let frame_buffer = buffers.frame.buffer();
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let sections = frame.counts[2] > 0;
+        self.visibility.record(
+            (device, &self.binds),
+            &mut encoder,
+            targets,
+            (frame_buffer, sections, self.proxy_depth),
+            &frame_scene,
         );
         let shading = Shading {
             device,
-            camera,
             options,
             targets,
-            frame: &frame_buffer,
+            frame: frame_buffer,
             uniform: &frame,
             scene: &frame_scene,
-            selection: &selection,
+            selection: buffers.selection.buffer(),
+            lights: (buffers.lights.buffer(), &lights),
             draw_lines,
         };
         let bytes = match readback {
@@ -481,9 +515,6 @@ impl Renderer {
                 read_region(gpu, encoder, &colour, (0, 0), (w, h), 4)?
             }
         };
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(RenderError::Gpu(e));
-        }
         if let Some(v) = viewport {
             let aspect = f64::from(w) / f64::from(h);
             v.last = Some(LastFrame {
@@ -637,7 +668,6 @@ impl Readback<'_> {
 /// What the shading passes of a frame read.
 struct Shading<'a> {
     device: &'a wgpu::Device,
-    camera: &'a Camera,
     options: &'a FrameOptions,
     targets: &'a VisibilityTargets,
     frame: &'a wgpu::Buffer,
@@ -645,6 +675,8 @@ struct Shading<'a> {
     uniform: &'a Frame,
     scene: &'a FrameScene<'a>,
     selection: &'a wgpu::Buffer,
+    /// The light buffer and the lights in it (one placeholder when there are none).
+    lights: (&'a wgpu::Buffer, &'a [LightGpu]),
     draw_lines: bool,
 }
 
@@ -659,47 +691,39 @@ impl Renderer {
     ) {
         let Shading {
             device,
-            camera,
             options,
             targets,
             frame,
             uniform,
             scene,
             selection,
+            lights: (light_buffer, lights),
             draw_lines,
         } = *s;
-        let mut lights: Vec<LightGpu> = options.lights.iter().map(|l| l.to_gpu(camera)).collect();
-        if lights.is_empty() {
-            // Storage bindings may not be empty; the count stays 0.
-            lights.push(LightGpu::default());
-        }
-        let light_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("lights"),
-            contents: bytemuck::cast_slice(&lights),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
         let inputs = ShadeInputs {
             frame,
             materials: &scene.materials,
-            lights: &light_buffer,
+            lights: light_buffer,
             selection,
             background: {
                 let [r, g, b, a] = linear_background(options).map(f64::from);
                 wgpu::Color { r, g, b, a }
             },
-            variant: ShadeVariant::of(uniform, &lights),
+            variant: ShadeVariant::of(uniform, lights),
         };
+        let recorder = (device, &self.binds);
         self.shade
-            .record(device, encoder, targets, &inputs, colour_view);
+            .record(recorder, encoder, targets, &inputs, colour_view);
         if options.mode == DisplayMode::XRay {
-            self.xray.record(device, encoder, frame, scene, colour_view);
+            self.xray
+                .record(recorder, encoder, frame, scene, colour_view);
         } else {
             self.xray
-                .record_transparent(device, encoder, frame, scene, (targets, colour_view));
+                .record_transparent(recorder, encoder, frame, scene, (targets, colour_view));
         }
         if draw_lines {
             self.edges.record(
-                device,
+                recorder,
                 encoder,
                 targets,
                 (frame, selection),
@@ -898,5 +922,101 @@ mod tests {
         // Half black, half white is 0.5 linear = 188 in sRGB, not 128.
         assert_eq!(small.get_pixel(0, 0).0, [188, 188, 188, 255]);
         assert!((srgb_to_linear(linear_to_srgb(0.3)) - 0.3).abs() < 1e-6);
+    }
+    /// A one-triangle scene: enough for every pass to bind its buffers.
+    fn triangle() -> Scene {
+        use cadre_mesh::export::{Primitive, SceneMesh, SceneNode};
+        Scene {
+            meshes: vec![SceneMesh {
+                positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+                normals: vec![[0.0, 0.0, 1.0]; 3],
+                primitives: vec![Primitive {
+                    indices: vec![0, 1, 2],
+                    material: None,
+                    face_ids: vec![1],
+                }],
+                ..SceneMesh::default()
+            }],
+            nodes: vec![SceneNode {
+                mesh: Some(0),
+                ..SceneNode::default()
+            }],
+            roots: vec![0],
+            ..Scene::default()
+        }
+    }
+
+    #[test]
+    fn a_viewers_frames_reuse_their_buffers_and_bind_groups() {
+        let Ok(gpu) = Gpu::headless() else {
+            eprintln!("no adapter: skipped");
+            return;
+        };
+        let renderer = Renderer::new(&gpu).expect("pipelines");
+        let prepared = renderer.prepare(&gpu, &triangle());
+        let mut viewport = Viewport::new(&gpu, 32, 24);
+        let target = gpu
+            .device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: None,
+                size: wgpu::Extent3d {
+                    width: 32,
+                    height: 24,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: COLOUR,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            })
+            .create_view(&Default::default());
+        let options = FrameOptions {
+            width: 32,
+            height: 24,
+            supersample: 1,
+            mode: DisplayMode::ShadedEdges,
+            ..FrameOptions::default()
+        };
+        let camera = |k: f64| {
+            Camera::fit(
+                glam::DVec3::ZERO,
+                glam::DVec3::new(1.0, 1.0, 0.1 * k),
+                crate::ViewPreset::Iso,
+                false,
+                32.0 / 24.0,
+            )
+        };
+        let draw = |viewport: &mut Viewport, k: f64| {
+            let state = ViewState::default();
+            renderer
+                .draw(
+                    &gpu,
+                    viewport,
+                    &prepared,
+                    &camera(k),
+                    &options,
+                    &state,
+                    &target,
+                )
+                .expect("frame");
+        };
+        draw(&mut viewport, 1.0);
+        let (made, frame, draws) = (
+            renderer.binds.made(),
+            viewport.buffers.frame.buffer().clone(),
+            viewport.buffers.draws.buffer().clone(),
+        );
+        assert!(made >= 3, "{made} bind groups");
+        // Another camera: the same buffers, refilled, and no bind group made.
+        draw(&mut viewport, 2.0);
+        assert_eq!(renderer.binds.made(), made);
+        assert_eq!(*viewport.buffers.frame.buffer(), frame);
+        assert_eq!(*viewport.buffers.draws.buffer(), draws);
+        // Negative control: a new viewport's buffers need bind groups of their own.
+        let mut other = Viewport::new(&gpu, 32, 24);
+        draw(&mut other, 2.0);
+        assert!(renderer.binds.made() > made);
     }
 }

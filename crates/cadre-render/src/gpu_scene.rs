@@ -13,6 +13,7 @@ use crate::analytic::AnalyticPrimitive;
 use crate::coverage::{ImageCoverage, MAX_IMAGE_COVERAGE, bounding_sphere};
 use crate::edges::feature_edges;
 use crate::error::RenderError;
+use crate::frame_buffers::{BindCache, FrameBuffers, GrowingBuffer};
 use crate::layout::{
     Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Primitive, Segment, Vertex,
 };
@@ -88,7 +89,8 @@ pub(crate) struct FrameInstances {
 
 impl FrameInstances {
     /// Bind group 1 over `headers` (one call slot each), the draw `records` and the scene's
-    /// `locals`; errors when a buffer would pass the device's limits.
+    /// `locals`, in buffers of its own (a pick's); errors when a buffer would pass the
+    /// device's limits.
     pub fn new(
         device: &wgpu::Device,
         layout: &InstanceLayout,
@@ -96,76 +98,104 @@ impl FrameInstances {
         records: &[Draw],
         locals: &wgpu::Buffer,
     ) -> Result<FrameInstances, RenderError> {
-        // Storage bindings may not be empty.
-        let (no_record, no_call) = ([Draw::default()], [Call::default()]);
-        let records: &[Draw] = if records.is_empty() {
-            &no_record
-        } else {
-            records
-        };
-        let headers: &[Call] = if headers.is_empty() {
-            &no_call
-        } else {
-            headers
-        };
+        let (records, calls) = instance_bytes(device, headers, records)?;
         let draws = checked_buffer(
             device,
             "draw records",
-            bytemuck::cast_slice(records),
+            &records,
             wgpu::BufferUsages::STORAGE,
         )?;
-        let stride = InstanceLayout::call_stride(device);
-        let mut call_bytes = vec![0u8; headers.len() * stride as usize];
-        for (k, header) in headers.iter().enumerate() {
-            let at = k * stride as usize;
-            call_bytes[at..at + std::mem::size_of::<Call>()]
-                .copy_from_slice(bytemuck::bytes_of(header));
-        }
-        // Bound one call wide at a dynamic offset, so only the buffer limit applies, not the
-        // uniform binding limit (16 KiB on downlevel devices: 64 calls).
-        let limit = device.limits().max_buffer_size;
-        if call_bytes.len() as u64 > limit {
-            return Err(RenderError::TooLarge {
-                what: "draw calls".to_string(),
-                bytes: call_bytes.len() as u64,
-                limit,
-            });
-        }
-        let calls = buffer(
-            device,
-            "draw calls",
-            &call_bytes,
-            wgpu::BufferUsages::UNIFORM,
-        );
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("instances"),
-            layout: &layout.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &calls,
-                        offset: 0,
-                        size: wgpu::BufferSize::new(std::mem::size_of::<Call>() as u64),
-                    }),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: draws.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: locals.as_entire_binding(),
-                },
-            ],
-        });
-        Ok(FrameInstances { bind, stride })
+        let calls = buffer(device, "draw calls", &calls, wgpu::BufferUsages::UNIFORM);
+        let resources = instance_resources(&calls, &draws, locals);
+        Ok(FrameInstances {
+            bind: crate::passes::common::bind_group(
+                device,
+                "instances",
+                &layout.layout,
+                &resources,
+            ),
+            stride: InstanceLayout::call_stride(device),
+        })
+    }
+
+    /// [`FrameInstances::new`] written into a frame's kept buffers, its bind group from
+    /// `binds` (the same as the last frame's while the buffers stay).
+    pub fn kept(
+        gpu: &crate::Gpu,
+        (layout, binds): (&InstanceLayout, &BindCache),
+        buffers: &mut FrameBuffers,
+        (headers, records): (&[Call], &[Draw]),
+        locals: &wgpu::Buffer,
+    ) -> Result<FrameInstances, RenderError> {
+        let (records, calls) = instance_bytes(&gpu.device, headers, records)?;
+        buffers.draws.write(gpu, &records)?;
+        buffers.calls.write(gpu, &calls)?;
+        let resources = instance_resources(buffers.calls.buffer(), buffers.draws.buffer(), locals);
+        Ok(FrameInstances {
+            bind: binds.get(&gpu.device, "instances", &layout.layout, &resources),
+            stride: InstanceLayout::call_stride(&gpu.device),
+        })
     }
 
     /// The dynamic offset of call `slot`.
     pub fn offset(&self, slot: u32) -> u32 {
         (u64::from(slot) * self.stride) as u32
     }
+}
+
+/// The bytes of a frame's draw records and of its call headers (one per dynamic-offset
+/// stride), never empty (storage bindings may not be).
+fn instance_bytes(
+    device: &wgpu::Device,
+    headers: &[Call],
+    records: &[Draw],
+) -> Result<(Vec<u8>, Vec<u8>), RenderError> {
+    let (no_record, no_call) = ([Draw::default()], [Call::default()]);
+    let records: &[Draw] = if records.is_empty() {
+        &no_record
+    } else {
+        records
+    };
+    let headers: &[Call] = if headers.is_empty() {
+        &no_call
+    } else {
+        headers
+    };
+    let stride = InstanceLayout::call_stride(device);
+    let mut call_bytes = vec![0u8; headers.len() * stride as usize];
+    for (k, header) in headers.iter().enumerate() {
+        let at = k * stride as usize;
+        call_bytes[at..at + std::mem::size_of::<Call>()]
+            .copy_from_slice(bytemuck::bytes_of(header));
+    }
+    // Bound one call wide at a dynamic offset, so only the buffer limit applies, not the
+    // uniform binding limit (16 KiB on downlevel devices: 64 calls).
+    let limit = device.limits().max_buffer_size;
+    if call_bytes.len() as u64 > limit {
+        return Err(RenderError::TooLarge {
+            what: "draw calls".to_string(),
+            bytes: call_bytes.len() as u64,
+            limit,
+        });
+    }
+    Ok((bytemuck::cast_slice(records).to_vec(), call_bytes))
+}
+
+/// Bind group 1's resources: the call (one wide, at a dynamic offset), records, locals.
+fn instance_resources<'b>(
+    calls: &'b wgpu::Buffer,
+    draws: &'b wgpu::Buffer,
+    locals: &'b wgpu::Buffer,
+) -> [wgpu::BindingResource<'b>; 3] {
+    [
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer: calls,
+            offset: 0,
+            size: wgpu::BufferSize::new(std::mem::size_of::<Call>() as u64),
+        }),
+        draws.as_entire_binding(),
+        locals.as_entire_binding(),
+    ]
 }
 
 /// Where one mesh's pieces lie in the shared buffers.
@@ -346,13 +376,13 @@ impl PreparedScene {
         (self.placements.instances + k) as u32
     }
 
-    /// The visible primitives' records for a frame seen by `camera`.
+    /// The visible primitives' records for a frame seen by `camera`, written into `buffer`.
     fn frame_primitives(
         &self,
-        device: &wgpu::Device,
-        camera: &Camera,
-        state: &ViewState,
-    ) -> FramePrimitives {
+        gpu: &crate::Gpu,
+        buffer: &mut GrowingBuffer,
+        (camera, state): (&Camera, &ViewState),
+    ) -> Result<FramePrimitives, RenderError> {
         let records: Vec<Primitive> = self
             .primitives
             .iter()
@@ -369,15 +399,11 @@ impl PreparedScene {
                     .then(|| p.record(camera, (instance, self.primitive_materials + k as u32)))
             })
             .collect();
-        FramePrimitives {
-            buffer: buffer(
-                device,
-                "primitives",
-                bytemuck::cast_slice(&records),
-                wgpu::BufferUsages::STORAGE,
-            ),
+        buffer.write(gpu, bytemuck::cast_slice(&records))?;
+        Ok(FramePrimitives {
+            buffer: buffer.buffer().clone(),
             count: records.len() as u32,
-        }
+        })
     }
 
     /// Number of instances (placed meshes), in the scene's instance order.
@@ -500,9 +526,11 @@ impl FrameCalls {
 impl<'a> FrameScene<'a> {
     /// The draw records of `geometry` seen by `camera` in `state`; B-Rep edges are drawn when
     /// `with_edges` (wire bodies always).
+    /// The records go into the frame's kept `buffers`.
     pub fn new(
-        device: &wgpu::Device,
-        layout: &InstanceLayout,
+        gpu: &crate::Gpu,
+        (layout, binds): (&InstanceLayout, &BindCache),
+        buffers: &mut FrameBuffers,
         geometry: &'a PreparedScene,
         (camera, state): (&Camera, &ViewState),
         with_edges: bool,
@@ -680,22 +708,27 @@ impl<'a> FrameScene<'a> {
                 limit: MAX_FRAME_TRIANGLES,
             });
         }
-        let instances =
-            FrameInstances::new(device, layout, &out.headers, &out.draws, &geometry.locals)?;
+        let instances = FrameInstances::kept(
+            gpu,
+            (layout, binds),
+            buffers,
+            (&out.headers, &out.draws),
+            &geometry.locals,
+        )?;
+        buffers
+            .materials
+            .write(gpu, bytemuck::cast_slice(&materials))?;
+        let primitives =
+            geometry.frame_primitives(gpu, &mut buffers.primitives, (camera, state))?;
         Ok(FrameScene {
             geometry,
             instances,
-            materials: checked_buffer(
-                device,
-                "materials",
-                bytemuck::cast_slice(&materials),
-                wgpu::BufferUsages::STORAGE,
-            )?,
+            materials: buffers.materials.buffer().clone(),
             calls: out.calls,
             transparent: out.transparent,
             edge_calls: out.edge_calls,
             pick_runs: out.pick_runs,
-            primitives: geometry.frame_primitives(device, camera, state),
+            primitives,
         })
     }
 }

@@ -20,6 +20,7 @@ mod coverage;
 pub mod edges;
 mod error;
 mod frame;
+mod frame_buffers;
 mod gpu;
 mod gpu_scene;
 pub mod layout;

@@ -23,6 +23,8 @@ pub struct Viewport {
     /// Height in pixels.
     pub height: u32,
     pub(crate) targets: VisibilityTargets,
+    /// The per-frame buffers, refilled by every frame.
+    pub(crate) buffers: crate::frame_buffers::FrameBuffers,
     pub(crate) last: Option<LastFrame>,
 }
 
@@ -34,6 +36,7 @@ impl Viewport {
             width,
             height,
             targets: VisibilityTargets::new(&gpu.device, (width, height), false),
+            buffers: crate::frame_buffers::FrameBuffers::new(&gpu.device),
             last: None,
         }
     }

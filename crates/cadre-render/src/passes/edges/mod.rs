@@ -2,10 +2,10 @@
 //! of constant pixel width, visible, hidden-dashed or all, by the display mode.
 
 use super::common::{
-    PipelineSpec, bind_group, blended, colour_pass, draw_segments, entries, layouts, pipeline,
-    shader, wgsl,
+    PipelineSpec, blended, colour_pass, draw_segments, entries, layouts, pipeline, shader, wgsl,
 };
 use super::visibility::VisibilityTargets;
+use crate::frame_buffers::BindCache;
 use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, Frame, GpuStruct, Segment};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
@@ -61,7 +61,7 @@ impl EdgesPass {
     /// Records the pass over `target` (kept, blended onto).
     pub fn record(
         &self,
-        device: &wgpu::Device,
+        (device, binds): (&wgpu::Device, &BindCache),
         encoder: &mut wgpu::CommandEncoder,
         visibility: &VisibilityTargets,
         (frame, selection): (&wgpu::Buffer, &wgpu::Buffer),
@@ -71,7 +71,7 @@ impl EdgesPass {
         if scene.edge_calls.is_empty() {
             return;
         }
-        let bind = bind_group(
+        let bind = binds.get(
             device,
             "edges",
             &self.layout,

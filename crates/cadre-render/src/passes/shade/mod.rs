@@ -1,7 +1,8 @@
 //! Shading pass: lights the visibility buffer into the colour target.
 
-use super::common::{PipelineSpec, bind_group, entries, layouts, pipeline, shader, wgsl};
+use super::common::{PipelineSpec, entries, layouts, pipeline, shader, wgsl};
 use super::visibility::{DEPTH, VisibilityTargets};
+use crate::frame_buffers::BindCache;
 use crate::layout::{Binding, Frame, GpuStruct, LightGpu, Material};
 use std::collections::BTreeMap;
 use std::sync::Mutex;
@@ -189,7 +190,7 @@ impl ShadePass {
     /// that a surface covers are shaded.
     pub fn record(
         &self,
-        device: &wgpu::Device,
+        (device, binds): (&wgpu::Device, &BindCache),
         encoder: &mut wgpu::CommandEncoder,
         visibility: &VisibilityTargets,
         inputs: &ShadeInputs<'_>,
@@ -203,7 +204,7 @@ impl ShadePass {
             background,
             variant,
         } = inputs;
-        let bind = bind_group(
+        let bind = binds.get(
             device,
             "shade",
             &self.layout,

@@ -129,7 +129,7 @@ impl VisibilityPass {
     /// control).
     pub fn record(
         &self,
-        device: &wgpu::Device,
+        recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
         encoder: &mut wgpu::CommandEncoder,
         targets: &VisibilityTargets,
         (frame, sections, proxy_depth): (&wgpu::Buffer, bool, bool),
@@ -138,9 +138,9 @@ impl VisibilityPass {
         let mut pass = open(encoder, targets);
         let with_uv = targets.uv.is_some();
         let variant = mesh::MeshVariant::of(sections, with_uv);
-        self.mesh.draw(device, &mut pass, frame, scene, variant);
+        self.mesh.draw(recorder, &mut pass, frame, scene, variant);
         self.analytic.draw(
-            device,
+            recorder,
             &mut pass,
             frame,
             &scene.primitives,

@@ -1,10 +1,11 @@
 //! X-ray pass: the meshes drawn see-through over the background, before the edges.
 
 use super::common::{
-    PipelineSpec, bind_group, blended, colour_pass, draw_meshes, entries, layouts,
-    mesh_vertex_layout, pipeline, shader, wgsl,
+    PipelineSpec, blended, colour_pass, draw_meshes, entries, layouts, mesh_vertex_layout,
+    pipeline, shader, wgsl,
 };
 use super::visibility::{DEPTH, VisibilityTargets};
+use crate::frame_buffers::BindCache;
 use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, Frame, GpuStruct, Material};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
@@ -79,13 +80,13 @@ impl XrayPass {
     /// Records the pass over `target` (kept, blended onto): every opaque call see-through.
     pub fn record(
         &self,
-        device: &wgpu::Device,
+        recorder: (&wgpu::Device, &BindCache),
         encoder: &mut wgpu::CommandEncoder,
         frame: &wgpu::Buffer,
         scene: &FrameScene<'_>,
         target: &wgpu::TextureView,
     ) {
-        let bind = self.bind(device, frame, scene);
+        let bind = self.bind(recorder, frame, scene);
         let mut pass = colour_pass(encoder, "xray", target, None);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
@@ -97,7 +98,7 @@ impl XrayPass {
     /// visibility depth (drawn in scene order, not sorted).
     pub fn record_transparent(
         &self,
-        device: &wgpu::Device,
+        recorder: (&wgpu::Device, &BindCache),
         encoder: &mut wgpu::CommandEncoder,
         frame: &wgpu::Buffer,
         scene: &FrameScene<'_>,
@@ -106,7 +107,7 @@ impl XrayPass {
         if scene.transparent.is_empty() {
             return;
         }
-        let bind = self.bind(device, frame, scene);
+        let bind = self.bind(recorder, frame, scene);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("transparent"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -137,11 +138,11 @@ impl XrayPass {
 
     fn bind(
         &self,
-        device: &wgpu::Device,
+        (device, binds): (&wgpu::Device, &BindCache),
         frame: &wgpu::Buffer,
         scene: &FrameScene<'_>,
     ) -> wgpu::BindGroup {
-        bind_group(
+        binds.get(
             device,
             "xray",
             &self.layout,

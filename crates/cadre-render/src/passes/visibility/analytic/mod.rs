@@ -6,7 +6,7 @@ use std::sync::OnceLock;
 
 use super::{TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state};
 use crate::layout::{Binding, Frame, GpuStruct, Primitive};
-use crate::passes::common::{PipelineSpec, bind_group, entries, layouts, pipeline, shader, wgsl};
+use crate::passes::common::{PipelineSpec, entries, layouts, pipeline, shader, wgsl};
 
 /// Bind group 0: the frame, the frame's primitives.
 pub(crate) const BINDINGS: &[Binding] = &[
@@ -61,7 +61,7 @@ impl AnalyticBackend {
     /// the proxy's depth instead of the hit's (only for the tests' negative control).
     pub fn draw(
         &self,
-        device: &wgpu::Device,
+        (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
         pass: &mut wgpu::RenderPass<'_>,
         frame: &wgpu::Buffer,
         primitives: &FramePrimitives,
@@ -89,7 +89,7 @@ impl AnalyticBackend {
                 },
             )
         });
-        let bind = bind_group(
+        let bind = binds.get(
             device,
             "visibility analytic",
             &self.layout,

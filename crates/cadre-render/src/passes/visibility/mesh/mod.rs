@@ -5,8 +5,7 @@ use super::{TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state};
 use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, Frame, GpuStruct};
 use crate::passes::common::{
-    PipelineSpec, bind_group, draw_mesh_call, entries, layouts, mesh_vertex_layout, pipeline,
-    shader, wgsl,
+    PipelineSpec, draw_mesh_call, entries, layouts, mesh_vertex_layout, pipeline, shader, wgsl,
 };
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 use std::sync::OnceLock;
@@ -88,13 +87,13 @@ impl MeshBackend {
     /// Draws every call of `scene` into the opened visibility pass.
     pub fn draw(
         &self,
-        device: &wgpu::Device,
+        (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
         pass: &mut wgpu::RenderPass<'_>,
         frame: &wgpu::Buffer,
         scene: &FrameScene<'_>,
         variant: MeshVariant,
     ) {
-        let bind = bind_group(
+        let bind = binds.get(
             device,
             "visibility mesh",
             &self.layout,
