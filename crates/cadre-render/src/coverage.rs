@@ -35,15 +35,8 @@ impl ImageCoverage {
 
     /// Adds the sphere (`centre`, `radius`), mesh-local, placed by `world`: the fraction of a
     /// square image of the view's height its disc covers (at most 1; nothing behind the eye).
-    pub fn add(&mut self, world: DAffine3, (centre, radius): (DVec3, f64)) {
-        let m = world.matrix3;
-        let scale = m
-            .x_axis
-            .length()
-            .max(m.y_axis.length())
-            .max(m.z_axis.length());
-        let r = radius * scale;
-        let c = world.transform_point3(centre);
+    pub fn add(&mut self, world: DAffine3, sphere: (DVec3, f64)) {
+        let (c, r) = placed_sphere(world, sphere);
         let half_height = match self.projection {
             Projection::Orthographic { height } => 0.5 * height,
             Projection::Perspective { fov_y } => {
@@ -63,6 +56,18 @@ impl ImageCoverage {
             1.0
         };
     }
+}
+
+/// The mesh-local sphere (`centre`, `radius`) placed by `world`: its centre moved, its radius
+/// scaled by the placement's largest axis scale (a sphere around the placed one).
+pub(crate) fn placed_sphere(world: DAffine3, (centre, radius): (DVec3, f64)) -> (DVec3, f64) {
+    let m = world.matrix3;
+    let scale = m
+        .x_axis
+        .length()
+        .max(m.y_axis.length())
+        .max(m.z_axis.length());
+    (world.transform_point3(centre), radius * scale)
 }
 
 /// The bounding sphere (centre, radius) of `points`; radius 0 at the origin for none.

@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 
 use crate::Camera;
 use crate::analytic::AnalyticPrimitive;
-use crate::coverage::{ImageCoverage, MAX_IMAGE_COVERAGE, bounding_sphere};
+use crate::coverage::{ImageCoverage, MAX_IMAGE_COVERAGE, bounding_sphere, placed_sphere};
 use crate::edges::feature_edges;
 use crate::error::RenderError;
 use crate::frame_buffers::{BindCache, FrameBuffers, GrowingBuffer};
@@ -742,15 +742,8 @@ struct SphereUnion {
 
 impl SphereUnion {
     /// Adds the mesh-local sphere (`centre`, `radius`) placed by `world`.
-    fn add(&mut self, world: DAffine3, (centre, radius): (DVec3, f64)) {
-        let m = world.matrix3;
-        let scale = m
-            .x_axis
-            .length()
-            .max(m.y_axis.length())
-            .max(m.z_axis.length());
-        self.placed
-            .push((world.transform_point3(centre), radius * scale));
+    fn add(&mut self, world: DAffine3, sphere: (DVec3, f64)) {
+        self.placed.push(placed_sphere(world, sphere));
     }
 
     /// The union's sphere, its centre relative to `eye`.

@@ -506,20 +506,7 @@ mod tests {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
         let text = std::fs::read_to_string(root.join("examples/pin-assembly.step")).unwrap();
         let offset = (1u64 << 32) + 1000;
-        let data = text.find("DATA;").unwrap();
-        let mut out = text[..data].to_string();
-        let mut rest = &text[data..];
-        while let Some(hash) = rest.find('#') {
-            out.push_str(&rest[..=hash]);
-            rest = &rest[hash + 1..];
-            let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
-            if digits > 0 {
-                let n: u64 = rest[..digits].parse().unwrap();
-                out.push_str(&(n + offset).to_string());
-                rest = &rest[digits..];
-            }
-        }
-        out.push_str(rest);
+        let out = cadre_step::syntax::shift_entity_ids(&text, offset).unwrap();
         let path = std::env::temp_dir().join(format!("cadre-big-ids-{}.step", std::process::id()));
         std::fs::write(&path, out).unwrap();
         let doc = Document::load(&path, &|_| {}).expect("loads");

@@ -67,21 +67,9 @@ pub fn model_and_scene_of(bytes: Vec<u8>, deflection: f64) -> (cadre_brep::Model
 /// (ids past 2³² with `offset` ≥ 2³²).
 pub fn renumbered(name: &str, offset: u64) -> Vec<u8> {
     let text = std::fs::read_to_string(fixture(name)).expect("fixture reads");
-    let data = text.find("DATA;").expect("a DATA section");
-    let mut out = text[..data].to_string();
-    let mut rest = &text[data..];
-    while let Some(hash) = rest.find('#') {
-        out.push_str(&rest[..=hash]);
-        rest = &rest[hash + 1..];
-        let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
-        if digits > 0 {
-            let n: u64 = rest[..digits].parse().expect("an id");
-            out.push_str(&(n + offset).to_string());
-            rest = &rest[digits..];
-        }
-    }
-    out.push_str(rest);
-    out.into_bytes()
+    cadre_step::syntax::shift_entity_ids(&text, offset)
+        .expect("ids shift")
+        .into_bytes()
 }
 
 /// The fixture's tessellated scene.

@@ -44,7 +44,7 @@ pub use lexer::{LexError, LexErrorKind, Lexer, Token};
 pub use parser::MAX_DEPTH;
 pub use string::{decode_string, encode_string};
 pub use value::{Instance, Param, Record};
-pub use writer::{write_param, write_real, write_record};
+pub use writer::{shift_entity_ids, write_param, write_real, write_record};
 
 /// A problem found in a file, located by line and, when known, instance id.
 ///

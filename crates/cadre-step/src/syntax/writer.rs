@@ -117,3 +117,75 @@ mod tests {
         assert_eq!(s, r#"A('it''s',(-1,#3),LENGTH_MEASURE(2.E0),.T.,"0F",$,*)"#);
     }
 }
+
+/// `text` (a whole Part 21 file) with every entity instance name `#n` of its DATA sections
+/// moved to `#(n + offset)`: references and definitions alike, not inside strings or
+/// comments, not in the HEADER. `None` when an id would pass `u64`, or the text has no DATA
+/// section. For merging files into one id space, and for tests of ids past 2³².
+pub fn shift_entity_ids(text: &str, offset: u64) -> Option<String> {
+    let data = text.find("DATA;")?;
+    let mut out = String::with_capacity(text.len() + text.len() / 8);
+    out.push_str(&text[..data]);
+    let rest = &text[data..];
+    let bytes = rest.as_bytes();
+    let mut i = 0;
+    let mut copied = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            // A string: to its closing quote ('' is an escaped quote inside it).
+            b'\'' => {
+                i += 1;
+                while i < bytes.len() {
+                    if bytes[i] == b'\'' {
+                        if bytes.get(i + 1) == Some(&b'\'') {
+                            i += 2;
+                            continue;
+                        }
+                        break;
+                    }
+                    i += 1;
+                }
+                i += 1;
+            }
+            b'/' if bytes.get(i + 1) == Some(&b'*') => {
+                i = rest[i + 2..]
+                    .find("*/")
+                    .map_or(bytes.len(), |k| i + 2 + k + 2);
+            }
+            b'#' => {
+                let start = i + 1;
+                let digits = bytes[start..]
+                    .iter()
+                    .take_while(|b| b.is_ascii_digit())
+                    .count();
+                if digits > 0 {
+                    let n: u64 = rest[start..start + digits].parse().ok()?;
+                    out.push_str(&rest[copied..start]);
+                    out.push_str(&n.checked_add(offset)?.to_string());
+                    copied = start + digits;
+                }
+                i = start + digits;
+            }
+            _ => i += 1,
+        }
+    }
+    out.push_str(&rest[copied..]);
+    Some(out)
+}
+
+#[cfg(test)]
+mod shift_tests {
+    use super::shift_entity_ids;
+
+    #[test]
+    fn ids_move_but_not_in_strings_comments_or_the_header() {
+        let text = "HEADER; FILE_NAME('#1'); ENDSEC;\nDATA;\n#1=A('it''s #2',#2) /* #3 */;\n#2=B(#1);\nENDSEC;";
+        let out = shift_entity_ids(text, 1 << 32).unwrap();
+        assert_eq!(
+            out,
+            "HEADER; FILE_NAME('#1'); ENDSEC;\nDATA;\n#4294967297=A('it''s #2',#4294967298) /* #3 */;\n#4294967298=B(#4294967297);\nENDSEC;"
+        );
+        assert_eq!(shift_entity_ids("DATA;#1=A();", u64::MAX), None);
+        assert_eq!(shift_entity_ids("#1=A();", 1), None);
+    }
+}
