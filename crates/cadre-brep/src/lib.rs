@@ -6,9 +6,8 @@
 //! a [`Part`] owns bodies and places child parts through [`Occurrence`]s, so a part used a
 //! thousand times is stored once.
 //!
-//! Trim loops in each face's (u, v) domain are computed by the tessellation work; faces keep
-//! their bounds as oriented edges that carry the file's pcurves where present, which is what
-//! that work consumes.
+//! Faces keep their bounds as oriented edges that carry the file's pcurves where present;
+//! [`trim`] turns them into closed loops in each face's (u, v) domain.
 
 pub mod assembly;
 pub mod bounds;
@@ -19,6 +18,7 @@ pub mod mesh;
 pub mod model;
 pub mod repair;
 pub mod stats;
+pub mod step_index;
 pub mod style;
 pub mod topology;
 pub mod trim;
@@ -29,6 +29,7 @@ pub use ids::*;
 pub use mesh::TriangleMesh;
 pub use model::{Model, StyleTarget, Warning};
 pub use stats::Counts;
+pub use step_index::{Entity, StepIndex};
 pub use style::{Rgb, Style};
 pub use topology::{Edge, Face, Loop, LoopKind, OrientedEdge, Shell, Solid, Vertex, Wire};
 pub use units::Units;

@@ -8,6 +8,7 @@
 //! Accuracy is always an explicit argument ([`Accuracy`]) with a documented default, never a
 //! global constant.
 
+mod arc_length;
 pub mod bbox;
 mod bounds;
 pub mod bspline;

@@ -4,10 +4,10 @@
 
 use std::f64::consts::{PI, TAU};
 
-use cadre_brep::measure::{StepIndex, curve_length, edge_properties};
-use cadre_brep::{Edge, EdgeId, FaceId, Model, Vertex, VertexId};
+use cadre_brep::measure::edge_properties;
+use cadre_brep::{Edge, EdgeId, FaceId, Model, StepIndex, Vertex, VertexId};
 use cadre_geom::curve::Curve;
-use cadre_geom::{Frame, Vec3};
+use cadre_geom::{Accuracy, Frame, Vec3};
 use cadre_mesh::measure::{face_area, mesh_area};
 use cadre_mesh::{MeshParams, mesh_model};
 use cadre_step::syntax::StepFile;
@@ -212,7 +212,9 @@ proptest! {
         prop_assert!((len - r * sweep).abs() <= 1e-9 * r * sweep, "{len} vs {}", r * sweep);
         prop_assert!((p.arc_angle.expect("arc") - sweep).abs() <= 1e-9 * sweep);
         let circle = &m.curves[0];
-        let len = curve_length(circle, t0 + dt, t0).expect("length");
+        let len = circle
+            .arc_length(t0 + dt, t0, Accuracy::default())
+            .expect("length");
         prop_assert!((len - r * dt).abs() <= 1e-12 * r * dt.max(1.0));
     }
 }

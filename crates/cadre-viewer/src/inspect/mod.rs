@@ -2,6 +2,8 @@
 //! exact B-Rep (lengths along curves, radii of surfaces, areas on the exact surface), placed
 //! in the world by the picked instance.
 
+mod format;
+
 use cadre_brep::measure::{angle_between_faces, edge_properties, face_properties};
 use cadre_render::Pick;
 use glam::DVec3;
@@ -99,7 +101,7 @@ pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
             rows.push(("Face".into(), doc.step_label(pick)));
             if let Some(f) = doc.face(face) {
                 if let Some(p) = face_properties(&doc.model, f) {
-                    rows.extend(face_in_world(p, doc, instance as usize).rows());
+                    rows.extend(format::face_rows(&face_in_world(p, doc, instance as usize)));
                 }
                 if let Some(Some(fm)) = doc.mesh.faces.get(f.index()) {
                     let area = cadre_mesh::measure::face_area(&doc.model, f, fm);
@@ -113,7 +115,7 @@ pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
             if let Some(e) = doc.edge(edge)
                 && let Some(p) = edge_properties(&doc.model, e)
             {
-                rows.extend(edge_in_world(p, doc, instance as usize).rows());
+                rows.extend(format::edge_rows(&edge_in_world(p, doc, instance as usize)));
             }
         }
         Pick::Vertex { .. } => {
