@@ -13,7 +13,7 @@ pub mod deviation;
 pub mod edges;
 pub mod export;
 pub mod face;
-pub mod measure;
+pub mod face_area;
 pub mod model;
 pub mod params;
 pub mod periodic;

@@ -11,8 +11,8 @@ use std::collections::BTreeMap;
 use crate::Camera;
 use crate::analytic::AnalyticPrimitive;
 use crate::coverage::{ImageCoverage, MAX_IMAGE_COVERAGE, bounding_sphere, placed_sphere};
-use crate::edges::feature_edges;
 use crate::error::RenderError;
+use crate::feature_edges::feature_edges;
 use crate::frame_buffers::{BindCache, FrameBuffers, GrowingBuffer};
 use crate::layout::{
     Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Primitive, Segment, Vertex,

@@ -113,7 +113,7 @@ pub struct Vertex {
 /// Per-frame constants.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
-pub struct Frame {
+pub struct FrameUniform {
     /// Projection × rotation-only view (positions are camera-relative).
     pub view_proj: [[f32; 4]; 4],
     /// Inverse projection, to rebuild view-space positions from depth.
@@ -158,21 +158,21 @@ pub struct Frame {
     pub section: [f32; 4],
 }
 
-/// [`Frame::modes`]`[0]`: perspective projection.
+/// [`FrameUniform::modes`]`[0]`: perspective projection.
 pub const PROJECTION_PERSPECTIVE: u32 = 0;
-/// [`Frame::modes`]`[0]`: orthographic projection (every view ray is the camera's forward).
+/// [`FrameUniform::modes`]`[0]`: orthographic projection (every view ray is the camera's forward).
 pub const PROJECTION_ORTHOGRAPHIC: u32 = 1;
-/// [`Frame::modes`]`[1]`: faces shaded.
+/// [`FrameUniform::modes`]`[1]`: faces shaded.
 pub const FILL_SHADED: u32 = 0;
-/// [`Frame::modes`]`[1]`: faces filled with the background colour (hidden-line drawings).
+/// [`FrameUniform::modes`]`[1]`: faces filled with the background colour (hidden-line drawings).
 pub const FILL_BACKGROUND: u32 = 1;
-/// [`Frame::modes`]`[1]`: faces not filled (wireframe, x-ray).
+/// [`FrameUniform::modes`]`[1]`: faces not filled (wireframe, x-ray).
 pub const FILL_NONE: u32 = 2;
-/// [`Frame::modes`]`[2]`: only visible edges.
+/// [`FrameUniform::modes`]`[2]`: only visible edges.
 pub const EDGES_VISIBLE: u32 = 0;
-/// [`Frame::modes`]`[2]`: all edges, solid.
+/// [`FrameUniform::modes`]`[2]`: all edges, solid.
 pub const EDGES_ALL: u32 = 1;
-/// [`Frame::modes`]`[2]`: visible edges solid, hidden ones dashed.
+/// [`FrameUniform::modes`]`[2]`: visible edges solid, hidden ones dashed.
 pub const EDGES_HIDDEN_DASHED: u32 = 2;
 
 /// A light in view space, as the shade pass reads it.
@@ -339,8 +339,8 @@ pub struct Material {
 }
 
 gpu_struct!(
-    Frame,
-    "Frame",
+    FrameUniform,
+    "FrameUniform",
     [
         view_proj,
         inv_proj,

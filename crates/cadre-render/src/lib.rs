@@ -1,9 +1,10 @@
 //! The GPU renderer of cadre, on wgpu.
 //!
 //! One renderer, several surface back-ends (see `docs/architecture.md`): every back-end writes
-//! the same visibility buffer (reverse-Z depth, normal, face id, instance id, material), and
-//! later passes (shading now; edges, picking and crack detection next) read only that buffer.
-//! This first back-end draws tessellated meshes ([`cadre_mesh::export::Scene`]).
+//! the same visibility buffer (reverse-Z depth, normal, ids, (u, v)), and the later passes
+//! (shading, edges, silhouettes, section caps, picking) read only that buffer. Two back-ends
+//! exist: tessellated meshes ([`cadre_mesh::export::Scene`]) and analytic primitives ray cast
+//! per pixel ([`AnalyticPrimitive`]).
 //!
 //! Rendering is headless first: [`Gpu::headless`] finds a native GPU or Mesa's software
 //! drivers (Vulkan lavapipe, GL llvmpipe through EGL) and [`Renderer::render`] returns an
@@ -17,9 +18,8 @@ mod bounds;
 mod camera;
 pub mod compare;
 mod coverage;
-pub mod edges;
 mod error;
-mod frame;
+mod feature_edges;
 mod frame_buffers;
 mod gpu;
 mod gpu_scene;
@@ -29,6 +29,7 @@ mod passes;
 mod pick;
 mod placements;
 pub mod raycast;
+mod renderer;
 mod smooth;
 mod solid;
 mod view;
@@ -39,12 +40,12 @@ pub use bounds::scene_bounds;
 pub use camera::{Camera, Projection, ViewPreset};
 pub use coverage::MAX_IMAGE_COVERAGE;
 pub use error::RenderError;
-pub use frame::{DisplayMode, FrameOptions, Renderer};
 pub use gpu::Gpu;
 pub use gpu_scene::{MAX_FRAME_TRIANGLES, PreparedScene};
 pub use lights::Light;
 pub use pick::PendingPick;
 pub use placements::{FLAT_LIMIT, MAX_LOCALS_PER_NODE};
+pub use renderer::{DisplayMode, FrameOptions, Renderer};
 pub use smooth::smooth_edges;
 pub use view::{
     InstanceStyle, MAX_HIGHLIGHTED, MAX_SECTIONS, Pick, SECTION_CAP, SectionPlane, ViewState,

@@ -12,7 +12,7 @@
 //! two cores), where a GPU pass on llvmpipe would pay its per-pixel cost for every pixel of
 //! the image, flat ones included.
 
-use crate::frame::{SRGB_TO_LINEAR, linear_to_srgb, unit_to_byte};
+use crate::renderer::{SRGB_TO_LINEAR, linear_to_srgb, unit_to_byte};
 use image::RgbaImage;
 use rayon::prelude::*;
 

@@ -1,7 +1,7 @@
 //! A viewer's viewport: render targets kept between frames, and picking from the last frame.
 
 use crate::gpu_scene::PickRun;
-use crate::layout::Frame;
+use crate::layout::FrameUniform;
 use crate::passes::visibility::VisibilityTargets;
 use crate::view::{Pick, section_cap};
 use crate::{Gpu, RenderError};
@@ -10,7 +10,7 @@ use crate::{Gpu, RenderError};
 /// camera-relative view-projection in `f64` (cropped to the pick window) and its visible
 /// runs' edges and vertices.
 pub(crate) struct LastFrame {
-    pub frame: Frame,
+    pub frame: FrameUniform,
     pub view_proj: glam::DMat4,
     pub pick_runs: Vec<PickRun>,
 }

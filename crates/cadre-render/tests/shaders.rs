@@ -6,8 +6,8 @@ use cadre_render::SECTION_CAP;
 use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders};
 use cadre_render::layout::{
     Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE,
-    FILL_BACKGROUND, FILL_NONE, FILL_SHADED, Frame, GpuStruct, LightGpu, Local, Material, Member,
-    PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Primitive, Segment,
+    FILL_BACKGROUND, FILL_NONE, FILL_SHADED, FrameUniform, GpuStruct, LightGpu, Local, Material,
+    Member, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Primitive, Segment,
 };
 
 /// The renderer's shader named `name`, as it compiles it.
@@ -117,7 +117,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
     // The shared structs are declared once, in common.wgsl, for every pass.
     for pass in pass_shaders() {
         for name in [
-            "Frame",
+            "FrameUniform",
             "Draw",
             "Material",
             "Segment",
@@ -141,7 +141,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         let m = validated(pass.name, &pass.source);
         let pass = pass.name;
         for (name, hit) in [
-            ("Frame", check::<Frame>(pass, &m)),
+            ("FrameUniform", check::<FrameUniform>(pass, &m)),
             ("Draw", check::<Draw>(pass, &m)),
             ("Material", check::<Material>(pass, &m)),
             ("Segment", check::<Segment>(pass, &m)),
@@ -162,11 +162,11 @@ fn shaders_validate_and_share_the_rust_layouts() {
 
 #[test]
 fn swapped_fields_are_caught() {
-    // Negative control: the Rust Frame with two fields of the same type swapped (what the
+    // Negative control: the Rust FrameUniform with two fields of the same type swapped (what the
     // old size-only comparison let through) and with one field dropped.
     let m = module("shade");
-    let (wgsl, size) = naga_struct(&m, "Frame").expect("Frame in shade");
-    let mut swapped = Frame::members();
+    let (wgsl, size) = naga_struct(&m, "FrameUniform").expect("FrameUniform in shade");
+    let mut swapped = FrameUniform::members();
     let (a, b) = (
         swapped
             .iter()
@@ -181,23 +181,46 @@ fn swapped_fields_are_caught() {
     swapped[a].offset = ob;
     swapped[b].offset = oa;
     swapped.sort_by_key(|f| f.offset);
-    let err = compare("Frame", &swapped, size_of::<Frame>(), &wgsl, size).unwrap_err();
+    let err = compare(
+        "FrameUniform",
+        &swapped,
+        size_of::<FrameUniform>(),
+        &wgsl,
+        size,
+    )
+    .unwrap_err();
     assert!(err.contains("hidden_colour"), "{err}");
-    let mut short = Frame::members();
+    let mut short = FrameUniform::members();
     short.pop();
-    assert!(compare("Frame", &short, size_of::<Frame>(), &wgsl, size).is_err());
     assert!(
         compare(
-            "Frame",
-            &Frame::members(),
-            size_of::<Frame>() + 16,
+            "FrameUniform",
+            &short,
+            size_of::<FrameUniform>(),
+            &wgsl,
+            size
+        )
+        .is_err()
+    );
+    assert!(
+        compare(
+            "FrameUniform",
+            &FrameUniform::members(),
+            size_of::<FrameUniform>() + 16,
             &wgsl,
             size
         )
         .is_err()
     );
     // And the true layout passes.
-    compare("Frame", &Frame::members(), size_of::<Frame>(), &wgsl, size).unwrap();
+    compare(
+        "FrameUniform",
+        &FrameUniform::members(),
+        size_of::<FrameUniform>(),
+        &wgsl,
+        size,
+    )
+    .unwrap();
 }
 
 /// The bindings of bind group `group` that `module` declares, in binding order, as

@@ -2,7 +2,7 @@
 // built (and by the naga test): the GPU twins of `cadre_render::layout`, and the frame's
 // uniform at group 0, binding 0.
 
-struct Frame {
+struct FrameUniform {
     view_proj: mat4x4<f32>,
     inv_proj: mat4x4<f32>,
     background: vec4<f32>,
@@ -82,7 +82,7 @@ struct Light {
     params: vec4<f32>,
 }
 
-@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(0) var<uniform> frame: FrameUniform;
 
 // What the visibility texel writer needs of the instance a surface point belongs to
 // (instances.wgsl carries it from the draw records for meshes; the analytic primitives
@@ -102,7 +102,7 @@ fn is_target(wanted: vec4<u32>, kind: u32, instance1: u32, id: u32) -> bool {
     return wanted.x == 4u || (wanted.x == kind && wanted.z == id);
 }
 
-// `Frame.modes` lanes (layout::PROJECTION_*, FILL_*, EDGES_*): projection, face fill, edge
+// `FrameUniform.modes` lanes (layout::PROJECTION_*, FILL_*, EDGES_*): projection, face fill, edge
 // mode, outlines (0 off, 1 on).
 const PROJECTION_PERSPECTIVE: u32 = 0u;
 const PROJECTION_ORTHOGRAPHIC: u32 = 1u;

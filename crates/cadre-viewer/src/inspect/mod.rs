@@ -104,7 +104,7 @@ pub fn properties(doc: &Document, pick: Pick) -> Vec<(String, String)> {
                     rows.extend(format::face_rows(&face_in_world(p, doc, instance as usize)));
                 }
                 if let Some(Some(fm)) = doc.mesh.faces.get(f.index()) {
-                    let area = cadre_mesh::measure::face_area(&doc.model, f, fm);
+                    let area = cadre_mesh::face_area::face_area(&doc.model, f, fm);
                     let scale = scale_of(doc, instance as usize);
                     rows.push(("Area".into(), format!("{:.4} mm²", area * scale * scale)));
                 }

@@ -7,12 +7,12 @@ use super::common::{
 use super::visibility::VisibilityTargets;
 use crate::frame_buffers::BindCache;
 use crate::gpu_scene::FrameScene;
-use crate::layout::{Binding, Frame, GpuStruct, Segment};
+use crate::layout::{Binding, FrameUniform, GpuStruct, Segment};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
 /// Bind group 0: frame, segments, the visibility depth, selection (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
-    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(Segment::WGSL_NAME),
     Binding::FloatTexture,
     Binding::Storage("vec4<u32>"),

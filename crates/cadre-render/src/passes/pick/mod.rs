@@ -6,13 +6,13 @@ use super::common::{
 };
 use super::visibility::VisibilityTargets;
 use crate::gpu_scene::{EdgeCall, FrameInstances};
-use crate::layout::{Binding, Frame, GpuStruct, PickRegion, Segment};
+use crate::layout::{Binding, FrameUniform, GpuStruct, PickRegion, Segment};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
 /// Bind group 0: frame (its projection cropped to the pick window), segments, the
 /// visibility buffer's ids, where the window lies in them (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
-    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(Segment::WGSL_NAME),
     Binding::UintTexture,
     Binding::Uniform(PickRegion::WGSL_NAME),

@@ -3,14 +3,14 @@
 use super::common::{PipelineSpec, entries, layouts, pipeline, shader, wgsl};
 use super::visibility::{DEPTH, VisibilityTargets};
 use crate::frame_buffers::BindCache;
-use crate::layout::{Binding, Frame, GpuStruct, LightGpu, Material};
+use crate::layout::{Binding, FrameUniform, GpuStruct, LightGpu, Material};
 use std::collections::BTreeMap;
 use std::sync::Mutex;
 
 /// Bind group 0: frame, materials, the normal and id targets, lights, selection, the depth
 /// target (read by the silhouettes: 4 bytes a neighbour where the ids are 16).
 pub(crate) const BINDINGS: &[Binding] = &[
-    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(Material::WGSL_NAME),
     Binding::FloatTexture,
     Binding::UintTexture,
@@ -82,7 +82,7 @@ pub(crate) struct ShadeVariant {
 
 impl ShadeVariant {
     /// The variant that shades a frame with this uniform and these lights.
-    pub fn of(frame: &Frame, lights: &[LightGpu]) -> ShadeVariant {
+    pub fn of(frame: &FrameUniform, lights: &[LightGpu]) -> ShadeVariant {
         ShadeVariant {
             sections: frame.counts[2] > 0,
             silhouettes: frame.modes[3] != 0,
@@ -251,7 +251,7 @@ mod tests {
 
     #[test]
     fn the_variant_follows_the_frame_and_its_lights() {
-        let mut frame = Frame::default();
+        let mut frame = FrameUniform::default();
         let directional = LightGpu::default();
         let mut point = LightGpu::default();
         point.position[3] = 1.0;

@@ -7,12 +7,12 @@ use super::common::{
 use super::visibility::{DEPTH, VisibilityTargets};
 use crate::frame_buffers::BindCache;
 use crate::gpu_scene::FrameScene;
-use crate::layout::{Binding, Frame, GpuStruct, Material};
+use crate::layout::{Binding, FrameUniform, GpuStruct, Material};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
 /// Bind group 0: frame, materials (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
-    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(Material::WGSL_NAME),
 ];
 

@@ -5,12 +5,12 @@
 use std::sync::OnceLock;
 
 use super::{TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state};
-use crate::layout::{Binding, Frame, GpuStruct, Primitive};
+use crate::layout::{Binding, FrameUniform, GpuStruct, Primitive};
 use crate::passes::common::{PipelineSpec, entries, layouts, pipeline, shader, wgsl};
 
 /// Bind group 0: the frame, the frame's primitives.
 pub(crate) const BINDINGS: &[Binding] = &[
-    Binding::Uniform(Frame::WGSL_NAME),
+    Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(Primitive::WGSL_NAME),
 ];
 

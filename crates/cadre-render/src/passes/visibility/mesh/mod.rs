@@ -3,7 +3,7 @@
 
 use super::{TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state};
 use crate::gpu_scene::FrameScene;
-use crate::layout::{Binding, Frame, GpuStruct};
+use crate::layout::{Binding, FrameUniform, GpuStruct};
 use crate::passes::common::{
     PipelineSpec, draw_mesh_call, entries, layouts, mesh_vertex_layout, pipeline, shader, wgsl,
 };
@@ -11,7 +11,7 @@ use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 use std::sync::OnceLock;
 
 /// Bind group 0: the frame (group 1: the instances, [`crate::layout::INSTANCE_BINDINGS`]).
-pub(crate) const BINDINGS: &[Binding] = &[Binding::Uniform(Frame::WGSL_NAME)];
+pub(crate) const BINDINGS: &[Binding] = &[Binding::Uniform(FrameUniform::WGSL_NAME)];
 
 /// The back-end's whole WGSL: the shared declarations, the instances, the texel writer, its
 /// own source.

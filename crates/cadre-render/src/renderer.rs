@@ -6,7 +6,8 @@ use image::RgbaImage;
 use crate::frame_buffers::{BindCache, FrameBuffers};
 use crate::gpu_scene::{FrameScene, PreparedScene};
 use crate::layout::{
-    EDGES_ALL, EDGES_VISIBLE, Frame, LightGpu, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE,
+    EDGES_ALL, EDGES_VISIBLE, FrameUniform, LightGpu, PROJECTION_ORTHOGRAPHIC,
+    PROJECTION_PERSPECTIVE,
 };
 use crate::passes::edges::EdgesPass;
 use crate::passes::instances::InstanceLayout;
@@ -46,8 +47,8 @@ impl DisplayMode {
         })
     }
 
-    /// Face fill (see `Frame::viewport.w`), edge mode (see `Frame::edges.y`), or `None` for
-    /// no edges.
+    /// Face fill (`FILL_*`) and edge mode (`EDGES_*`, `None` for no edges), the lanes 1 and 2
+    /// of [`FrameUniform::modes`].
     fn fill_and_edges(self) -> (u32, Option<u32>) {
         use crate::layout::EDGES_HIDDEN_DASHED;
         use crate::layout::{FILL_BACKGROUND, FILL_NONE, FILL_SHADED};
@@ -550,7 +551,7 @@ fn frame_uniform(
     options: &FrameOptions,
     state: &ViewState,
     (w, h): (u32, u32),
-) -> Frame {
+) -> FrameUniform {
     let aspect = f64::from(w) / f64::from(h);
     let (fill, edge_mode) = options.mode.fill_and_edges();
     // Output pixels → target pixels (supersampling).
@@ -559,7 +560,7 @@ fn frame_uniform(
     let (planes, plane_normals) = section_planes(camera, rotation, state);
     // View space looks down −z; the world direction is the rotation's inverse (transpose).
     let forward = rotation.transpose() * glam::DVec3::NEG_Z;
-    Frame {
+    FrameUniform {
         view_proj: camera.view_projection_f32(aspect).to_cols_array_2d(),
         inv_proj: camera
             .projection_matrix(aspect)
@@ -672,7 +673,7 @@ struct Shading<'a> {
     targets: &'a VisibilityTargets,
     frame: &'a wgpu::Buffer,
     /// The frame buffer's content.
-    uniform: &'a Frame,
+    uniform: &'a FrameUniform,
     scene: &'a FrameScene<'a>,
     selection: &'a wgpu::Buffer,
     /// The light buffer and the lights in it (one placeholder when there are none).

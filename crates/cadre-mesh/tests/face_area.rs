@@ -8,7 +8,7 @@ use cadre_brep::measure::edge_properties;
 use cadre_brep::{Edge, EdgeId, FaceId, Model, StepIndex, Vertex, VertexId};
 use cadre_geom::curve::Curve;
 use cadre_geom::{Accuracy, Frame, Vec3};
-use cadre_mesh::measure::{face_area, mesh_area};
+use cadre_mesh::face_area::{face_area, mesh_area};
 use cadre_mesh::{MeshParams, mesh_model};
 use cadre_step::syntax::StepFile;
 use proptest::prelude::*;
