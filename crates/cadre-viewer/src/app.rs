@@ -15,7 +15,8 @@ use winit::window::{Window, WindowId};
 
 use crate::document::{Document, LoadStage};
 use crate::inspect::Picked;
-use crate::ui::{self, Action, Session, ViewInput};
+use crate::session::Session;
+use crate::ui::{self, Action, ViewInput};
 use crate::{ViewerError, ViewerOptions};
 
 /// Pixels of tolerance around the cursor for edges and vertices.

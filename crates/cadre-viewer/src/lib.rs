@@ -11,6 +11,7 @@ pub mod document;
 pub mod gizmo;
 pub mod inspect;
 pub mod navigation;
+mod session;
 mod ui;
 
 use std::path::PathBuf;

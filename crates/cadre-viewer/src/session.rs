@@ -1,0 +1,510 @@
+//! The viewer's state that the interface shows and edits: the open model, camera, display
+//! mode, visibility and colours, hover, selection, measurement tool, section planes and
+//! dialogs, with the operations on them that are not drawing (selection by click, isolate,
+//! hide, the renderer's view state), unit-tested here without a window.
+
+use std::path::PathBuf;
+
+use cadre_render::{DisplayMode, Pick};
+
+use crate::document::{Document, LoadStage};
+use crate::inspect::{self, Measurement, Picked, Tool};
+use crate::navigation::Navigator;
+
+/// Display modes by name, in the order the M key walks them.
+pub(crate) const DISPLAY_MODES: [(&str, DisplayMode); 5] = [
+    ("Shaded", DisplayMode::Shaded),
+    ("Shaded with edges", DisplayMode::ShadedEdges),
+    ("Wireframe", DisplayMode::Wireframe),
+    ("Hidden line", DisplayMode::HiddenLine),
+    ("X-ray", DisplayMode::XRay),
+];
+
+/// The viewer's state the interface shows and edits.
+pub(crate) struct Session {
+    /// The open model, once loaded.
+    pub doc: Option<Document>,
+    /// The camera and its gestures, once a model is open.
+    pub nav: Option<Navigator>,
+    /// How faces and edges are drawn.
+    pub mode: DisplayMode,
+    /// Per scene node: hidden by the user.
+    pub hidden: Vec<bool>,
+    /// Per instance: a colour (sRGB + opacity) the user gave it.
+    pub colours: Vec<Option<[f32; 4]>>,
+    /// What the cursor is over (answered a frame after the pointer moved).
+    pub hover: Option<Picked>,
+    /// Selected items, in the order picked.
+    pub selection: Vec<Picked>,
+    /// The measurement tool in use: clicks feed it instead of the selection.
+    pub tool: Option<Tool>,
+    /// Items picked for the tool so far.
+    pub tool_picks: Vec<Picked>,
+    /// Finished measurements, drawn as dimension lines.
+    pub measurements: Vec<Measurement>,
+    /// What the tool asks for, or its last result or error.
+    pub tool_message: Option<String>,
+    /// A model being loaded and its stage.
+    pub loading: Option<(PathBuf, LoadStage)>,
+    /// An error to show in a window until dismissed.
+    pub error: Option<String>,
+    /// The Open dialog is shown.
+    pub show_open: bool,
+    /// The Open dialog's path field.
+    pub open_path: String,
+    /// The Screenshot dialog is shown.
+    pub show_screenshot: bool,
+    /// The Screenshot dialog's size, pixels.
+    pub screenshot_size: [u32; 2],
+    /// The Screenshot dialog's file.
+    pub screenshot_path: String,
+    /// The model's warnings are shown.
+    pub show_warnings: bool,
+    /// The status bar's text.
+    pub status: String,
+    /// The last frame's time, milliseconds.
+    pub frame_ms: f64,
+    /// The 3D mouse's state, when one is connected.
+    pub spacemouse: Option<String>,
+    /// The 3D view's texture, drawn as the central panel's image.
+    pub view_texture: Option<egui::TextureId>,
+    /// Section planes (at most [`cadre_render::MAX_SECTIONS`]).
+    pub sections: Vec<Section>,
+    /// Text the model tree is filtered by (part names containing it).
+    pub tree_filter: String,
+    /// Properties rows of picked items, worked out once per item (exact areas and lengths
+    /// are integrals: not every frame).
+    pub properties: std::collections::HashMap<Pick, Vec<(String, String)>>,
+}
+
+/// A section plane as the user sets it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Section {
+    /// Whether it cuts.
+    pub enabled: bool,
+    /// Unit normal (world): the side it points to is cut away.
+    pub normal: glam::DVec3,
+    /// Position along the normal across the model's box, 0..1.
+    pub position: f64,
+}
+
+impl Section {
+    /// The plane across the model's box `lo`..`hi`.
+    pub fn plane(&self, lo: glam::DVec3, hi: glam::DVec3) -> cadre_render::SectionPlane {
+        // The box's extent along the normal.
+        let corners = (0..8).map(|i| {
+            glam::DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+            .dot(self.normal)
+        });
+        let (min, max) = corners.fold((f64::MAX, f64::MIN), |(a, b), d| (a.min(d), b.max(d)));
+        cadre_render::SectionPlane {
+            normal: self.normal,
+            offset: min + (max - min) * self.position.clamp(0.0, 1.0),
+        }
+    }
+}
+
+impl Session {
+    /// A session with no model, dialogs pointing at the current folder.
+    pub fn new() -> Session {
+        let cwd = std::env::current_dir().unwrap_or_default();
+        Session {
+            doc: None,
+            nav: None,
+            mode: DisplayMode::ShadedEdges,
+            hidden: Vec::new(),
+            colours: Vec::new(),
+            hover: None,
+            selection: Vec::new(),
+            tool: None,
+            tool_picks: Vec::new(),
+            measurements: Vec::new(),
+            tool_message: None,
+            loading: None,
+            error: None,
+            show_open: false,
+            open_path: cwd.display().to_string(),
+            show_screenshot: false,
+            screenshot_size: [3840, 2160],
+            screenshot_path: cwd.join("screenshot.png").display().to_string(),
+            show_warnings: false,
+            status: String::new(),
+            frame_ms: 0.0,
+            spacemouse: None,
+            view_texture: None,
+            sections: Vec::new(),
+            tree_filter: String::new(),
+            properties: std::collections::HashMap::new(),
+        }
+    }
+
+    /// A model replaced the last one: fresh styles, selection and camera.
+    pub fn set_document(&mut self, doc: Document, aspect: f64) {
+        let (lo, hi) = doc
+            .bounds
+            .unwrap_or((glam::DVec3::splat(-1.0), glam::DVec3::splat(1.0)));
+        self.nav = Some(Navigator::new(lo, hi, aspect));
+        self.hidden = vec![false; doc.scene.nodes.len()];
+        self.colours = vec![None; doc.instances.len()];
+        self.hover = None;
+        self.selection.clear();
+        self.tool_picks.clear();
+        self.measurements.clear();
+        self.sections.clear();
+        self.properties.clear();
+        self.status = format!(
+            "{}: {} parts, {} faces, loaded in {:.2} s",
+            doc.title(),
+            doc.instances.len(),
+            doc.model.faces.len(),
+            doc.load_seconds
+        );
+        self.doc = Some(doc);
+    }
+
+    /// The renderer's view state: visibility, colours, hover and selection.
+    pub fn view_state(&self) -> cadre_render::ViewState {
+        let Some(doc) = &self.doc else {
+            return cadre_render::ViewState::default();
+        };
+        let instances = doc
+            .instances
+            .iter()
+            .enumerate()
+            .map(|(i, info)| cadre_render::InstanceStyle {
+                visible: !doc.node_hidden(info.node, &self.hidden),
+                colour: self.colours.get(i).copied().flatten().map(|c| {
+                    let lin = |x: f32| egui::ecolor::linear_f32_from_gamma_u8((x * 255.0) as u8);
+                    [lin(c[0]), lin(c[1]), lin(c[2]), c[3]]
+                }),
+            })
+            .collect();
+        cadre_render::ViewState {
+            instances,
+            hover: self.hover.map(|h| h.pick),
+            selection: self
+                .selection
+                .iter()
+                .chain(&self.tool_picks)
+                .map(|p| p.pick)
+                .collect(),
+            sections: match doc.bounds {
+                Some((lo, hi)) => self
+                    .sections
+                    .iter()
+                    .filter(|s| s.enabled)
+                    .map(|s| s.plane(lo, hi))
+                    .collect(),
+                None => Vec::new(),
+            },
+        }
+    }
+
+    /// Handles a pick from a click: the measurement tool takes it, else the selection.
+    pub fn clicked(&mut self, picked: Option<Picked>, add: bool) {
+        if let Some(tool) = self.tool {
+            let Some(p) = picked else { return };
+            self.tool_picks.push(p);
+            if self.tool_picks.len() >= tool.picks() {
+                let picks = std::mem::take(&mut self.tool_picks);
+                if let Some(doc) = &self.doc {
+                    match inspect::measure(doc, tool, &picks) {
+                        Ok(m) => {
+                            self.tool_message = Some(m.text.clone());
+                            self.measurements.push(m);
+                        }
+                        Err(e) => self.tool_message = Some(e),
+                    }
+                }
+            }
+            return;
+        }
+        match (picked, add) {
+            (Some(p), true) => {
+                if let Some(i) = self.selection.iter().position(|s| s.pick == p.pick) {
+                    self.selection.remove(i);
+                } else {
+                    self.selection.push(p);
+                }
+            }
+            (Some(p), false) => self.selection = vec![p],
+            (None, false) => self.selection.clear(),
+            (None, true) => {}
+        }
+    }
+
+    /// Hides every instance but the selected parts'.
+    pub fn isolate(&mut self) {
+        let Some(doc) = &self.doc else { return };
+        let keep: Vec<u32> = self.selection.iter().map(|p| p.pick.instance()).collect();
+        if keep.is_empty() {
+            return;
+        }
+        for (i, info) in doc.instances.iter().enumerate() {
+            if let Some(h) = self.hidden.get_mut(info.node) {
+                *h = !keep.contains(&(i as u32));
+            }
+        }
+        // Ancestors of kept parts must show.
+        for &k in &keep {
+            let mut n = doc.instances.get(k as usize).map(|i| i.node);
+            while let Some(node) = n {
+                if let Some(h) = self.hidden.get_mut(node) {
+                    *h = false;
+                }
+                n = doc.parents.get(node).copied().flatten();
+            }
+        }
+    }
+
+    /// Takes `tool` for the next clicks (the picks so far are dropped).
+    pub fn choose_tool(&mut self, tool: Tool) {
+        self.tool = Some(tool);
+        self.tool_picks.clear();
+        self.tool_message = Some(format!("{}: pick {} item(s)", tool.name(), tool.picks()));
+    }
+
+    /// Takes `tool`, or stops measuring when it is the one in use.
+    pub fn toggle_tool(&mut self, tool: Tool) {
+        if self.tool == Some(tool) {
+            self.stop_measuring();
+        } else {
+            self.choose_tool(tool);
+        }
+    }
+
+    /// Clicks select again; finished measurements stay.
+    pub fn stop_measuring(&mut self) {
+        self.tool = None;
+        self.tool_picks.clear();
+        self.tool_message = None;
+    }
+
+    /// Shows every node again.
+    pub fn show_all(&mut self) {
+        self.hidden.iter_mut().for_each(|h| *h = false);
+    }
+
+    /// Hides the parts of the selected items and clears the selection.
+    pub fn hide_selected(&mut self) {
+        let Some(doc) = &self.doc else { return };
+        for p in &self.selection {
+            if let Some(info) = doc.instances.get(p.pick.instance() as usize)
+                && let Some(h) = self.hidden.get_mut(info.node)
+            {
+                *h = true;
+            }
+        }
+        self.selection.clear();
+    }
+
+    /// A section across the middle of the model, normal to y, or none when any exists.
+    pub fn toggle_quick_section(&mut self) {
+        if self.sections.is_empty() {
+            self.sections.push(Section {
+                enabled: true,
+                normal: glam::DVec3::Y,
+                position: 0.5,
+            });
+        } else {
+            self.sections.clear();
+        }
+    }
+
+    /// The next display mode of [`DISPLAY_MODES`], round.
+    pub fn next_mode(&mut self) {
+        let k = DISPLAY_MODES
+            .iter()
+            .position(|(_, m)| *m == self.mode)
+            .unwrap_or(0);
+        self.mode = DISPLAY_MODES[(k + 1) % DISPLAY_MODES.len()].1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    /// The bundled pin assembly.
+    fn document() -> Document {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pin-assembly.step");
+        Document::load(&path, &|_| {}).expect("the example loads")
+    }
+
+    /// A session with the pin assembly open.
+    fn session() -> Session {
+        let mut s = Session::new();
+        s.set_document(document(), 1.5);
+        s
+    }
+
+    fn face(instance: u32, face: u32) -> Picked {
+        Picked {
+            pick: Pick::Face { instance, face },
+            point: glam::DVec3::ZERO,
+        }
+    }
+
+    #[test]
+    fn a_click_selects_ctrl_click_toggles_and_a_click_on_nothing_clears() {
+        let mut s = session();
+        s.clicked(Some(face(0, 1)), false);
+        s.clicked(Some(face(1, 2)), true);
+        assert_eq!(s.selection, vec![face(0, 1), face(1, 2)]);
+        s.clicked(Some(face(0, 1)), true);
+        assert_eq!(s.selection, vec![face(1, 2)]);
+        s.clicked(None, true);
+        assert_eq!(s.selection, vec![face(1, 2)], "ctrl-click on nothing keeps");
+        s.clicked(Some(face(0, 3)), false);
+        assert_eq!(s.selection, vec![face(0, 3)]);
+        s.clicked(None, false);
+        assert!(s.selection.is_empty());
+    }
+
+    #[test]
+    fn a_tool_takes_the_clicks_and_measures_when_it_has_enough() {
+        let mut s = session();
+        s.clicked(Some(face(0, 1)), false);
+        s.choose_tool(Tool::Distance);
+        let a = Picked {
+            pick: Pick::Part { instance: 0 },
+            point: glam::DVec3::ZERO,
+        };
+        let b = Picked {
+            point: glam::DVec3::new(3.0, 4.0, 0.0),
+            ..a
+        };
+        s.clicked(Some(a), false);
+        assert_eq!(s.tool_picks.len(), 1);
+        assert!(s.measurements.is_empty());
+        s.clicked(None, false);
+        assert_eq!(s.tool_picks.len(), 1, "a click on nothing is no pick");
+        s.clicked(Some(b), false);
+        assert!(s.tool_picks.is_empty());
+        assert_eq!(s.measurements.len(), 1);
+        assert!((s.measurements[0].value - 5.0).abs() < 1e-12);
+        assert_eq!(s.selection, vec![face(0, 1)], "the selection is left alone");
+        // The tool's picks show as selected in the view state.
+        s.clicked(Some(a), false);
+        assert_eq!(s.view_state().selection.len(), 2);
+        s.toggle_tool(Tool::Distance);
+        assert_eq!((s.tool, s.tool_picks.len()), (None, 0));
+    }
+
+    #[test]
+    fn isolate_hides_every_other_part_and_keeps_the_kept_parts_ancestors() {
+        let mut s = session();
+        let doc = document();
+        assert!(doc.instances.len() >= 2);
+        s.selection = vec![face(1, 0)];
+        s.isolate();
+        let state = s.view_state();
+        let visible: Vec<bool> = state.instances.iter().map(|i| i.visible).collect();
+        assert!(visible[1]);
+        assert!(
+            visible.iter().enumerate().all(|(i, v)| *v == (i == 1)),
+            "{visible:?}"
+        );
+        let mut n = doc.parents[doc.instances[1].node];
+        while let Some(node) = n {
+            assert!(!s.hidden[node], "ancestor {node} hidden");
+            n = doc.parents[node];
+        }
+        // Negative control: nothing selected isolates nothing.
+        s.show_all();
+        s.selection.clear();
+        s.isolate();
+        assert!(s.view_state().instances.iter().all(|i| i.visible));
+    }
+
+    #[test]
+    fn hiding_the_selection_hides_its_parts_and_clears_it() {
+        let mut s = session();
+        s.selection = vec![face(0, 0)];
+        s.hide_selected();
+        assert!(s.selection.is_empty());
+        let state = s.view_state();
+        assert!(!state.instances[0].visible);
+        assert!(state.instances[1..].iter().all(|i| i.visible));
+        s.show_all();
+        assert!(s.view_state().instances.iter().all(|i| i.visible));
+    }
+
+    #[test]
+    fn the_view_state_carries_colours_hover_and_enabled_sections() {
+        let mut s = session();
+        s.colours[0] = Some([1.0, 0.0, 0.0, 0.5]);
+        s.hover = Some(face(0, 2));
+        s.toggle_quick_section();
+        s.sections.push(Section {
+            enabled: false,
+            normal: glam::DVec3::X,
+            position: 0.1,
+        });
+        let state = s.view_state();
+        let colour = state.instances[0].colour.expect("colour");
+        assert!((colour[0] - 1.0).abs() < 1e-6 && colour[1] == 0.0 && colour[3] == 0.5);
+        assert_eq!(state.instances[1].colour, None);
+        assert_eq!(state.hover, Some(face(0, 2).pick));
+        assert_eq!(state.sections.len(), 1, "the disabled plane does not cut");
+        // The quick section halves the model's box along y.
+        let (lo, hi) = s.doc.as_ref().unwrap().bounds.unwrap();
+        let plane = state.sections[0];
+        assert_eq!(plane.normal, glam::DVec3::Y);
+        assert!((plane.offset - 0.5 * (lo.y + hi.y)).abs() < 1e-9 * (hi - lo).length());
+        s.toggle_quick_section();
+        assert!(s.view_state().sections.is_empty());
+    }
+
+    #[test]
+    fn a_section_spans_the_box_along_its_normal() {
+        let (lo, hi) = (
+            glam::DVec3::new(-1.0, 0.0, 0.0),
+            glam::DVec3::new(3.0, 2.0, 1.0),
+        );
+        let mut section = Section {
+            enabled: true,
+            normal: glam::DVec3::new(1.0, 1.0, 0.0).normalize(),
+            position: 0.0,
+        };
+        let at = |s: &Section| s.plane(lo, hi).offset;
+        let k = std::f64::consts::FRAC_1_SQRT_2;
+        assert!((at(&section) + k).abs() < 1e-12);
+        section.position = 1.0;
+        assert!((at(&section) - 5.0 * k).abs() < 1e-12);
+        section.position = 7.0;
+        assert!((at(&section) - 5.0 * k).abs() < 1e-12, "clamped");
+    }
+
+    #[test]
+    fn the_mode_key_walks_every_mode_round() {
+        let mut s = Session::new();
+        let start = s.mode;
+        let mut seen = vec![start];
+        for _ in 1..DISPLAY_MODES.len() {
+            s.next_mode();
+            seen.push(s.mode);
+        }
+        s.next_mode();
+        assert_eq!(s.mode, start);
+        seen.sort_by_key(|m| format!("{m:?}"));
+        seen.dedup();
+        assert_eq!(seen.len(), DISPLAY_MODES.len());
+    }
+
+    #[test]
+    fn a_new_document_clears_the_last_ones_state() {
+        let mut s = session();
+        s.selection = vec![face(0, 0)];
+        s.toggle_quick_section();
+        s.properties.insert(face(0, 0).pick, Vec::new());
+        s.set_document(document(), 1.0);
+        assert!(s.selection.is_empty() && s.sections.is_empty() && s.properties.is_empty());
+        assert!(s.status.contains("pin-assembly.step"), "{}", s.status);
+    }
+}

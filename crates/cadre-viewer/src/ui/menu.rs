@@ -1,0 +1,84 @@
+//! The menu bar: File, View (presets, fits, projection, orbit style), Display, Measure.
+
+use cadre_render::ViewPreset;
+
+use super::Action;
+use crate::inspect::Tool;
+use crate::navigation::OrbitStyle;
+use crate::session::{DISPLAY_MODES, Session};
+
+/// The menu bar; returns its rectangle.
+pub(super) fn menu_bar(
+    ui: &mut egui::Ui,
+    s: &mut Session,
+    actions: &mut Vec<Action>,
+) -> egui::Rect {
+    egui::Panel::top("menu")
+        .show(ui, |ui| {
+            egui::MenuBar::new().ui(ui, |ui| {
+                ui.menu_button("File", |ui| {
+                    if ui.button("Open…  (Ctrl+O)").clicked() {
+                        s.show_open = true;
+                    }
+                    if ui.button("Screenshot…  (F12: quick)").clicked() {
+                        s.show_screenshot = true;
+                    }
+                    if ui.button("Quit").clicked() {
+                        actions.push(Action::Quit);
+                    }
+                });
+                ui.menu_button("View", |ui| {
+                    for (name, preset, key) in PRESETS {
+                        if ui.button(format!("{name}  ({key})")).clicked() {
+                            actions.push(Action::Preset(preset));
+                        }
+                    }
+                    ui.separator();
+                    if ui.button("Fit all  (F)").clicked() {
+                        actions.push(Action::FitAll);
+                    }
+                    if ui.button("Fit selection  (Shift+F)").clicked() {
+                        actions.push(Action::FitSelection);
+                    }
+                    if let Some(nav) = &mut s.nav {
+                        ui.separator();
+                        ui.checkbox(&mut nav.orthographic, "Orthographic  (O)");
+                        ui.radio_value(&mut nav.style, OrbitStyle::Turntable, "Turntable orbit");
+                        ui.radio_value(&mut nav.style, OrbitStyle::Trackball, "Trackball orbit");
+                    }
+                });
+                ui.menu_button("Display", |ui| {
+                    for (name, mode) in DISPLAY_MODES {
+                        ui.radio_value(&mut s.mode, mode, name);
+                    }
+                });
+                ui.menu_button("Measure", |ui| {
+                    ui.label("Keys: D distance, L edge length, R radius, A angle");
+                    for tool in Tool::ALL {
+                        if ui.radio(s.tool == Some(tool), tool.name()).clicked() {
+                            s.choose_tool(tool);
+                        }
+                    }
+                    if ui.button("Stop measuring  (Esc)").clicked() {
+                        s.stop_measuring();
+                    }
+                    if ui.button("Clear measurements").clicked() {
+                        s.measurements.clear();
+                    }
+                });
+            });
+        })
+        .response
+        .rect
+}
+
+/// View presets with their keys.
+const PRESETS: [(&str, ViewPreset, &str); 7] = [
+    ("Iso", ViewPreset::Iso, "0"),
+    ("Front", ViewPreset::Front, "1"),
+    ("Back", ViewPreset::Back, "2"),
+    ("Left", ViewPreset::Left, "3"),
+    ("Right", ViewPreset::Right, "4"),
+    ("Top", ViewPreset::Top, "5"),
+    ("Bottom", ViewPreset::Bottom, "6"),
+];
