@@ -1,6 +1,6 @@
 //! Analytic primitives: spheres and rectangles drawn by ray casting each pixel (the analytic
 //! surface back-end, `passes/visibility/analytic`), in the same visibility buffer as the
-//! meshes. They are the second back-end that proves the seam (issue 14); exact quadrics cut
+//! meshes. They are the second back-end, proving that several share the buffer; exact quadrics cut
 //! by planes (seed 001) and the analytic faces of a B-Rep grow from them.
 
 use cadre_geom::Frame;

@@ -1,6 +1,6 @@
 //! How many times over a frame's instances cover the image, estimated before drawing from
 //! each instance's bounding sphere: the fill work a frame would do. Six assembly levels of ten
-//! uses all shifted along one axis (issue 13's `wide6.step`) pile 10⁶ cubes into the same
+//! uses all shifted along one axis pile 10⁶ cubes into the same
 //! pixels, about 10⁴ times over the whole image: hours on a software rasterizer, whatever the
 //! instancing. Real assemblies cover the image a few to a few hundred times.
 

@@ -225,7 +225,7 @@ pub const DRAW_CLOSED: u32 = 1;
 pub const DRAW_INSIDE_OUT: u32 = 2;
 
 /// A placement below a draw record: instances of a shared sub-assembly drawn by one record
-/// (issue 13: 10⁶ placed cubes as 10³ records × 10³ locals, not 10⁶ records). A record's
+/// (10⁶ placed cubes of six levels of ten uses are 10³ records × 10³ locals, not 10⁶ records). A record's
 /// instance `j` is placed by `record.model × local.model`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]

@@ -7,7 +7,7 @@
 //! a click waits for it ([`Renderer::pick`]).
 //!
 //! On lavapipe at 1.1 M triangles (100 instances with edges) the full-size pass and two
-//! blocking readbacks took ≈ 440 ms per pointer move (BENCHMARKS.md, issue 14).
+//! blocking readbacks took ≈ 440 ms per pointer move (BENCHMARKS.md, "Picking and the viewer's frame").
 
 use glam::{DMat4, DVec3, DVec4};
 

@@ -5,8 +5,7 @@
 //! placed mesh, as before). A scene whose instances outnumber [`FLAT_LIMIT`] is cut where a
 //! shared node's subtree places at most [`MAX_LOCALS_PER_NODE`] meshes: that subtree is
 //! expanded once into local lists (relative to the node's parent) and every visit of the node
-//! is one run per mesh below it. Six assembly levels of ten uses (10⁶ cubes, issue 13's
-//! `wide6.step`) become 10³ runs over 10 lists of 10³ locals, where one record per instance
+//! is one run per mesh below it. Six assembly levels of ten uses (10⁶ cubes) become 10³ runs over 10 lists of 10³ locals, where one record per instance
 //! needed 128 MB on the GPU and 2.4 GB on the CPU to build.
 
 use glam::{DAffine3, DMat3};

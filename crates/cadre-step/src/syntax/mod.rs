@@ -5,7 +5,7 @@
 //! keyword) rather than a tree of every parameter, so memory stays a small multiple of the file
 //! size; [`StepFile::instance`] decodes one instance's parameters when the mapper asks for it.
 //!
-//! CONTRACT (implemented by the parser work; the mapper relies on exactly this API):
+//! The API the mapper relies on:
 //! - `StepFile::parse(bytes: Vec<u8>) -> Result<StepFile, ParseError>`: fatal only when the
 //!   input is not an exchange structure at all (no `ISO-10303-21;`, no DATA section). Every
 //!   other problem (bad instance, truncated file, duplicate id, …) becomes a [`Diagnostic`] and

@@ -75,8 +75,8 @@ pub fn run(args: &MeshArgs) -> Result<()> {
         return dump_trim(model, id, &params);
     }
     // An export expands the assembly into one node per instance: refused before meshing when
-    // that is more than a scene holds (wide6.step of issue 13, 6.2·10⁶ instances, took
-    // 2.45 GB and was cut silently at 4·10⁶ nodes).
+    // that is more than a scene holds (an assembly of 6.2·10⁶ instances took 2.45 GB and was
+    // cut silently at 4·10⁶ nodes).
     if args.output.is_some() {
         crate::load::check_scene_nodes(
             model,

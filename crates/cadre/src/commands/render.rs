@@ -152,8 +152,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         return render_folder(&gpu, &renderer, args);
     }
     // One file: the device and its pipelines are made while the file loads and meshes, not
-    // before (on lavapipe they take about 0.08 s, as long as loading issue 13's 6.5 MB
-    // polyedge.step).
+    // before (on lavapipe they take about 0.08 s, as long as loading a 6.5 MB file of
+    // polyline edges).
     std::thread::scope(|threads| {
         let opening = threads.spawn(open_gpu);
         let meshed = mesh_file(&args.input, args);
