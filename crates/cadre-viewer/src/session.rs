@@ -284,6 +284,16 @@ impl Session {
         self.tool_message = None;
     }
 
+    /// Selects the whole part of instance `instance` alone (from the model tree).
+    pub fn select_part(&mut self, instance: usize) {
+        self.selection = vec![Picked {
+            pick: Pick::Part {
+                instance: instance as u32,
+            },
+            point: glam::DVec3::ZERO,
+        }];
+    }
+
     /// Shows every node again.
     pub fn show_all(&mut self) {
         self.hidden.iter_mut().for_each(|h| *h = false);
@@ -364,6 +374,9 @@ mod tests {
         assert_eq!(s.selection, vec![face(0, 3)]);
         s.clicked(None, false);
         assert!(s.selection.is_empty());
+        s.select_part(1);
+        assert_eq!(s.selection.len(), 1);
+        assert_eq!(s.selection[0].pick, Pick::Part { instance: 1 });
     }
 
     #[test]

@@ -56,7 +56,6 @@ pub(super) fn overlay(
         }
     }
     // Dimension lines.
-    let ppp = ui.pixels_per_point() as f64;
     let (w, h) = ((rect.width() as f64), (rect.height() as f64));
     let view_proj = camera.projection_matrix(aspect) * camera.view_rotation();
     let to_screen = |p: glam::DVec3| {
@@ -69,7 +68,6 @@ pub(super) fn overlay(
             )
         })
     };
-    let _ = ppp;
     for m in &s.measurements {
         if let [a, b] = m.points[..]
             && let (Some(pa), Some(pb)) = (to_screen(a), to_screen(b))

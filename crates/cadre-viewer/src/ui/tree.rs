@@ -2,7 +2,6 @@
 
 use cadre_render::Pick;
 
-use crate::inspect::Picked;
 use crate::session::Session;
 
 /// The model tree: show all, isolate, a name filter, and a row per node with its visibility.
@@ -62,10 +61,7 @@ pub(super) fn tree_panel(ui: &mut egui::Ui, s: &mut Session) {
                 let pick = Pick::Part { instance: i as u32 };
                 let selected = s.selection.iter().any(|p| p.pick == pick);
                 if ui.selectable_label(selected, name).clicked() {
-                    s.selection = vec![Picked {
-                        pick,
-                        point: glam::DVec3::ZERO,
-                    }];
+                    s.select_part(i);
                 }
             });
         }
@@ -101,10 +97,7 @@ fn node_ui(ui: &mut egui::Ui, s: &mut Session, node: usize, depth: usize) {
         if ui.selectable_label(selected, &name).clicked()
             && let Some(i) = instance
         {
-            s.selection = vec![Picked {
-                pick: Pick::Part { instance: i as u32 },
-                point: glam::DVec3::ZERO,
-            }];
+            s.select_part(i);
         }
     };
     if children.is_empty() {
