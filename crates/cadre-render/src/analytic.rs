@@ -36,7 +36,7 @@ pub enum AnalyticShape {
 }
 
 /// A sphere or rectangle drawn exactly, by ray casting, with the meshes of a scene
-/// ([`crate::Renderer::prepare_with_primitives`]). It is an instance of its own: the
+/// ([`crate::RenderScene::primitives`]). It is an instance of its own: the
 /// visibility buffer gives it `face_id` and its instance number
 /// ([`crate::PreparedScene::primitive_instance`]).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -10,7 +10,7 @@ use crate::Camera;
 use crate::camera::Projection;
 
 /// Most times over a frame's instances may cover the image (estimated by
-/// [`ImageCoverage`]); past it the frame is refused.
+/// `ImageCoverage`); past it the frame is refused.
 pub const MAX_IMAGE_COVERAGE: f64 = 1000.0;
 
 /// A sum of image fractions covered by bounding spheres seen by one camera.

@@ -2,7 +2,7 @@
 //! draw records that place every instance relative to the camera, with the view's styles
 //! ([`FrameScene`]).
 
-use cadre_mesh::export::{Scene, SceneMesh};
+use cadre_mesh::export::SceneMesh;
 use glam::{DAffine3, DMat3, DVec3};
 use wgpu::util::DeviceExt;
 
@@ -238,20 +238,18 @@ pub struct PreparedScene {
     /// material at `primitive_materials + k`).
     primitives: Vec<AnalyticPrimitive>,
     primitive_materials: u32,
-    /// What the face, edge and vertex ids stand for (model entities, STEP ids).
-    ids: cadre_mesh::export::SceneIds,
 }
 
 impl PreparedScene {
-    /// Uploads `scene`'s geometry.
-    /// Uploads `scene`'s geometry; past `flat_limit` instances its placements are factored
-    /// ([`Placements`]).
+    /// Uploads `scene`'s geometry: its meshes' and its primitives'; past `flat_limit`
+    /// instances its placements are factored ([`Placements`]).
     pub(crate) fn new(
         device: &wgpu::Device,
-        scene: &Scene,
-        primitives: &[AnalyticPrimitive],
+        scene: &crate::RenderScene,
         flat_limit: usize,
     ) -> PreparedScene {
+        let primitives = &scene.primitives;
+        let scene = &scene.assembly;
         let mut segments: Vec<Segment> = Vec::new();
         let mut meshes = Vec::with_capacity(scene.meshes.len());
         let mut vertices = Vec::with_capacity(scene.meshes.len());
@@ -358,16 +356,9 @@ impl PreparedScene {
             meshes,
             materials,
             placements,
-            primitives: primitives.to_vec(),
+            primitives: primitives.clone(),
             primitive_materials,
-            ids: scene.ids.clone(),
         }
-    }
-
-    /// What the ids in the visibility buffer and picks stand for: the model's entities and
-    /// their STEP ids.
-    pub fn ids(&self) -> &cadre_mesh::export::SceneIds {
-        &self.ids
     }
 
     /// The instance number of analytic primitive `k` (after every mesh instance), as the

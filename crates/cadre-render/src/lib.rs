@@ -3,12 +3,14 @@
 //! One renderer, several surface back-ends (see `docs/architecture.md`): every back-end writes
 //! the same visibility buffer (reverse-Z depth, normal, ids, (u, v)), and the later passes
 //! (shading, edges, silhouettes, section caps, picking) read only that buffer. Two back-ends
-//! exist: tessellated meshes ([`cadre_mesh::export::Scene`]) and analytic primitives ray cast
-//! per pixel ([`AnalyticPrimitive`]).
+//! exist: tessellated meshes and analytic primitives ray cast per pixel
+//! ([`AnalyticPrimitive`]), both in a [`RenderScene`] built from the model.
 //!
 //! Rendering is headless first: [`Gpu::headless`] finds a native GPU or Mesa's software
-//! drivers (Vulkan lavapipe, GL llvmpipe through EGL) and [`Renderer::render`] returns an
-//! image. Geometry is placed relative to the camera in `f64` before it is sent to the GPU as
+//! drivers (Vulkan lavapipe, GL llvmpipe through EGL); [`Renderer::prepare`] uploads a
+//! scene once, [`Renderer::render`] returns an image of it, [`Renderer::render_ids`] its
+//! visibility buffer's ids, and [`Renderer::draw`] draws a viewer's frame into a
+//! [`Viewport`] and a window's (or the caller's) texture, for [`Renderer::pick`]. Geometry is placed relative to the camera in `f64` before it is sent to the GPU as
 //! `f32`, so a part 10⁶ mm from the origin renders like one at the origin.
 //! Up to three [`SectionPlane`]s of a [`ViewState`] cut the model; closed solids show hatched
 //! caps where they are cut.
@@ -29,6 +31,7 @@ mod passes;
 mod pick;
 mod placements;
 pub mod raycast;
+mod render_scene;
 mod renderer;
 mod smooth;
 mod solid;
@@ -45,6 +48,7 @@ pub use gpu_scene::{MAX_FRAME_TRIANGLES, PreparedScene};
 pub use lights::Light;
 pub use pick::PendingPick;
 pub use placements::{FLAT_LIMIT, MAX_LOCALS_PER_NODE};
+pub use render_scene::{RenderFace, RenderScene};
 pub use renderer::{DisplayMode, FrameOptions, Renderer};
 pub use smooth::smooth_edges;
 pub use view::{

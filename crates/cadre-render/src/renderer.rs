@@ -1,6 +1,5 @@
 //! A frame: the passes in order, into offscreen targets, read back as an image.
 
-use cadre_mesh::export::Scene;
 use image::RgbaImage;
 
 use crate::frame_buffers::{BindCache, FrameBuffers};
@@ -17,7 +16,7 @@ use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
 use crate::passes::xray::XrayPass;
 use crate::view::{MAX_HIGHLIGHTED, MAX_SECTIONS, ViewState};
 use crate::viewport::{LastFrame, Viewport};
-use crate::{Camera, Gpu, Light, RenderError};
+use crate::{Camera, Gpu, Light, RenderError, RenderScene};
 
 /// How faces and edges are drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -149,22 +148,10 @@ impl Renderer {
         }
     }
 
-    /// Uploads `scene`'s geometry once, for any number of frames ([`Renderer::draw`],
-    /// [`Renderer::render_prepared`]).
-    pub fn prepare(&self, gpu: &Gpu, scene: &Scene) -> PreparedScene {
-        PreparedScene::new(&gpu.device, scene, &[], crate::FLAT_LIMIT)
-    }
-
-    /// [`Renderer::prepare`] with analytic primitives drawn by ray casting beside the
-    /// scene's meshes, in the same visibility buffer (instances after the meshes':
-    /// [`PreparedScene::primitive_instance`]).
-    pub fn prepare_with_primitives(
-        &self,
-        gpu: &Gpu,
-        scene: &Scene,
-        primitives: &[crate::AnalyticPrimitive],
-    ) -> PreparedScene {
-        PreparedScene::new(&gpu.device, scene, primitives, crate::FLAT_LIMIT)
+    /// Uploads `scene`'s geometry (meshes and analytic primitives) once, for any number of
+    /// frames ([`Renderer::draw`], [`Renderer::render`], [`Renderer::render_ids`]).
+    pub fn prepare(&self, gpu: &Gpu, scene: &RenderScene) -> PreparedScene {
+        PreparedScene::new(&gpu.device, scene, crate::FLAT_LIMIT)
     }
 
     /// This renderer with its analytic back-end writing each proxy's depth instead of the
@@ -182,27 +169,16 @@ impl Renderer {
     pub fn prepare_with_flat_limit(
         &self,
         gpu: &Gpu,
-        scene: &Scene,
+        scene: &RenderScene,
         flat_limit: usize,
     ) -> PreparedScene {
-        PreparedScene::new(&gpu.device, scene, &[], flat_limit)
+        PreparedScene::new(&gpu.device, scene, flat_limit)
     }
 
-    /// Renders `scene` seen by `camera` into an sRGB image.
+    /// Renders a prepared scene seen by `camera` in a view's state (colours, hidden parts,
+    /// highlights, sections) into an sRGB image of the options' size: a thumbnail, an export,
+    /// a viewer's screenshot at any size, independent of its window.
     pub fn render(
-        &self,
-        gpu: &Gpu,
-        scene: &Scene,
-        camera: &Camera,
-        options: &FrameOptions,
-    ) -> Result<RgbaImage, RenderError> {
-        let prepared = self.prepare(gpu, scene);
-        self.render_prepared(gpu, &prepared, camera, options, &ViewState::default())
-    }
-
-    /// Renders a prepared scene in a view's state (colours, hidden parts, highlights) into
-    /// an sRGB image: a viewer's screenshot at any size, independent of its window.
-    pub fn render_prepared(
         &self,
         gpu: &Gpu,
         scene: &PreparedScene,
@@ -242,22 +218,10 @@ impl Renderer {
     }
 
     /// The visibility buffer's ids at every pixel (no supersampling), row by row: face
-    /// id, instance + 1 (0 = background), material index, depth (`f32` bits).
+    /// id, instance + 1 (0 = background), material index, depth (`f32` bits). Section caps
+    /// carry [`crate::SECTION_CAP`] and their plane in the material channel
+    /// ([`crate::section_cap`]) and the cap's own depth.
     pub fn render_ids(
-        &self,
-        gpu: &Gpu,
-        scene: &Scene,
-        camera: &Camera,
-        options: &FrameOptions,
-    ) -> Result<Vec<[u32; 4]>, RenderError> {
-        let prepared = self.prepare(gpu, scene);
-        self.render_ids_prepared(gpu, &prepared, camera, options, &ViewState::default())
-    }
-
-    /// [`Renderer::render_ids`] of a prepared scene in a view's state (hidden parts, section
-    /// planes): section caps carry [`crate::SECTION_CAP`] and their plane in the material
-    /// channel ([`crate::section_cap`]) and the cap's own depth.
-    pub fn render_ids_prepared(
         &self,
         gpu: &Gpu,
         scene: &PreparedScene,
@@ -281,27 +245,16 @@ impl Renderer {
     pub fn render_uv(
         &self,
         gpu: &Gpu,
-        scene: &Scene,
-        camera: &Camera,
-        options: &FrameOptions,
-    ) -> Result<Vec<[f32; 2]>, RenderError> {
-        let prepared = self.prepare(gpu, scene);
-        self.render_uv_prepared(gpu, &prepared, camera, options)
-    }
-
-    /// [`Renderer::render_uv`] of a prepared scene.
-    pub fn render_uv_prepared(
-        &self,
-        gpu: &Gpu,
         scene: &PreparedScene,
         camera: &Camera,
         options: &FrameOptions,
+        state: &ViewState,
     ) -> Result<Vec<[f32; 2]>, RenderError> {
         let frame = FrameInput {
             scene,
             camera,
             options,
-            state: &ViewState::default(),
+            state,
             size: (options.width, options.height),
         };
         let bytes = self.run(gpu, &frame, Readback::Uv, None)?;
@@ -312,32 +265,9 @@ impl Renderer {
             .collect())
     }
 
-    /// Renders into `target` (a window surface's texture, of `options.width` ×
-    /// `options.height` and of this renderer's format; no supersampling) and submits the work.
-    pub fn render_into(
-        &self,
-        gpu: &Gpu,
-        scene: &Scene,
-        camera: &Camera,
-        options: &FrameOptions,
-        target: &wgpu::TextureView,
-    ) -> Result<(), RenderError> {
-        let prepared = self.prepare(gpu, scene);
-        let mut viewport = Viewport::new(gpu, options.width, options.height);
-        self.draw(
-            gpu,
-            &mut viewport,
-            &prepared,
-            camera,
-            options,
-            &ViewState::default(),
-            target,
-        )
-    }
-
-    /// A viewer's frame: draws the prepared scene in `state` into `target` (a surface's
-    /// texture of this renderer's format, of the viewport's size; no supersampling) and
-    /// submits the work. The viewport keeps the frame's visibility buffer for
+    /// A viewer's frame: draws the prepared scene in `state` into `target` (a window
+    /// surface's texture, or any texture of the caller's, of this renderer's format and of
+    /// the viewport's size; no supersampling) and submits the work. The viewport keeps the frame's visibility buffer for
     /// [`Renderer::pick`] and reuses its targets while the size stays.
     #[allow(clippy::too_many_arguments)]
     pub fn draw(
@@ -925,8 +855,8 @@ mod tests {
         assert!((srgb_to_linear(linear_to_srgb(0.3)) - 0.3).abs() < 1e-6);
     }
     /// A one-triangle scene: enough for every pass to bind its buffers.
-    fn triangle() -> Scene {
-        use cadre_mesh::export::{Primitive, SceneMesh, SceneNode};
+    fn triangle() -> cadre_mesh::export::Scene {
+        use cadre_mesh::export::{Primitive, Scene, SceneMesh, SceneNode};
         Scene {
             meshes: vec![SceneMesh {
                 positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
@@ -954,7 +884,7 @@ mod tests {
             return;
         };
         let renderer = Renderer::new(&gpu).expect("pipelines");
-        let prepared = renderer.prepare(&gpu, &triangle());
+        let prepared = renderer.prepare(&gpu, &RenderScene::from_assembly(triangle()));
         let mut viewport = Viewport::new(&gpu, 32, 24);
         let target = gpu
             .device

@@ -24,7 +24,7 @@ impl Default for InstanceStyle {
 
 /// Something a user can point at: a B-Rep face, edge or vertex of one instance (by the
 /// scene's dense model id, the ids the visibility and pick buffers hold:
-/// [`cadre_mesh::export::SceneIds`] gives the model entity and its STEP id), or a whole
+/// [`crate::RenderScene::face`] gives the model entity, the model its STEP id), or a whole
 /// instance.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Pick {

@@ -7,8 +7,8 @@ mod common;
 use cadre_geom::Frame;
 use cadre_render::raycast::RayCaster;
 use cadre_render::{
-    AnalyticPrimitive, AnalyticShape, Camera, FrameOptions, PreparedScene, Renderer, SECTION_CAP,
-    SectionPlane, ViewPreset, ViewState, scene_bounds,
+    AnalyticPrimitive, AnalyticShape, Camera, FrameOptions, PreparedScene, RenderScene, Renderer,
+    SECTION_CAP, SectionPlane, ViewPreset, ViewState,
 };
 use common::{gpu, model_and_scene_at};
 use glam::DVec3;
@@ -68,6 +68,7 @@ fn primitives(lo: DVec3, hi: DVec3) -> Vec<AnalyticPrimitive> {
 /// The mixed scene: the fixture's model meshed, the primitives ray cast; the oracle casts
 /// both exactly.
 struct Mixed {
+    scene: RenderScene,
     prepared: PreparedScene,
     caster: RayCaster,
     lo: DVec3,
@@ -84,7 +85,7 @@ impl Mixed {
         } else if g[1] > self.prepared.primitive_instance(0) {
             u64::from(g[0])
         } else {
-            self.prepared.ids().face_step_id(g[0])
+            self.scene.face_step_id(g[0])
         }
     }
 }
@@ -93,20 +94,23 @@ fn mixed(renderer: &Renderer, gpu: &cadre_render::Gpu) -> Mixed {
     // Meshed finely: the comparison is about where the two back-ends meet, not about the
     // mesh's own chords (the golden tests bound those).
     let (model, scene) = model_and_scene_at("dome-and-cone.step", 0.0005);
-    let (lo, hi) = scene_bounds(&scene).expect("geometry");
+    let (lo, hi) = scene.bounds().expect("geometry");
     let primitives = primitives(lo, hi);
-    let prepared = renderer.prepare_with_primitives(gpu, &scene, &primitives);
+    let scene = scene.with_primitives(primitives.clone());
+    let prepared = renderer.prepare(gpu, &scene);
     let mut caster = RayCaster::new(&model, 0.001);
     assert!(caster.skipped.is_empty(), "{:?}", caster.skipped);
     for p in &primitives {
         caster.add_primitive(p);
     }
-    // Frame everything: the model and the primitives' spheres.
+    // Frame everything: the model and the primitives' bounding spheres (looser than
+    // `RenderScene::bounds` around the tilted rectangle; the golden image is framed so).
     let (lo, hi) = primitives.iter().fold((lo, hi), |(lo, hi), p| {
         let (c, r) = p.bounding_sphere();
         (lo.min(c - r), hi.max(c + r))
     });
     Mixed {
+        scene,
         prepared,
         caster,
         lo,
@@ -124,7 +128,7 @@ fn agreement(
     camera: &Camera,
 ) -> (f64, [usize; 2]) {
     let ids = renderer
-        .render_ids_prepared(
+        .render_ids(
             gpu,
             &mixed.prepared,
             camera,
@@ -215,7 +219,7 @@ fn the_hit_gives_the_sphere_its_exact_parameters() {
     let mixed = mixed(&renderer, &gpu);
     let camera = &cameras(&mixed)[0];
     let ids = renderer
-        .render_ids_prepared(
+        .render_ids(
             &gpu,
             &mixed.prepared,
             camera,
@@ -224,7 +228,13 @@ fn the_hit_gives_the_sphere_its_exact_parameters() {
         )
         .expect("ids");
     let uv = renderer
-        .render_uv_prepared(&gpu, &mixed.prepared, camera, &options())
+        .render_uv(
+            &gpu,
+            &mixed.prepared,
+            camera,
+            &options(),
+            &ViewState::default(),
+        )
         .expect("uv");
     let hits = mixed.caster.hits(camera, W, H);
     let sphere = &mixed.primitives[0];
@@ -265,7 +275,7 @@ fn a_section_plane_cuts_the_ray_cast_sphere_and_caps_it() {
         ..ViewState::default()
     };
     let ids = renderer
-        .render_ids_prepared(&gpu, &mixed.prepared, camera, &options(), &state)
+        .render_ids(&gpu, &mixed.prepared, camera, &options(), &state)
         .expect("ids");
     let instance = mixed.prepared.primitive_instance(0) + 1;
     let caps = ids
@@ -291,7 +301,7 @@ fn the_mixed_scene_is_shaded_outlined_and_edged_like_any_other() {
     let mixed = mixed(&renderer, &gpu);
     let camera = &cameras(&mixed)[0];
     let image = renderer
-        .render_prepared(
+        .render(
             &gpu,
             &mixed.prepared,
             camera,

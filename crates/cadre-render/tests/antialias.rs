@@ -4,7 +4,9 @@
 
 mod common;
 
-use cadre_render::{Camera, DisplayMode, FrameOptions, Renderer, ViewPreset, scene_bounds};
+use common::OneShot;
+
+use cadre_render::{Camera, DisplayMode, FrameOptions, Renderer, ViewPreset};
 use common::{gpu, scene};
 use image::RgbaImage;
 
@@ -23,7 +25,7 @@ fn smoothing_brings_a_1x_image_closer_to_supersampling() {
     let gpu = gpu();
     let renderer = Renderer::new(&gpu).expect("pipelines");
     let scene = scene("pin-assembly.step");
-    let (lo, hi) = scene_bounds(&scene).expect("fixture has geometry");
+    let (lo, hi) = scene.bounds().expect("fixture has geometry");
     let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, 4.0 / 3.0);
     for mode in [DisplayMode::Shaded, DisplayMode::ShadedEdges] {
         let draw = |supersample, smooth| {
@@ -36,7 +38,7 @@ fn smoothing_brings_a_1x_image_closer_to_supersampling() {
                 ..FrameOptions::default()
             };
             renderer
-                .render(&gpu, &scene, &camera, &options)
+                .image_of(&gpu, &scene, &camera, &options)
                 .expect("render")
         };
         let reference = draw(4, false);

@@ -7,15 +7,15 @@
 mod common;
 
 use cadre_mesh::export::{Scene, SceneNode};
-use cadre_render::{Camera, Renderer, SectionPlane, ViewState, scene_bounds};
+use cadre_render::{Camera, RenderScene, Renderer, SectionPlane, ViewState};
 use common::{gpu, scene};
 use glam::{DAffine3, DVec3};
 
 /// The bundled pin's first mesh, placed once (mirrored in x when `mirrored`); with its last
 /// triangle removed when `open`.
-fn pin(open: bool, mirrored: bool) -> Scene {
+fn pin(open: bool, mirrored: bool) -> RenderScene {
     let pins = scene("pin-assembly.step");
-    let mut mesh = pins.meshes[0].clone();
+    let mut mesh = pins.assembly.meshes[0].clone();
     if open {
         let prim = mesh
             .primitives
@@ -26,7 +26,7 @@ fn pin(open: bool, mirrored: bool) -> Scene {
     }
     let mut out = Scene {
         meshes: vec![mesh],
-        materials: pins.materials.clone(),
+        materials: pins.assembly.materials.clone(),
         ..Scene::default()
     };
     out.nodes.push(SceneNode {
@@ -35,15 +35,15 @@ fn pin(open: bool, mirrored: bool) -> Scene {
         ..SceneNode::default()
     });
     out.roots.push(0);
-    out
+    RenderScene::from_assembly(out)
 }
 
 /// How many pixels show the part, with the eye at the centre of its box looking along its
 /// longest axis.
-fn covered_from_inside(scene: &Scene, state: &ViewState) -> usize {
+fn covered_from_inside(scene: &RenderScene, state: &ViewState) -> usize {
     let gpu = gpu();
     let renderer = Renderer::new(&gpu).expect("pipelines");
-    let (lo, hi) = scene_bounds(scene).expect("geometry");
+    let (lo, hi) = scene.bounds().expect("geometry");
     let centre = 0.5 * (lo + hi);
     let extent = hi - lo;
     let axis = if extent.x >= extent.y && extent.x >= extent.z {
@@ -63,7 +63,7 @@ fn covered_from_inside(scene: &Scene, state: &ViewState) -> usize {
     };
     let prepared = renderer.prepare(&gpu, scene);
     let ids = renderer
-        .render_ids_prepared(
+        .render_ids(
             &gpu,
             &prepared,
             &camera,

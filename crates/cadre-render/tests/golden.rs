@@ -5,9 +5,10 @@
 
 mod common;
 
-use cadre_mesh::export::Scene;
+use common::OneShot;
+
 use cadre_render::compare::compare;
-use cadre_render::{Camera, DisplayMode, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
+use cadre_render::{Camera, DisplayMode, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset};
 use common::{MAX_DIFFERING, TOLERANCE, check_golden, gpu, model_and_scene, scene};
 use glam::{DAffine3, DVec3};
 use image::RgbaImage;
@@ -25,7 +26,7 @@ fn options(width: u32, height: u32) -> FrameOptions {
 fn render(
     gpu: &Gpu,
     renderer: &Renderer,
-    scene: &Scene,
+    scene: &RenderScene,
     view: ViewPreset,
     ortho: bool,
 ) -> RgbaImage {
@@ -35,19 +36,19 @@ fn render(
 fn render_mode(
     gpu: &Gpu,
     renderer: &Renderer,
-    scene: &Scene,
+    scene: &RenderScene,
     view: ViewPreset,
     ortho: bool,
     mode: DisplayMode,
 ) -> RgbaImage {
-    let (lo, hi) = scene_bounds(scene).expect("fixture has geometry");
+    let (lo, hi) = scene.bounds().expect("fixture has geometry");
     let camera = Camera::fit(lo, hi, view, ortho, 4.0 / 3.0);
     let options = FrameOptions {
         mode,
         ..options(128, 96)
     };
     renderer
-        .render(gpu, scene, &camera, &options)
+        .image_of(gpu, scene, &camera, &options)
         .expect("render")
 }
 
@@ -68,6 +69,7 @@ fn fixtures_match_their_golden_images() {
     let wires = self::scene("wire-triangle.step");
     assert!(
         wires
+            .assembly
             .meshes
             .iter()
             .all(|m| m.primitives.is_empty() && m.lines.len() >= 3)
@@ -110,14 +112,14 @@ fn a_model_a_million_millimetres_away_renders_the_same() {
     let gpu = gpu();
     let renderer = Renderer::new(&gpu).expect("pipelines");
     let scene = scene("pin-assembly.step");
-    let (lo, hi) = scene_bounds(&scene).expect("geometry");
+    let (lo, hi) = scene.bounds().expect("geometry");
     let near_cam = Camera::fit(lo, hi, ViewPreset::Iso, false, 1.0);
     let opts = options(96, 96);
     let a = renderer
-        .render_ids(&gpu, &scene, &near_cam, &opts)
+        .ids_of(&gpu, &scene, &near_cam, &opts)
         .expect("ids");
     let ia = renderer
-        .render(&gpu, &scene, &near_cam, &opts)
+        .image_of(&gpu, &scene, &near_cam, &opts)
         .expect("image");
     let covered = a.iter().filter(|p| p[1] != 0).count();
     assert!(covered > 500, "the fixture covers {covered} pixels");
@@ -126,14 +128,12 @@ fn a_model_a_million_millimetres_away_renders_the_same() {
     for offset in [1e6, 1e8] {
         let mut far = scene.clone();
         let shift = DAffine3::from_translation(DVec3::new(offset, -offset, offset));
-        for &r in &far.roots.clone() {
-            far.nodes[r].transform = shift * far.nodes[r].transform;
+        for &r in &far.assembly.roots.clone() {
+            far.assembly.nodes[r].transform = shift * far.assembly.nodes[r].transform;
         }
-        let (flo, fhi) = scene_bounds(&far).expect("geometry");
+        let (flo, fhi) = far.bounds().expect("geometry");
         let far_cam = Camera::fit(flo, fhi, ViewPreset::Iso, false, 1.0);
-        let b = renderer
-            .render_ids(&gpu, &far, &far_cam, &opts)
-            .expect("ids");
+        let b = renderer.ids_of(&gpu, &far, &far_cam, &opts).expect("ids");
         let same = a
             .iter()
             .zip(&b)
@@ -144,7 +144,9 @@ fn a_model_a_million_millimetres_away_renders_the_same() {
             "offset {offset}: {same} of {} pixels keep their face id",
             a.len()
         );
-        let ib = renderer.render(&gpu, &far, &far_cam, &opts).expect("image");
+        let ib = renderer
+            .image_of(&gpu, &far, &far_cam, &opts)
+            .expect("image");
         assert!(
             compare(&ia, &ib, TOLERANCE).passes(MAX_DIFFERING),
             "offset {offset}"
@@ -162,12 +164,12 @@ fn agreement(
     oracle_view: ViewPreset,
 ) -> f64 {
     let (model, scene) = model_and_scene(name);
-    let (lo, hi) = scene_bounds(&scene).expect("geometry");
+    let (lo, hi) = scene.bounds().expect("geometry");
     let (w, h) = (128, 96);
     let camera = Camera::fit(lo, hi, view, false, f64::from(w) / f64::from(h));
     let oracle_camera = Camera::fit(lo, hi, oracle_view, false, f64::from(w) / f64::from(h));
     let gpu_ids = renderer
-        .render_ids(gpu, &scene, &camera, &options(w, h))
+        .ids_of(gpu, &scene, &camera, &options(w, h))
         .expect("ids");
     let caster = cadre_render::raycast::RayCaster::new(&model, 0.001);
     assert!(
@@ -177,7 +179,7 @@ fn agreement(
     );
     let exact = caster.face_ids(&oracle_camera, w, h);
     // The GPU holds dense model ids; the oracle, STEP ids.
-    let step = |g: &[u32; 4]| scene.ids.face_step_id(g[0]);
+    let step = |g: &[u32; 4]| scene.face_step_id(g[0]);
     let same = gpu_ids
         .iter()
         .zip(&exact)
@@ -248,7 +250,7 @@ fn point_and_spot_lights_light_what_they_face() {
     let gpu = gpu();
     let renderer = Renderer::new(&gpu).expect("pipelines");
     let scene = self::scene("dome-and-cone.step");
-    let (lo, hi) = scene_bounds(&scene).expect("geometry");
+    let (lo, hi) = scene.bounds().expect("geometry");
     let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, 4.0 / 3.0);
     let with = |lights: Vec<Light>| {
         let options = FrameOptions {
@@ -257,7 +259,7 @@ fn point_and_spot_lights_light_what_they_face() {
         };
         mean_of_model(
             &renderer
-                .render(&gpu, &scene, &camera, &options)
+                .image_of(&gpu, &scene, &camera, &options)
                 .expect("render"),
         )
     };
@@ -307,15 +309,15 @@ fn surface_uv_in_the_visibility_buffer_lands_on_its_pixel() {
     let renderer = Renderer::new(&gpu).expect("pipelines");
     for name in ["pin-assembly.step", "dome-and-cone.step"] {
         let (model, scene) = model_and_scene(name);
-        let (lo, hi) = scene_bounds(&scene).expect("geometry");
+        let (lo, hi) = scene.bounds().expect("geometry");
         let (w, h) = (128u32, 96u32);
         let aspect = f64::from(w) / f64::from(h);
         let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, aspect);
         let ids = renderer
-            .render_ids(&gpu, &scene, &camera, &options(w, h))
+            .ids_of(&gpu, &scene, &camera, &options(w, h))
             .expect("ids");
         let uvs = renderer
-            .render_uv(&gpu, &scene, &camera, &options(w, h))
+            .uv_of(&gpu, &scene, &camera, &options(w, h))
             .expect("uv");
         // Face ids are the model's dense ids: face k is id k + 1.
         let surfaces: std::collections::HashMap<u32, &cadre_geom::Surface> = model
@@ -324,7 +326,8 @@ fn surface_uv_in_the_visibility_buffer_lands_on_its_pixel() {
             .enumerate()
             .map(|(k, f)| (k as u32 + 1, &model.surfaces[f.surface.index()]))
             .collect();
-        let placements: Vec<DAffine3> = scene.instances().map(|(_, world)| world).collect();
+        let placements: Vec<DAffine3> =
+            scene.assembly.instances().map(|(_, world)| world).collect();
         let to_ndc = camera.projection_matrix(aspect) * camera.view_rotation();
         let (mut near, mut checked) = (0usize, 0usize);
         for (i, (id, uv)) in ids.iter().zip(&uvs).enumerate() {
@@ -369,7 +372,7 @@ fn rendering_into_a_surface_format_texture_matches_the_offscreen_image() {
     let surface_like =
         Renderer::for_format(&gpu, wgpu::TextureFormat::Bgra8UnormSrgb).expect("BGRA pipelines");
     let scene = self::scene("dome-and-cone.step");
-    let (lo, hi) = scene_bounds(&scene).expect("geometry");
+    let (lo, hi) = scene.bounds().expect("geometry");
     let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, 4.0 / 3.0);
     let opts = FrameOptions {
         supersample: 1,
@@ -377,11 +380,11 @@ fn rendering_into_a_surface_format_texture_matches_the_offscreen_image() {
         ..options(128, 96)
     };
     let expected = offscreen
-        .render(&gpu, &scene, &camera, &opts)
+        .image_of(&gpu, &scene, &camera, &opts)
         .expect("render");
     // BGRA pipelines through the offscreen path (channels swapped back on readback).
     let bgra = surface_like
-        .render(&gpu, &scene, &camera, &opts)
+        .image_of(&gpu, &scene, &camera, &opts)
         .expect("render");
     assert!(
         compare(&bgra, &expected, 2).passes(0.0),
@@ -403,9 +406,20 @@ fn rendering_into_a_surface_format_texture_matches_the_offscreen_image() {
         view_formats: &[],
     });
     let view = texture.create_view(&Default::default());
+    // A viewer's frame: drawn through a viewport into the caller's texture.
+    let prepared = surface_like.prepare(&gpu, &scene);
+    let mut viewport = cadre_render::Viewport::new(&gpu, 128, 96);
     surface_like
-        .render_into(&gpu, &scene, &camera, &opts, &view)
-        .expect("render into");
+        .draw(
+            &gpu,
+            &mut viewport,
+            &prepared,
+            &camera,
+            &opts,
+            &cadre_render::ViewState::default(),
+            &view,
+        )
+        .expect("draw into");
     let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: None,
         size: 512 * 96,
@@ -447,7 +461,7 @@ fn rendering_into_a_surface_format_texture_matches_the_offscreen_image() {
     });
     assert!(
         compare(&drawn, &expected, 2).passes(0.0),
-        "render_into differs"
+        "a frame drawn into the caller's texture differs"
     );
 }
 

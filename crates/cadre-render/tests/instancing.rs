@@ -6,7 +6,7 @@
 mod common;
 
 use cadre_mesh::export::{Scene, SceneNode};
-use cadre_render::{Camera, FrameOptions, Renderer, ViewPreset, ViewState, scene_bounds};
+use cadre_render::{Camera, FrameOptions, RenderScene, Renderer, ViewPreset, ViewState};
 use common::{gpu, scene};
 use glam::{DAffine3, DQuat, DVec3};
 
@@ -15,11 +15,11 @@ const H: u32 = 120;
 
 /// `levels` levels of `uses` shared nodes over the bundled pin's mesh, each level spread
 /// along its own axis, every other use mirrored and turned: `uses^levels` instances.
-fn shared_chain(levels: usize, uses: usize, shift: f64) -> Scene {
+fn shared_chain(levels: usize, uses: usize, shift: f64) -> RenderScene {
     let pins = scene("pin-assembly.step");
     let mut out = Scene::default();
-    out.meshes.push(pins.meshes[0].clone());
-    out.materials = pins.materials.clone();
+    out.meshes.push(pins.assembly.meshes[0].clone());
+    out.materials = pins.assembly.materials.clone();
     let (mut lo, mut hi) = (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN));
     for p in &out.meshes[0].positions {
         let p = DVec3::from(p.map(f64::from));
@@ -55,7 +55,7 @@ fn shared_chain(levels: usize, uses: usize, shift: f64) -> Scene {
         ..SceneNode::default()
     });
     out.roots.push(out.nodes.len() - 1);
-    out
+    RenderScene::from_assembly(out)
 }
 
 fn options() -> FrameOptions {
@@ -88,8 +88,8 @@ fn factored_instances_draw_like_one_record_each() {
     let gpu = gpu();
     let renderer = Renderer::new(&gpu).unwrap();
     let scene = shared_chain(4, 4, 0.0); // 256 instances
-    assert_eq!(scene.instances().count(), 256);
-    let (lo, hi) = scene_bounds(&scene).unwrap();
+    assert_eq!(scene.assembly.instances().count(), 256);
+    let (lo, hi) = scene.bounds().unwrap();
     let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, f64::from(W) / f64::from(H));
     let state = ViewState::default();
     let flat = renderer.prepare_with_flat_limit(&gpu, &scene, usize::MAX);
@@ -99,7 +99,7 @@ fn factored_instances_draw_like_one_record_each() {
     assert_eq!(factored.instance_count(), 256);
     let ids = |p| {
         renderer
-            .render_ids_prepared(&gpu, p, &camera, &options(), &state)
+            .render_ids(&gpu, p, &camera, &options(), &state)
             .unwrap()
     };
     let (flat_ids, factored_ids) = (ids(&flat), ids(&factored));
@@ -124,7 +124,7 @@ fn factored_instances_draw_like_one_record_each() {
     assert!(factored_ids.iter().all(|p| p[1] <= 256));
     let image = |p| {
         renderer
-            .render_prepared(&gpu, p, &camera, &options(), &state)
+            .render(&gpu, p, &camera, &options(), &state)
             .unwrap()
     };
     let diff = cadre_render::compare::compare(&image(&flat), &image(&factored), 8);
@@ -150,7 +150,7 @@ fn hundreds_of_draw_calls_draw() {
     let pins = scene("pin-assembly.step");
     let mut many = Scene::default();
     for k in 0..300 {
-        many.meshes.push(pins.meshes[0].clone());
+        many.meshes.push(pins.assembly.meshes[0].clone());
         many.nodes.push(SceneNode {
             transform: DAffine3::from_translation(DVec3::new(
                 30.0 * (k % 20) as f64,
@@ -162,11 +162,12 @@ fn hundreds_of_draw_calls_draw() {
         });
         many.roots.push(k);
     }
-    let (lo, hi) = scene_bounds(&many).unwrap();
+    let many = RenderScene::from_assembly(many);
+    let (lo, hi) = many.bounds().unwrap();
     let camera = Camera::fit(lo, hi, ViewPreset::Top, false, f64::from(W) / f64::from(H));
     let prepared = renderer.prepare(&gpu, &many);
     let ids = renderer
-        .render_ids_prepared(&gpu, &prepared, &camera, &options(), &ViewState::default())
+        .render_ids(&gpu, &prepared, &camera, &options(), &ViewState::default())
         .unwrap();
     let drawn: std::collections::BTreeSet<u32> =
         ids.iter().map(|p| p[1]).filter(|&i| i > 0).collect();

@@ -6,10 +6,9 @@
 
 mod common;
 
-use cadre_mesh::export::Scene;
 use cadre_render::{
-    Camera, DisplayMode, FrameOptions, Gpu, PreparedScene, Renderer, SectionPlane, ViewPreset,
-    ViewState, scene_bounds, section_cap,
+    Camera, DisplayMode, FrameOptions, Gpu, PreparedScene, RenderScene, Renderer, SectionPlane,
+    ViewPreset, ViewState, section_cap,
 };
 use common::{check_golden, gpu, scene};
 use glam::{DAffine3, DVec3, DVec4};
@@ -19,10 +18,10 @@ const W: u32 = 128;
 const H: u32 = 96;
 
 /// The scene with every root placed by `t` first.
-fn placed(scene: &Scene, t: DAffine3) -> Scene {
+fn placed(scene: &RenderScene, t: DAffine3) -> RenderScene {
     let mut out = scene.clone();
-    for &r in &scene.roots {
-        out.nodes[r].transform = t * out.nodes[r].transform;
+    for &r in &scene.assembly.roots {
+        out.assembly.nodes[r].transform = t * out.assembly.nodes[r].transform;
     }
     out
 }
@@ -55,12 +54,12 @@ struct View {
     size: f64,
 }
 
-fn view(scene: &Scene, preset: ViewPreset) -> View {
+fn view(scene: &RenderScene, preset: ViewPreset) -> View {
     view_ortho(scene, preset, false)
 }
 
-fn view_ortho(scene: &Scene, preset: ViewPreset, orthographic: bool) -> View {
-    let (lo, hi) = scene_bounds(scene).expect("geometry");
+fn view_ortho(scene: &RenderScene, preset: ViewPreset, orthographic: bool) -> View {
+    let (lo, hi) = scene.bounds().expect("geometry");
     View {
         camera: Camera::fit(lo, hi, preset, orthographic, f64::from(W) / f64::from(H)),
         centre: 0.5 * (lo + hi),
@@ -83,7 +82,7 @@ fn ids(
     state: &ViewState,
 ) -> Vec<[u32; 4]> {
     renderer
-        .render_ids_prepared(gpu, prepared, camera, &options(1), state)
+        .render_ids(gpu, prepared, camera, &options(1), state)
         .expect("ids")
 }
 
@@ -113,7 +112,8 @@ fn signed(plane: &SectionPlane, p: DVec3) -> f64 {
 }
 
 /// Every triangle of the scene in world coordinates.
-fn world_triangles(scene: &Scene) -> Vec<[DVec3; 3]> {
+fn world_triangles(scene: &RenderScene) -> Vec<[DVec3; 3]> {
+    let scene = &scene.assembly;
     let mut out = Vec::new();
     for (node, world) in scene.instances() {
         let Some(mesh) = scene.nodes[node].mesh else {
@@ -305,7 +305,7 @@ fn a_plane_that_misses_the_model_changes_nothing() {
     let plain = ids(&gpu, &renderer, &prepared, &v.camera, &ViewState::default());
     let image = |state: &ViewState| {
         renderer
-            .render_prepared(&gpu, &prepared, &v.camera, &options(1), state)
+            .render(&gpu, &prepared, &v.camera, &options(1), state)
             .expect("image")
     };
     let plain_image = image(&ViewState::default());
@@ -380,7 +380,7 @@ fn caps_are_hatched() {
     let state = sections(&[SectionPlane::through(v.centre, DVec3::NEG_Y)]);
     let cut = ids(&gpu, &renderer, &prepared, &v.camera, &state);
     let image = renderer
-        .render_prepared(&gpu, &prepared, &v.camera, &options(1), &state)
+        .render(&gpu, &prepared, &v.camera, &options(1), &state)
         .expect("image");
     // The caps' inner pixels (two pixels from anything else: the outline stays out).
     let is_cap = |x: i64, y: i64| {
@@ -427,7 +427,7 @@ fn caps_are_hatched() {
 fn sectioned_image(gpu: &Gpu) -> RgbaImage {
     let renderer = Renderer::new(gpu).expect("pipelines");
     let scene = scene("dome-and-cone.step");
-    let (lo, hi) = scene_bounds(&scene).expect("geometry");
+    let (lo, hi) = scene.bounds().expect("geometry");
     let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, 4.0 / 3.0);
     let prepared = renderer.prepare(gpu, &scene);
     let state = sections(&[SectionPlane::through(0.5 * (lo + hi), DVec3::NEG_Y)]);
@@ -438,7 +438,7 @@ fn sectioned_image(gpu: &Gpu) -> RgbaImage {
         ..options(2)
     };
     renderer
-        .render_prepared(gpu, &prepared, &camera, &options, &state)
+        .render(gpu, &prepared, &camera, &options, &state)
         .expect("image")
 }
 

@@ -4,10 +4,11 @@
 
 mod common;
 
-use cadre_mesh::export::Scene;
+use common::OneShot;
+
 use cadre_render::{
-    Camera, DisplayMode, FrameOptions, Gpu, InstanceStyle, Pick, Renderer, ViewPreset, ViewState,
-    Viewport, scene_bounds, wgpu,
+    Camera, DisplayMode, FrameOptions, Gpu, InstanceStyle, Pick, RenderFace, RenderScene, Renderer,
+    ViewPreset, ViewState, Viewport, wgpu,
 };
 use common::{gpu, scene};
 use glam::{DVec3, DVec4};
@@ -16,12 +17,12 @@ const W: u32 = 200;
 const H: u32 = 150;
 
 /// The bundled pin assembly (two placed pins), tessellated.
-fn pin_assembly() -> Scene {
+fn pin_assembly() -> RenderScene {
     scene("pin-assembly.step")
 }
 
-fn camera(scene: &Scene) -> Camera {
-    let (lo, hi) = scene_bounds(scene).expect("geometry");
+fn camera(scene: &RenderScene) -> Camera {
+    let (lo, hi) = scene.bounds().expect("geometry");
     Camera::fit(lo, hi, ViewPreset::Iso, false, f64::from(W) / f64::from(H))
 }
 
@@ -85,7 +86,7 @@ fn picking_finds_faces_edges_and_vertices_under_the_cursor() {
         )
         .expect("frame");
     let ids = renderer
-        .render_ids(&gpu, &scene, &camera, &options())
+        .ids_of(&gpu, &scene, &camera, &options())
         .expect("ids");
 
     // Faces: wherever the visibility buffer has one, the pick under the cursor agrees.
@@ -108,11 +109,11 @@ fn picking_finds_faces_edges_and_vertices_under_the_cursor() {
     // an iso view of two pins) pick as that edge within 3 pixels.
     let (mut edges, mut hits) = (0, 0);
     let (mut vertices, mut vertex_hits) = (0, 0);
-    for (instance, (node, world)) in scene.instances().enumerate() {
-        let Some(mesh) = scene.nodes[node].mesh else {
+    for (instance, (node, world)) in scene.assembly.instances().enumerate() {
+        let Some(mesh) = scene.assembly.nodes[node].mesh else {
             continue;
         };
-        for edge in &scene.meshes[mesh].edges {
+        for edge in &scene.assembly.meshes[mesh].edges {
             let mid = edge.points[edge.points.len() / 2];
             let p = world.transform_point3(DVec3::from(mid.map(f64::from)));
             let Some(px) = pixel_of(&camera, p) else {
@@ -133,7 +134,7 @@ fn picking_finds_faces_edges_and_vertices_under_the_cursor() {
                 hits += 1;
             }
         }
-        for vertex in &scene.meshes[mesh].vertices {
+        for vertex in &scene.assembly.meshes[mesh].vertices {
             let p = world.transform_point3(DVec3::from(vertex.position.map(f64::from)));
             let Some(px) = pixel_of(&camera, p) else {
                 continue;
@@ -186,11 +187,11 @@ fn a_hover_pick_answers_on_a_later_poll_what_a_click_finds() {
     // Edge midpoints (the pick pass draws there), the image's corners (windows clipped at
     // the borders) and its centre.
     let mut cursors = vec![(0, 0), (W - 1, H - 1), (W / 2, H / 2)];
-    for (node, world) in scene.instances() {
-        let Some(mesh) = scene.nodes[node].mesh else {
+    for (node, world) in scene.assembly.instances() {
+        let Some(mesh) = scene.assembly.nodes[node].mesh else {
             continue;
         };
-        for edge in &scene.meshes[mesh].edges {
+        for edge in &scene.assembly.meshes[mesh].edges {
             let mid = edge.points[edge.points.len() / 2];
             let p = world.transform_point3(DVec3::from(mid.map(f64::from)));
             cursors.extend(pixel_of(&camera, p));
@@ -271,14 +272,12 @@ fn hidden_recoloured_see_through_and_highlighted_parts_draw_as_asked() {
         mode: DisplayMode::Shaded,
         ..options()
     };
-    let ids = renderer
-        .render_ids(&gpu, &scene, &camera, &opts)
-        .expect("ids");
+    let ids = renderer.ids_of(&gpu, &scene, &camera, &opts).expect("ids");
     let first: Vec<bool> = ids.iter().map(|id| id[1] == 1).collect();
     assert!(first.iter().filter(|&&m| m).count() > 100);
     let render = |state: &ViewState| {
         renderer
-            .render_prepared(&gpu, &prepared, &camera, &opts, state)
+            .render(&gpu, &prepared, &camera, &opts, state)
             .expect("render")
     };
     let plain = render(&ViewState::default());
@@ -386,7 +385,7 @@ fn a_file_whose_step_ids_pass_u32_picks_and_names_the_right_entities() {
         .expect("frame");
     // Faces: the picked face's STEP id is the one the exact ray caster sees there.
     let exact = cadre_render::raycast::RayCaster::new(&model, 0.001).face_ids(&camera, W, H);
-    let ids = prepared.ids();
+    let ids = scene.ids();
     let (mut checked, mut agree) = (0, 0);
     let mut seen = std::collections::BTreeSet::new();
     for (i, &e) in exact.iter().enumerate().step_by(7) {
@@ -398,7 +397,10 @@ fn a_file_whose_step_ids_pass_u32_picks_and_names_the_right_entities() {
         let Some(Pick::Face { face, .. }) = hit.map(|h| h.pick) else {
             continue;
         };
-        let brep = ids.brep_face(face).expect("a B-Rep face");
+        let Some(RenderFace::Brep { face: brep, .. }) = scene.face(face) else {
+            panic!("face id {face} is not a B-Rep face");
+        };
+        assert_eq!(ids.brep_face(face), Some(*brep));
         assert_eq!(ids.face_step_id(face), model.faces[brep.index()].step_id);
         checked += 1;
         agree += usize::from(ids.face_step_id(face) == e);
@@ -415,11 +417,11 @@ fn a_file_whose_step_ids_pass_u32_picks_and_names_the_right_entities() {
     );
     // Edges: the midpoint of each picks the edge whose STEP id is the model's.
     let mut edges = 0;
-    for (node, world) in scene.instances() {
-        let Some(mesh) = scene.nodes[node].mesh else {
+    for (node, world) in scene.assembly.instances() {
+        let Some(mesh) = scene.assembly.nodes[node].mesh else {
             continue;
         };
-        for edge in &scene.meshes[mesh].edges {
+        for edge in &scene.assembly.meshes[mesh].edges {
             let mid = edge.points[edge.points.len() / 2];
             let p = world.transform_point3(DVec3::from(mid.map(f64::from)));
             let Some(px) = pixel_of(&camera, p) else {

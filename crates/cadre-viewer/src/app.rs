@@ -539,7 +539,7 @@ impl App {
         state.hover = None;
         let image = gfx
             .renderer
-            .render_prepared(&gfx.gpu, prepared, &camera, &options, &state)
+            .render(&gfx.gpu, prepared, &camera, &options, &state)
             .map_err(|e| e.to_string())?;
         image
             .save(path)

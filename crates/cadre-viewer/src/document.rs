@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use cadre_brep::{FaceId, Model};
-use cadre_mesh::export::Scene;
 use cadre_mesh::{Deflection, MeshParams, ModelMesh, deflection_diagonal, mesh_model};
+use cadre_render::{RenderFace, RenderScene};
 use glam::{DAffine3, DVec3};
 
 use crate::ViewerError;
@@ -76,9 +76,9 @@ pub struct Document {
     pub model: Model,
     /// Its tessellation.
     pub mesh: ModelMesh,
-    /// The assembled scene (meshes, materials, assembly tree; its `ids` say which model
-    /// entity and STEP id each picked id is).
-    pub scene: Scene,
+    /// What the renderer draws: the assembled tessellation (meshes, materials, assembly
+    /// tree) and what each picked face id stands for in the model.
+    pub scene: RenderScene,
     /// Placed parts, in the renderer's instance order.
     pub instances: Vec<InstanceInfo>,
     /// Per scene node: its parent.
@@ -129,7 +129,7 @@ impl Document {
                 .map(|f| format!("face #{} not meshed: {}", f.step_id, f.reason)),
         );
         progress(LoadStage::Assembling);
-        let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
+        let scene = RenderScene::from_model(&model, &mesh);
         Ok(Document::assemble(
             path.to_path_buf(),
             model,
@@ -145,20 +145,21 @@ impl Document {
         path: PathBuf,
         model: Model,
         mesh: ModelMesh,
-        scene: Scene,
+        scene: RenderScene,
         warnings: Vec<String>,
         load_seconds: f64,
     ) -> Document {
-        let mut parents = vec![None; scene.nodes.len()];
-        for (n, node) in scene.nodes.iter().enumerate() {
+        let tree = &scene.assembly;
+        let mut parents = vec![None; tree.nodes.len()];
+        for (n, node) in tree.nodes.iter().enumerate() {
             for &c in &node.children {
                 if let Some(p) = parents.get_mut(c) {
                     *p = Some(n);
                 }
             }
         }
-        let mut instance_of_node = vec![None; scene.nodes.len()];
-        let instances: Vec<InstanceInfo> = scene
+        let mut instance_of_node = vec![None; tree.nodes.len()];
+        let instances: Vec<InstanceInfo> = tree
             .instances()
             .enumerate()
             .map(|(i, (node, world))| {
@@ -168,11 +169,11 @@ impl Document {
                 InstanceInfo {
                     node,
                     world,
-                    name: scene.nodes[node].name.clone(),
+                    name: tree.nodes[node].name.clone(),
                 }
             })
             .collect();
-        let bounds = cadre_render::scene_bounds(&scene);
+        let bounds = scene.bounds();
         Document {
             path,
             model,
@@ -195,31 +196,49 @@ impl Document {
         )
     }
 
-    /// The B-Rep face of a picked face id (the scene's dense ids, `SceneIds`).
+    /// The B-Rep face of a picked face id (a dense model id, [`RenderScene::face`]).
     pub fn face(&self, id: u32) -> Option<FaceId> {
-        self.scene.ids.brep_face(id)
+        match self.scene.face(id)? {
+            RenderFace::Brep { face, .. } => Some(*face),
+            RenderFace::Tessellated { .. } => None,
+        }
     }
 
     /// The edge of a picked edge id.
     pub fn edge(&self, id: u32) -> Option<cadre_brep::EdgeId> {
-        self.scene.ids.edge(id)
+        self.scene.ids().edge(id)
     }
 
     /// The vertex of a picked vertex id.
     pub fn vertex(&self, id: u32) -> Option<cadre_brep::VertexId> {
-        self.scene.ids.vertex(id)
+        self.scene.ids().vertex(id)
     }
 
-    /// The picked item's name as the file writes it: its STEP id (`#123`; `#?` for an entity
-    /// without one).
+    /// The picked item's name as the file writes it: its STEP id, looked up in the model
+    /// (`#123`; `#?` for an entity without one).
     pub fn step_label(&self, pick: Pick) -> String {
-        let ids = &self.scene.ids;
+        let model = &self.model;
         let step = match pick {
-            Pick::Face { face, .. } => ids.face_step_id(face),
-            Pick::Edge { edge, .. } => ids.edge_step_id(edge),
-            Pick::Vertex { vertex, .. } => ids.vertex_step_id(vertex),
-            Pick::Part { .. } => 0,
-        };
+            Pick::Face { face, .. } => match self.scene.face(face) {
+                Some(RenderFace::Brep { face, .. }) => {
+                    model.faces.get(face.index()).map(|f| f.step_id)
+                }
+                Some(RenderFace::Tessellated { mesh }) => {
+                    model.meshes.get(mesh.index()).map(|m| m.step_id)
+                }
+                None => None,
+            },
+            Pick::Edge { edge, .. } => self
+                .edge(edge)
+                .and_then(|e| model.edges.get(e.index()))
+                .map(|e| e.step_id),
+            Pick::Vertex { vertex, .. } => self
+                .vertex(vertex)
+                .and_then(|v| model.vertices.get(v.index()))
+                .map(|v| v.step_id),
+            Pick::Part { .. } => None,
+        }
+        .unwrap_or(0);
         if step == 0 {
             "#?".to_string()
         } else {
@@ -237,7 +256,8 @@ impl Document {
     /// The world box of a whole instance.
     pub fn instance_bounds(&self, instance: usize) -> Option<(DVec3, DVec3)> {
         let info = self.instances.get(instance)?;
-        let mesh = self.scene.meshes.get(self.scene.nodes[info.node].mesh?)?;
+        let tree = &self.scene.assembly;
+        let mesh = tree.meshes.get(tree.nodes[info.node].mesh?)?;
         bounds_of(
             mesh.positions
                 .iter()
@@ -311,9 +331,9 @@ mod tests {
     fn hiding_a_node_hides_its_descendants() {
         let doc = Document::load(&example(), &|_| {}).expect("loads");
         let leaf = doc.instances[0].node;
-        let mut hidden = vec![false; doc.scene.nodes.len()];
+        let mut hidden = vec![false; doc.scene.assembly.nodes.len()];
         assert!(!doc.node_hidden(leaf, &hidden));
-        let root = doc.scene.roots[0];
+        let root = doc.scene.assembly.roots[0];
         hidden[root] = true;
         assert!(doc.node_hidden(leaf, &hidden));
     }

@@ -148,7 +148,7 @@ impl Session {
             .bounds
             .unwrap_or((glam::DVec3::splat(-1.0), glam::DVec3::splat(1.0)));
         self.nav = Some(Navigator::new(lo, hi, aspect));
-        self.hidden = vec![false; doc.scene.nodes.len()];
+        self.hidden = vec![false; doc.scene.assembly.nodes.len()];
         self.colours = vec![None; doc.instances.len()];
         self.hover = None;
         self.selection.clear();

@@ -392,10 +392,11 @@ fn expected_front(width: u32, height: u32) -> RgbaImage {
     );
     let gpu = Gpu::headless().expect("a GPU or lavapipe");
     let renderer = Renderer::new(&gpu).expect("pipelines");
+    let prepared = renderer.prepare(&gpu, &doc.scene);
     renderer
         .render(
             &gpu,
-            &doc.scene,
+            &prepared,
             &camera,
             &FrameOptions {
                 width,
@@ -404,6 +405,7 @@ fn expected_front(width: u32, height: u32) -> RgbaImage {
                 mode: DisplayMode::ShadedEdges,
                 ..FrameOptions::default()
             },
+            &cadre_render::ViewState::default(),
         )
         .expect("render")
 }

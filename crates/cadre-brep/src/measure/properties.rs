@@ -49,6 +49,15 @@ impl SurfaceKind {
         }
     }
 
+    /// Whether the surface is a quadric (plane, cylinder, cone, sphere): what a ray caster
+    /// intersects in closed form.
+    pub fn is_quadric(self) -> bool {
+        matches!(
+            self,
+            SurfaceKind::Plane | SurfaceKind::Cylinder | SurfaceKind::Cone | SurfaceKind::Sphere
+        )
+    }
+
     /// The display name: "plane", "cylinder", "cone", "sphere", "torus", "B-spline surface",
     /// "surface of revolution", "extrusion", "offset".
     pub fn name(self) -> &'static str {

@@ -4,10 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use cadre_mesh::export::Scene;
 use cadre_mesh::{MeshParams, mesh_model};
-use cadre_render::Gpu;
 use cadre_render::compare::compare;
+use cadre_render::{Camera, FrameOptions, Gpu, RenderError, RenderScene, Renderer, ViewState};
 use image::RgbaImage;
 
 /// A pixel differs when a channel is more than this far off.
@@ -39,18 +38,18 @@ pub fn fixture(name: &str) -> PathBuf {
 }
 
 /// The fixture's model and its tessellated scene (0.01 mm, 0.3 rad).
-pub fn model_and_scene(name: &str) -> (cadre_brep::Model, Scene) {
+pub fn model_and_scene(name: &str) -> (cadre_brep::Model, RenderScene) {
     model_and_scene_at(name, 0.01)
 }
 
 /// The fixture's model and its scene tessellated to `deflection` (mm; 0.3 rad).
-pub fn model_and_scene_at(name: &str, deflection: f64) -> (cadre_brep::Model, Scene) {
+pub fn model_and_scene_at(name: &str, deflection: f64) -> (cadre_brep::Model, RenderScene) {
     let bytes = std::fs::read(fixture(name)).expect("fixture reads");
     model_and_scene_of(bytes, deflection)
 }
 
 /// The model of a STEP file's `bytes` and its scene tessellated to `deflection`.
-pub fn model_and_scene_of(bytes: Vec<u8>, deflection: f64) -> (cadre_brep::Model, Scene) {
+pub fn model_and_scene_of(bytes: Vec<u8>, deflection: f64) -> (cadre_brep::Model, RenderScene) {
     let file = cadre_step::syntax::StepFile::parse(bytes).expect("the file parses");
     let model = cadre_step::map_file(&file);
     let params = MeshParams {
@@ -59,7 +58,7 @@ pub fn model_and_scene_of(bytes: Vec<u8>, deflection: f64) -> (cadre_brep::Model
         ..MeshParams::default()
     };
     let mesh = mesh_model(&model, &params, None);
-    let scene = cadre_mesh::assemble::build_scene(&model, &mesh);
+    let scene = RenderScene::from_model(&model, &mesh);
     (model, scene)
 }
 
@@ -73,7 +72,7 @@ pub fn renumbered(name: &str, offset: u64) -> Vec<u8> {
 }
 
 /// The fixture's tessellated scene.
-pub fn scene(name: &str) -> Scene {
+pub fn scene(name: &str) -> RenderScene {
     model_and_scene(name).1
 }
 
@@ -121,5 +120,71 @@ pub fn shaded_edges(width: u32, height: u32) -> cadre_render::FrameOptions {
         supersample: 1,
         mode: cadre_render::DisplayMode::ShadedEdges,
         ..cadre_render::FrameOptions::default()
+    }
+}
+
+/// One-shot frames of an unprepared scene in the default view state: each prepares the scene
+/// and reads one frame (what the tests that draw a scene once want).
+pub trait OneShot {
+    /// The image of `scene`.
+    fn image_of(
+        &self,
+        gpu: &Gpu,
+        scene: &RenderScene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<RgbaImage, RenderError>;
+
+    /// The visibility buffer's ids of `scene`.
+    fn ids_of(
+        &self,
+        gpu: &Gpu,
+        scene: &RenderScene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<Vec<[u32; 4]>, RenderError>;
+
+    /// The visibility buffer's (u, v) of `scene`.
+    fn uv_of(
+        &self,
+        gpu: &Gpu,
+        scene: &RenderScene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<Vec<[f32; 2]>, RenderError>;
+}
+
+impl OneShot for Renderer {
+    fn image_of(
+        &self,
+        gpu: &Gpu,
+        scene: &RenderScene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<RgbaImage, RenderError> {
+        let prepared = self.prepare(gpu, scene);
+        self.render(gpu, &prepared, camera, options, &ViewState::default())
+    }
+
+    fn ids_of(
+        &self,
+        gpu: &Gpu,
+        scene: &RenderScene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<Vec<[u32; 4]>, RenderError> {
+        let prepared = self.prepare(gpu, scene);
+        self.render_ids(gpu, &prepared, camera, options, &ViewState::default())
+    }
+
+    fn uv_of(
+        &self,
+        gpu: &Gpu,
+        scene: &RenderScene,
+        camera: &Camera,
+        options: &FrameOptions,
+    ) -> Result<Vec<[f32; 2]>, RenderError> {
+        let prepared = self.prepare(gpu, scene);
+        self.render_uv(gpu, &prepared, camera, options, &ViewState::default())
     }
 }

@@ -29,7 +29,7 @@ pub(super) fn tree_panel(ui: &mut egui::Ui, s: &mut Session) {
     egui::ScrollArea::vertical().show(ui, |ui| {
         let Some(doc) = &s.doc else { return };
         if filter.is_empty() {
-            let roots = doc.scene.roots.clone();
+            let roots = doc.scene.assembly.roots.clone();
             for root in roots {
                 node_ui(ui, s, root, 0);
             }
@@ -74,13 +74,13 @@ fn node_ui(ui: &mut egui::Ui, s: &mut Session, node: usize, depth: usize) {
     if depth > 64 {
         return;
     }
-    let name = doc.scene.nodes[node].name.clone();
+    let name = doc.scene.assembly.nodes[node].name.clone();
     let name = if name.is_empty() {
         format!("node {node}")
     } else {
         name
     };
-    let children = doc.scene.nodes[node].children.clone();
+    let children = doc.scene.assembly.nodes[node].children.clone();
     let instance = doc.instance_of_node.get(node).copied().flatten();
     let selected = instance.is_some_and(|i| {
         s.selection

@@ -131,10 +131,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
 fn grid_scene(
     file: &Path,
     grid: u32,
-) -> Result<(cadre_mesh::export::Scene, glam::DVec3, glam::DVec3)> {
+) -> Result<(cadre_render::RenderScene, glam::DVec3, glam::DVec3)> {
     use cadre_mesh::export::SceneNode;
     use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
-    use cadre_render::scene_bounds;
+    use cadre_render::RenderScene;
     use glam::{DAffine3, DVec3};
 
     let loaded = crate::load::load_step(file)?;
@@ -144,8 +144,9 @@ fn grid_scene(
         ..MeshParams::default()
     };
     let mesh = mesh_model(model, &params, None);
-    let mut scene = cadre_mesh::assemble::build_scene(model, &mesh);
-    let (lo, hi) = scene_bounds(&scene).context("the model has no geometry")?;
+    let mut render_scene = RenderScene::from_model(model, &mesh);
+    let scene = &mut render_scene.assembly;
+    let (lo, hi) = cadre_render::scene_bounds(scene).context("the model has no geometry")?;
     let step = (hi - lo).max(DVec3::splat(1e-6)) * 1.2;
     let roots = std::mem::take(&mut scene.roots);
     for i in 0..grid.max(1) {
@@ -163,8 +164,8 @@ fn grid_scene(
             });
         }
     }
-    let (lo, hi) = scene_bounds(&scene).context("the grid has no geometry")?;
-    Ok((scene, lo, hi))
+    let (lo, hi) = render_scene.bounds().context("the grid has no geometry")?;
+    Ok((render_scene, lo, hi))
 }
 
 /// Median of `values` (sorted copy).
@@ -283,7 +284,7 @@ fn bench_view(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) 
             "adapter": gpu.info.name,
             "backend": format!("{:?}", gpu.info.backend),
             "instances": prepared.instance_count(),
-            "triangles": scene.instance_triangle_count(),
+            "triangles": scene.assembly.instance_triangle_count(),
             "width": width,
             "height": height,
             "upload_ms": upload_ms,
@@ -306,7 +307,7 @@ fn bench_render(
     frames: u32,
     mode: cadre_render::DisplayMode,
 ) -> Result<()> {
-    use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset};
+    use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset, ViewState};
 
     let (scene, lo, hi) = grid_scene(file, grid)?;
     let camera = Camera::fit(
@@ -326,11 +327,16 @@ fn bench_render(
         mode,
         ..FrameOptions::default()
     };
-    renderer.render(&gpu, &scene, &camera, &options)?;
+    // An image from the scene, as `cadre render` makes it: upload, frame, readback.
+    let render = || {
+        let prepared = renderer.prepare(&gpu, &scene);
+        renderer.render(&gpu, &prepared, &camera, &options, &ViewState::default())
+    };
+    render()?;
     let mut ms: Vec<f64> = Vec::new();
     for _ in 0..frames.max(1) {
         let t0 = Instant::now();
-        renderer.render(&gpu, &scene, &camera, &options)?;
+        render()?;
         ms.push(t0.elapsed().as_secs_f64() * 1e3);
     }
     let mut sorted = ms.clone();
@@ -341,8 +347,8 @@ fn bench_render(
             "file": file.display().to_string(),
             "adapter": gpu.info.name,
             "backend": format!("{:?}", gpu.info.backend),
-            "instances": scene.instances().count(),
-            "triangles": scene.instance_triangle_count(),
+            "instances": scene.assembly.instances().count(),
+            "triangles": scene.assembly.instance_triangle_count(),
             "width": width,
             "height": height,
             "frame_ms": ms,

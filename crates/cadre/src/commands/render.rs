@@ -6,7 +6,9 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
-use cadre_render::{Camera, DisplayMode, FrameOptions, Gpu, Renderer, ViewPreset, scene_bounds};
+use cadre_render::{
+    Camera, DisplayMode, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset, ViewState,
+};
 use image::RgbaImage;
 
 use crate::load::load_step;
@@ -342,12 +344,12 @@ fn draw_file(
     args: &RenderArgs,
 ) -> Result<RgbaImage> {
     let (input, model) = (meshed.input.as_path(), &meshed.loaded.model);
-    let scene = cadre_mesh::assemble::build_scene(model, &meshed.mesh);
+    let scene = RenderScene::from_model(model, &meshed.mesh);
     let (w, h) = args.size;
     // A model with nothing to draw (no face, mesh or curve: 6 corpus files, OCCT finds nothing
     // in them either) is an error, not a blank image that looks like a result; a folder run
     // reports the file and goes on.
-    let Some((lo, hi)) = scene_bounds(&scene) else {
+    let Some((lo, hi)) = scene.bounds() else {
         bail!(
             "{}: nothing to draw (no face, mesh or curve placed; {} warning(s) while reading); \
              no image written",
@@ -367,7 +369,8 @@ fn draw_file(
         edge_width: args.edge_width,
         ..FrameOptions::default()
     };
+    let prepared = renderer.prepare(gpu, &scene);
     renderer
-        .render(gpu, &scene, &camera, &options)
+        .render(gpu, &prepared, &camera, &options, &ViewState::default())
         .with_context(|| format!("{}: nothing was drawn", input.display()))
 }
