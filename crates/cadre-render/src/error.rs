@@ -15,9 +15,18 @@ pub enum RenderError {
     /// The adapter refused to create a device.
     #[error("the GPU adapter refused a device: {0}")]
     Device(#[source] wgpu::RequestDeviceError),
-    /// The adapter lacks a capability the passes need.
-    #[error("the GPU adapter cannot run the renderer: {0}")]
-    Unsupported(String),
+    /// The adapter cannot read storage buffers in vertex shaders (GL below 4.3 or GLES
+    /// below 3.1), which edges, picking and draw records need.
+    #[error(
+        "the GPU adapter cannot run the renderer: {adapter} ({backend:?}) cannot read storage \
+         buffers in vertex shaders (GL 4.3 or GLES 3.1 needed)"
+    )]
+    NoVertexStorage {
+        /// The adapter's name.
+        adapter: String,
+        /// Its back-end.
+        backend: wgpu::Backend,
+    },
     /// The requested image size is zero or beyond what the adapter supports.
     #[error("image size {width}x{height} is not supported (1 to {max} pixels a side)")]
     Size {
@@ -61,7 +70,7 @@ pub enum RenderError {
     )]
     TooLarge {
         /// What the buffer holds.
-        what: String,
+        what: &'static str,
         /// Its size.
         bytes: u64,
         /// The adapter's limit for it.
@@ -105,11 +114,14 @@ mod tests {
         let none = RenderError::NoAdapter(None);
         assert!(none.to_string().ends_with("no backend tried"), "{none}");
         assert!(none.source().is_none());
-        let cause = RenderError::Unsupported("GL 3.3 cannot read storage buffers".into());
+        let cause = RenderError::NoVertexStorage {
+            adapter: "llvmpipe".into(),
+            backend: wgpu::Backend::Gl,
+        };
         let why = RenderError::NoAdapter(Some(Box::new(cause)));
         assert!(
             why.to_string()
-                .ends_with("GL 3.3 cannot read storage buffers"),
+                .ends_with("llvmpipe (Gl) cannot read storage buffers in vertex shaders (GL 4.3 or GLES 3.1 needed)"),
             "{why}"
         );
         let source = why.source().expect("the cause is the source");

@@ -54,7 +54,7 @@ impl GrowingBuffer {
             };
             if len > limit {
                 return Err(RenderError::TooLarge {
-                    what: self.label.to_string(),
+                    what: self.label,
                     bytes: len,
                     limit,
                 });

@@ -86,10 +86,10 @@ impl Gpu {
             .flags
             .contains(wgpu::DownlevelFlags::VERTEX_STORAGE)
         {
-            return Err(RenderError::Unsupported(format!(
-                "{} ({:?}) cannot read storage buffers in vertex shaders (GL 4.3 or GLES 3.1 needed)",
-                info.name, info.backend
-            )));
+            return Err(RenderError::NoVertexStorage {
+                adapter: info.name.clone(),
+                backend: info.backend,
+            });
         }
         let read_only_depth = adapter
             .get_downlevel_capabilities()

@@ -173,7 +173,7 @@ fn instance_bytes(
     let limit = device.limits().max_buffer_size;
     if call_bytes.len() as u64 > limit {
         return Err(RenderError::TooLarge {
-            what: "draw calls".to_string(),
+            what: "draw calls",
             bytes: call_bytes.len() as u64,
             limit,
         });
@@ -805,10 +805,10 @@ pub(crate) fn buffer_limit(limits: &wgpu::Limits, usage: wgpu::BufferUsages) -> 
 
 /// [`buffer`], or [`RenderError::TooLarge`] when `bytes` exceed what the device allows for
 /// `usage`: wgpu would make an invalid buffer and panic when filling it (2·10⁶ instances'
-/// draw records, issue 13's `wide6.step`).
+/// draw records of a 2·10⁶-part assembly).
 pub(crate) fn checked_buffer(
     device: &wgpu::Device,
-    label: &str,
+    label: &'static str,
     bytes: &[u8],
     usage: wgpu::BufferUsages,
 ) -> Result<wgpu::Buffer, RenderError> {
@@ -816,7 +816,7 @@ pub(crate) fn checked_buffer(
     let len = bytes.len() as u64;
     if len > limit {
         return Err(RenderError::TooLarge {
-            what: label.to_string(),
+            what: label,
             bytes: len,
             limit,
         });
