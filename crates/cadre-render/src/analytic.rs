@@ -47,7 +47,8 @@ pub struct AnalyticPrimitive {
     pub frame: Frame,
     /// The face id it writes into the visibility buffer.
     pub face_id: u32,
-    /// Base colour, linear RGBA (opaque: see-through primitives are not drawn yet).
+    /// Base colour, linear RGBA (an opacity below 1 draws it see-through, as a view's
+    /// colour does).
     pub colour: [f32; 4],
 }
 

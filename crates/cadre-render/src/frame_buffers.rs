@@ -94,6 +94,8 @@ pub(crate) struct FrameBuffers {
     pub lights: GrowingBuffer,
     pub selection: GrowingBuffer,
     pub primitives: GrowingBuffer,
+    /// The see-through analytic primitives' records.
+    pub see_through_primitives: GrowingBuffer,
 }
 
 impl FrameBuffers {
@@ -109,6 +111,11 @@ impl FrameBuffers {
             lights: GrowingBuffer::new(device, "lights", U::STORAGE),
             selection: GrowingBuffer::new(device, "selection", U::STORAGE),
             primitives: GrowingBuffer::new(device, "primitives", U::STORAGE),
+            see_through_primitives: GrowingBuffer::new(
+                device,
+                "see-through primitives",
+                U::STORAGE,
+            ),
         }
     }
 }

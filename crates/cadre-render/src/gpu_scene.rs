@@ -14,9 +14,7 @@ use crate::coverage::{ImageCoverage, MAX_IMAGE_COVERAGE, bounding_sphere, placed
 use crate::error::RenderError;
 use crate::feature_edges::feature_edges;
 use crate::frame_buffers::{BindCache, FrameBuffers, GrowingBuffer};
-use crate::layout::{
-    Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Primitive, Segment, Vertex,
-};
+use crate::layout::{Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Segment, Vertex};
 use crate::passes::instances::InstanceLayout;
 use crate::passes::visibility::analytic::FramePrimitives;
 use crate::placements::{Placements, normal_columns, normal_matrix};
@@ -28,6 +26,10 @@ const DEFAULT_MATERIAL: Material = Material {
     base_color: [0.62, 0.64, 0.66, 1.0],
     params: [0.0, 0.5, 0.0, 0.0],
 };
+
+/// Opacity below which a material is drawn see-through (blended after shading), not into
+/// the visibility buffer.
+const SEE_THROUGH_BELOW: f32 = 0.999;
 
 /// What a segment of the segment buffer is, in its `b.w` (as `f32` bits).
 pub(crate) const SEGMENT_EDGE: u32 = 1;
@@ -367,33 +369,53 @@ impl PreparedScene {
         (self.placements.instances + k) as u32
     }
 
-    /// The visible primitives' records for a frame seen by `camera`, written into `buffer`.
+    /// The visible primitives' records for a frame seen by `camera`, opaque ones written into
+    /// `buffers.0` and see-through ones (their material's or the view's colour has an opacity
+    /// below 1) into `buffers.1`; a view's colour becomes a material of its own in
+    /// `materials`, as for the meshes.
     fn frame_primitives(
         &self,
         gpu: &crate::Gpu,
-        buffer: &mut GrowingBuffer,
+        (opaque_buffer, see_through_buffer): (&mut GrowingBuffer, &mut GrowingBuffer),
         (camera, state): (&Camera, &ViewState),
+        materials: &mut Vec<Material>,
     ) -> Result<FramePrimitives, RenderError> {
-        let records: Vec<Primitive> = self
-            .primitives
-            .iter()
-            .enumerate()
-            .filter_map(|(k, p)| {
-                let instance = self.primitive_instance(k);
-                let style = state
-                    .instances
-                    .get(instance as usize)
-                    .copied()
-                    .unwrap_or_default();
-                style
-                    .visible
-                    .then(|| p.record(camera, (instance, self.primitive_materials + k as u32)))
-            })
-            .collect();
-        buffer.write(gpu, bytemuck::cast_slice(&records))?;
+        let (mut opaque, mut see_through) = (Vec::new(), Vec::new());
+        for (k, p) in self.primitives.iter().enumerate() {
+            let instance = self.primitive_instance(k);
+            let style = state
+                .instances
+                .get(instance as usize)
+                .copied()
+                .unwrap_or_default();
+            if !style.visible {
+                continue;
+            }
+            let material = match style.colour {
+                Some(c) => {
+                    materials.push(Material {
+                        base_color: c,
+                        params: DEFAULT_MATERIAL.params,
+                    });
+                    materials.len() as u32 - 1
+                }
+                None => self.primitive_materials + k as u32,
+            };
+            let record = p.record(camera, (instance, material));
+            if materials[material as usize].base_color[3] < SEE_THROUGH_BELOW {
+                see_through.push(record);
+            } else {
+                opaque.push(record);
+            }
+        }
+        opaque_buffer.write(gpu, bytemuck::cast_slice(&opaque))?;
+        see_through_buffer.write(gpu, bytemuck::cast_slice(&see_through))?;
         Ok(FramePrimitives {
-            buffer: buffer.buffer().clone(),
-            count: records.len() as u32,
+            opaque: (opaque_buffer.buffer().clone(), opaque.len() as u32),
+            see_through: (
+                see_through_buffer.buffer().clone(),
+                see_through.len() as u32,
+            ),
         })
     }
 
@@ -650,7 +672,7 @@ impl<'a> FrameScene<'a> {
                     .iter()
                     .map(|&(d, colour, _)| {
                         let m = colour.unwrap_or(own_material);
-                        let see_through = materials[m as usize].base_color[3] < 0.999;
+                        let see_through = materials[m as usize].base_color[3] < SEE_THROUGH_BELOW;
                         (Draw { material: m, ..d }, see_through)
                     })
                     .collect();
@@ -706,11 +728,15 @@ impl<'a> FrameScene<'a> {
             (&out.headers, &out.draws),
             &geometry.locals,
         )?;
+        let primitives = geometry.frame_primitives(
+            gpu,
+            (&mut buffers.primitives, &mut buffers.see_through_primitives),
+            (camera, state),
+            &mut materials,
+        )?;
         buffers
             .materials
             .write(gpu, bytemuck::cast_slice(&materials))?;
-        let primitives =
-            geometry.frame_primitives(gpu, &mut buffers.primitives, (camera, state))?;
         Ok(FrameScene {
             geometry,
             instances,

@@ -36,7 +36,7 @@ pub struct PassShader {
 
 /// Every shader of the renderer, with what the Rust side binds to it (for the layout tests).
 pub fn pass_shaders() -> Vec<PassShader> {
-    use crate::passes::{edges, pick, shade, visibility, xray};
+    use crate::passes::{edges, pick, shade, visibility};
     let shader = |name, source, bindings, instanced| PassShader {
         name,
         source,
@@ -58,7 +58,12 @@ pub fn pass_shaders() -> Vec<PassShader> {
         ),
         shader("shade", shade::source(), shade::BINDINGS, false),
         shader("edges", edges::source(), edges::BINDINGS, true),
-        shader("xray", xray::source(), xray::BINDINGS, true),
+        shader(
+            "visibility/mesh see-through",
+            visibility::mesh::see_through_source(),
+            visibility::mesh::SEE_THROUGH_BINDINGS,
+            true,
+        ),
         shader("pick", pick::source(), pick::BINDINGS, true),
     ]
 }

@@ -12,8 +12,7 @@ use crate::passes::edges::EdgesPass;
 use crate::passes::instances::InstanceLayout;
 use crate::passes::pick::PickPass;
 use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass, ShadeVariant};
-use crate::passes::visibility::{VisibilityPass, VisibilityTargets};
-use crate::passes::xray::XrayPass;
+use crate::passes::visibility::{Phase, VisibilityPass, VisibilityTargets};
 use crate::view::{MAX_HIGHLIGHTED, MAX_SECTIONS, ViewState};
 use crate::viewport::{LastFrame, Viewport};
 use crate::{Camera, Gpu, Light, RenderError, RenderScene};
@@ -106,7 +105,6 @@ pub struct Renderer {
     visibility: VisibilityPass,
     shade: ShadePass,
     edges: EdgesPass,
-    xray: XrayPass,
     pub(crate) pick: PickPass,
     /// Bind group 1 of the passes that draw instances.
     pub(crate) instances: InstanceLayout,
@@ -132,10 +130,9 @@ impl Renderer {
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let instances = InstanceLayout::new(&gpu.device);
         let renderer = Renderer {
-            visibility: VisibilityPass::new(&gpu.device, &instances),
+            visibility: VisibilityPass::new(&gpu.device, format, &instances),
             shade: ShadePass::new(&gpu.device, format, gpu.read_only_depth),
             edges: EdgesPass::new(&gpu.device, format, &instances),
-            xray: XrayPass::new(&gpu.device, format, &instances),
             pick: PickPass::new(&gpu.device, &instances),
             instances,
             colour: format,
@@ -645,13 +642,18 @@ impl Renderer {
         let recorder = (device, &self.binds);
         self.shade
             .record(recorder, encoder, targets, &inputs, colour_view);
-        if options.mode == DisplayMode::XRay {
-            self.xray
-                .record(recorder, encoder, frame, scene, colour_view);
+        let phase = if options.mode == DisplayMode::XRay {
+            Phase::XRay
         } else {
-            self.xray
-                .record_transparent(recorder, encoder, frame, scene, (targets, colour_view));
-        }
+            Phase::Transparent
+        };
+        self.visibility.record_see_through(
+            recorder,
+            encoder,
+            phase,
+            (frame, scene),
+            (targets, colour_view),
+        );
         if draw_lines {
             self.edges.record(
                 recorder,

@@ -1,8 +1,8 @@
 //! The frame's passes, in order, each in its own folder with its WGSL:
 //! [`visibility`] (every surface back-end writes depth, normal and ids), [`shade`]
-//! (lighting from the visibility buffer alone), [`xray`] (see-through faces, x-ray mode only),
-//! then [`edges`] (B-Rep edges as lines); [`pick`] (edge and vertex ids) runs when a viewer
-//! picks.
+//! (lighting from the visibility buffer alone), the see-through phase every surface back-end
+//! answers too (transparent parts, or everything in x-ray mode: `visibility::Phase`), then
+//! [`edges`] (B-Rep edges as lines); [`pick`] (edge and vertex ids) runs when a viewer picks.
 
 pub(crate) mod common;
 pub(crate) mod edges;
@@ -10,4 +10,3 @@ pub(crate) mod instances;
 pub(crate) mod pick;
 pub(crate) mod shade;
 pub(crate) mod visibility;
-pub(crate) mod xray;

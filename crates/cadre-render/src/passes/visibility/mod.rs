@@ -4,6 +4,12 @@
 //! of `texel.wgsl` (section caps, id packing), so shading, edges, picking and sections read
 //! the same buffer whatever drew it. Back-ends: [`mesh`] (the scene's triangles), then
 //! [`analytic`] (spheres and rectangles ray cast per pixel).
+//!
+//! The later phases that draw surfaces ([`Phase::Transparent`], [`Phase::XRay`]) are opened
+//! here too, and every back-end answers each: its see-through surfaces blended over the
+//! shaded image behind the visibility depth, or all its surfaces blended in x-ray mode, with
+//! the colours of the shared `see_through.wgsl`. Picking needs nothing more of them: faces are
+//! picked from the visibility buffer's ids, edges and vertices by the pick pass.
 
 pub(crate) mod analytic;
 pub(crate) mod mesh;
@@ -12,6 +18,34 @@ use crate::gpu_scene::FrameScene;
 
 /// The WGSL of the shared texel writer, placed before each back-end's own source.
 pub(crate) const TEXEL_WGSL: &str = include_str!("texel.wgsl");
+
+/// The WGSL of the shared see-through colours (x-ray, transparent parts).
+pub(crate) const SEE_THROUGH_WGSL: &str = include_str!("see_through.wgsl");
+
+/// What a frame asks every surface back-end to draw, in the order it records them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Phase {
+    /// The opaque surfaces into the visibility buffer (depth written).
+    Visibility,
+    /// The see-through surfaces of an opaque view, lit and blended over the shaded image,
+    /// hidden behind the visibility depth (not written).
+    Transparent,
+    /// Every surface blended over the background, no depth (x-ray mode).
+    XRay,
+}
+
+/// What every back-end reads in a phase.
+pub(crate) struct PhaseInputs<'a> {
+    /// The frame's uniform.
+    pub frame: &'a wgpu::Buffer,
+    pub scene: &'a FrameScene<'a>,
+    /// The frame has section planes (the visibility phase's cuts and caps).
+    pub sections: bool,
+    /// The visibility phase writes the (u, v) target.
+    pub with_uv: bool,
+    /// The analytic back-end writes its proxies' depth (the tests' negative control).
+    pub proxy_depth: bool,
+}
 
 /// Formats of the visibility buffer.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -23,7 +57,7 @@ pub(crate) const IDS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 /// renderable on GL, integer ones are).
 pub(crate) const UV: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 
-/// The surface back-ends, drawn in this order into one opened pass.
+/// The surface back-ends, drawn in this order into each pass opened for a phase.
 pub(crate) struct VisibilityPass {
     mesh: mesh::MeshBackend,
     analytic: analytic::AnalyticBackend,
@@ -37,6 +71,16 @@ pub(crate) fn depth_state() -> wgpu::DepthStencilState {
         depth_compare: Some(wgpu::CompareFunction::Greater),
         stencil: Default::default(),
         bias: Default::default(),
+    }
+}
+
+/// Depth state of the transparent phase: tested against the visibility depth (reverse Z: in
+/// front of the opaque surfaces, or on them), not written.
+pub(crate) fn see_through_depth() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        depth_write_enabled: Some(false),
+        depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
+        ..depth_state()
     }
 }
 
@@ -112,15 +156,29 @@ impl VisibilityTargets {
 }
 
 impl VisibilityPass {
-    /// Builds every back-end's pipeline.
+    /// Builds every back-end's pipelines (the see-through ones for a `colour` target of that
+    /// format).
     pub fn new(
         device: &wgpu::Device,
+        colour: wgpu::TextureFormat,
         instances: &crate::passes::instances::InstanceLayout,
     ) -> VisibilityPass {
         VisibilityPass {
-            mesh: mesh::MeshBackend::new(device, instances),
-            analytic: analytic::AnalyticBackend::new(device),
+            mesh: mesh::MeshBackend::new(device, colour, instances),
+            analytic: analytic::AnalyticBackend::new(device, colour),
         }
+    }
+
+    /// Every back-end draws its part of `phase` into `pass`, in order.
+    fn draw(
+        &self,
+        recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
+        pass: &mut wgpu::RenderPass<'_>,
+        inputs: &PhaseInputs<'_>,
+        phase: Phase,
+    ) {
+        self.mesh.draw(recorder, pass, inputs, phase);
+        self.analytic.draw(recorder, pass, inputs, phase);
     }
 
     /// Records the pass: opens it once on `targets` (cleared) and has every back-end draw
@@ -136,16 +194,72 @@ impl VisibilityPass {
         scene: &FrameScene<'_>,
     ) {
         let mut pass = open(encoder, targets);
-        let with_uv = targets.uv.is_some();
-        let variant = mesh::MeshVariant::of(sections, with_uv);
-        self.mesh.draw(recorder, &mut pass, frame, scene, variant);
-        self.analytic.draw(
-            recorder,
-            &mut pass,
+        let inputs = PhaseInputs {
             frame,
-            &scene.primitives,
-            (with_uv, proxy_depth),
-        );
+            scene,
+            sections,
+            with_uv: targets.uv.is_some(),
+            proxy_depth,
+        };
+        self.draw(recorder, &mut pass, &inputs, Phase::Visibility);
+    }
+
+    /// Records a see-through `phase` over `colour` (kept, blended onto): x-ray with no
+    /// depth, the transparent phase tested against `visibility`'s depth (skipped when the
+    /// frame has nothing see-through).
+    pub fn record_see_through(
+        &self,
+        recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
+        encoder: &mut wgpu::CommandEncoder,
+        phase: Phase,
+        (frame, scene): (&wgpu::Buffer, &FrameScene<'_>),
+        (visibility, colour): (&VisibilityTargets, &wgpu::TextureView),
+    ) {
+        let depth = match phase {
+            Phase::Visibility => return,
+            Phase::XRay => None,
+            Phase::Transparent => {
+                if scene.transparent.is_empty() && scene.primitives.see_through.1 == 0 {
+                    return;
+                }
+                Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &visibility.depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                })
+            }
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(if depth.is_some() {
+                "transparent"
+            } else {
+                "x-ray"
+            }),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: colour,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: depth,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        let inputs = PhaseInputs {
+            frame,
+            scene,
+            sections: false,
+            with_uv: false,
+            proxy_depth: false,
+        };
+        self.draw(recorder, &mut pass, &inputs, phase);
     }
 }
 

@@ -1,11 +1,14 @@
-// Analytic back-end of the visibility pass: spheres and rectangles ray cast per pixel. Each
-// primitive draws a proxy that covers it on screen (a sphere's bounding cube, both sides; a
-// rectangle itself), and each proxy fragment casts the pixel's view ray in the primitive's
-// own frame, keeps the nearest hit in front of the near plane and outside every section
-// plane, writes that hit's depth (not the proxy's) and goes through `visibility_texel`
-// (texel.wgsl, before this file) like a mesh fragment.
+// Analytic back-end: spheres and rectangles ray cast per pixel. Each primitive draws a proxy
+// that covers it on screen (a sphere's bounding cube, both sides; a rectangle itself), and
+// each proxy fragment casts the pixel's view ray in the primitive's own frame. Into the
+// visibility buffer (`fs_main`) it keeps the nearest hit in front of the near plane and
+// outside every section plane, writes that hit's depth (not the proxy's) and goes through
+// `visibility_texel` (texel.wgsl, before this file) like a mesh fragment. In the see-through
+// phases (`fs_xray`, `fs_transparent`) it draws hit `LAYER` (0 the nearer, 1 the farther:
+// a pipeline per layer, the farther drawn first) in the colours of see_through.wgsl.
 
 @group(0) @binding(1) var<storage, read> primitives: array<Primitive>;
+@group(0) @binding(2) var<storage, read> materials: array<Material>;
 
 // `Primitive.kind` (analytic::PRIMITIVE_*).
 const PRIMITIVE_SPHERE: u32 = 0u;
@@ -14,6 +17,9 @@ const PRIMITIVE_RECTANGLE: u32 = 1u;
 // The hit's depth is written (false only for the tests' negative control: the proxy's
 // depth, which is wrong wherever the proxy is not the surface).
 override EXACT_DEPTH: bool = true;
+
+// The hit a see-through pipeline draws: 0 the nearer, 1 the farther.
+override LAYER: u32 = 0u;
 
 struct ProxyOut {
     @builtin(position) clip: vec4<f32>,
@@ -95,44 +101,67 @@ fn primitive_hits(p: Primitive, o: vec3<f32>, d: vec3<f32>) -> vec2<f32> {
     return vec2<f32>(t, none);
 }
 
-@fragment
-fn fs_main(in: ProxyOut) -> AnalyticOut {
-    let p = primitives[in.index];
-    // The pixel's ray, camera-relative: from the eye (perspective) or along the view
-    // direction through the proxy point (orthographic; t may then be negative).
+// A pixel's view ray, camera-relative (`origin`, `dir`) and in the primitive's frame
+// (`o`, `d`): from the eye (perspective) or along the view direction through the proxy point
+// (orthographic; t may then be negative).
+struct PixelRay {
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+    o: vec3<f32>,
+    d: vec3<f32>,
+}
+
+fn pixel_ray(p: Primitive, world: vec3<f32>) -> PixelRay {
     var origin = vec3<f32>(0.0);
-    var dir = in.world;
+    var dir = world;
     if frame.modes.x == PROJECTION_ORTHOGRAPHIC {
-        origin = in.world;
+        origin = world;
         dir = frame.forward.xyz;
     }
     let o = (p.to_local * vec4<f32>(origin, 1.0)).xyz;
     let d = (p.to_local * vec4<f32>(dir, 0.0)).xyz;
-    let ts = primitive_hits(p, o, d);
-    var found = false;
-    var t = 0.0;
-    var depth = 0.0;
+    return PixelRay(origin, dir, o, d);
+}
+
+// A hit of the ray: its parameter and depth; `found` false for none.
+struct RayHit {
+    found: bool,
+    t: f32,
+    depth: f32,
+}
+
+// The ray's hit number `layer` (0 the nearest) among those in front of the near plane,
+// not behind the eye and not cut away by a section plane.
+fn layer_hit(p: Primitive, ray: PixelRay, layer: u32) -> RayHit {
+    let ts = primitive_hits(p, ray.o, ray.d);
+    var seen = 0u;
     for (var k = 0; k < 2; k++) {
         let tk = ts[k];
         if tk < -1e29 {
             continue;
         }
-        let hit = origin + tk * dir;
+        let hit = ray.origin + tk * ray.dir;
         let clip = frame.view_proj * vec4<f32>(hit, 1.0);
         let z = clip.z / clip.w;
         // In front of the near plane (reverse Z: depth ≤ 1) and not behind the eye.
         if clip.w <= 0.0 || z > 1.0 || z < 0.0 || section_cut(hit) {
             continue;
         }
-        found = true;
-        t = tk;
-        depth = z;
-        break;
+        if seen == layer {
+            return RayHit(true, tk, z);
+        }
+        seen += 1u;
     }
-    if !found {
-        discard;
-    }
-    let local = o + t * d;
+    return RayHit(false, 0.0, 0.0);
+}
+
+// The hit's unit normal in the primitive's frame and its (u, v) on the exact surface.
+struct SurfacePoint {
+    n: vec3<f32>,
+    uv: vec2<f32>,
+}
+
+fn surface_point(p: Primitive, local: vec3<f32>) -> SurfacePoint {
     var n = vec3<f32>(0.0, 0.0, 1.0);
     var uv = local.xy;
     if p.kind == PRIMITIVE_SPHERE {
@@ -141,18 +170,111 @@ fn fs_main(in: ProxyOut) -> AnalyticOut {
         let u = atan2(local.y, local.x);
         uv = vec2<f32>(select(u, u + tau, u < 0.0), asin(clamp(local.z / p.size.x, -1.0, 1.0)));
     }
+    return SurfacePoint(n, uv);
+}
+
+// The primitive's normal map (shape frame → view space) applied to `n`.
+fn view_normal(p: Primitive, n: vec3<f32>) -> vec3<f32> {
+    return mat3x3<f32>(p.normal[0].xyz, p.normal[1].xyz, p.normal[2].xyz) * n;
+}
+
+@fragment
+fn fs_main(in: ProxyOut) -> AnalyticOut {
+    let p = primitives[in.index];
+    let ray = pixel_ray(p, in.world);
+    let hit = layer_hit(p, ray, 0u);
+    if !hit.found {
+        discard;
+    }
+    let local = ray.o + hit.t * ray.d;
+    let surface = surface_point(p, local);
     // Seen from the side the normal points to, unless the ray leaves the sphere (inside).
-    let front = dot(n, d) < 0.0;
-    let normal = mat3x3<f32>(p.normal[0].xyz, p.normal[1].xyz, p.normal[2].xyz) * n;
+    let front = dot(surface.n, ray.d) < 0.0;
+    let normal = view_normal(p, surface.n);
     let ids = InstanceIds(p.material, p.instance, p.flags);
-    let texel = visibility_texel(origin + t * dir, normal, p.face, ids, depth, uv, front);
+    let texel = visibility_texel(
+        ray.origin + hit.t * ray.dir,
+        normal,
+        p.face,
+        ids,
+        hit.depth,
+        surface.uv,
+        front,
+    );
     var out: AnalyticOut;
     out.normal = texel.normal;
     out.ids = texel.ids;
     out.uv = texel.uv;
-    out.depth = select(in.clip.z, depth, EXACT_DEPTH);
+    out.depth = select(in.clip.z, hit.depth, EXACT_DEPTH);
     if !EXACT_DEPTH {
         out.ids.w = bitcast<u32>(in.clip.z);
     }
     return out;
+}
+
+// Whether this proxy fragment draws its pixel in a see-through phase, where no depth test
+// keeps one of a sphere's cube's two sides: the one on the cube's far side along the ray
+// (whose face's outward normal the ray runs along), seen once from outside and from inside.
+fn draws_pixel(p: Primitive, world: vec3<f32>, ray: PixelRay) -> bool {
+    if p.kind != PRIMITIVE_SPHERE {
+        return true;
+    }
+    let q = (p.to_local * vec4<f32>(world, 1.0)).xyz;
+    let a = abs(q);
+    var axis = 0u;
+    if a.y > a[axis] {
+        axis = 1u;
+    }
+    if a.z > a[axis] {
+        axis = 2u;
+    }
+    return q[axis] * ray.d[axis] > 0.0;
+}
+
+// A see-through fragment: the hit of layer `LAYER`, its view-space normal and its depth.
+struct SeeThroughHit {
+    found: bool,
+    normal: vec3<f32>,
+    depth: f32,
+}
+
+fn see_through_hit(p: Primitive, world: vec3<f32>) -> SeeThroughHit {
+    let ray = pixel_ray(p, world);
+    var out = SeeThroughHit(false, vec3<f32>(0.0, 0.0, 1.0), 0.0);
+    if !draws_pixel(p, world, ray) {
+        return out;
+    }
+    let hit = layer_hit(p, ray, LAYER);
+    if hit.found {
+        out.found = true;
+        out.normal = view_normal(p, surface_point(p, ray.o + hit.t * ray.d).n);
+        out.depth = hit.depth;
+    }
+    return out;
+}
+
+@fragment
+fn fs_xray(in: ProxyOut) -> @location(0) vec4<f32> {
+    let p = primitives[in.index];
+    let hit = see_through_hit(p, in.world);
+    if !hit.found {
+        discard;
+    }
+    return xray_colour(materials[p.material].base_color, hit.normal);
+}
+
+struct TransparentOut {
+    @location(0) colour: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+@fragment
+fn fs_transparent(in: ProxyOut) -> TransparentOut {
+    let p = primitives[in.index];
+    let hit = see_through_hit(p, in.world);
+    if !hit.found {
+        discard;
+    }
+    // The hit's own depth, tested against the opaque surfaces' (not the proxy's).
+    return TransparentOut(transparent_colour(materials[p.material].base_color, hit.normal), hit.depth);
 }

@@ -1,46 +1,59 @@
-//! The analytic back-end of the visibility pass: spheres and rectangles ray cast per pixel
-//! ([`crate::AnalyticPrimitive`]), drawn into the pass the mesh back-end drew into, through
-//! the same texel writer. Pipelines are built on the first frame that has primitives.
+//! The analytic back-end: spheres and rectangles ray cast per pixel
+//! ([`crate::AnalyticPrimitive`]), drawn into the passes the mesh back-end drew into: the
+//! visibility buffer through the same texel writer, the see-through phases in the same
+//! colours. Pipelines are built on the first frame that has primitives.
 
 use std::sync::OnceLock;
 
-use super::{TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state};
-use crate::layout::{Binding, FrameUniform, GpuStruct, Primitive};
-use crate::passes::common::{PipelineSpec, entries, layouts, pipeline, shader, wgsl};
+use super::{
+    Phase, PhaseInputs, SEE_THROUGH_WGSL, TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state,
+    see_through_depth,
+};
+use crate::layout::{Binding, FrameUniform, GpuStruct, Material, Primitive};
+use crate::passes::common::{PipelineSpec, blended, entries, layouts, pipeline, shader, wgsl};
 
-/// Bind group 0: the frame, the frame's primitives.
+/// Bind group 0: the frame, the frame's primitives (opaque or see-through ones), the
+/// frame's materials.
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(Primitive::WGSL_NAME),
+    Binding::Storage(Material::WGSL_NAME),
 ];
 
 /// Vertices of a primitive's proxy: a bounding cube's 12 triangles (a rectangle uses 2).
 const PROXY_VERTICES: u32 = 36;
 
-/// The back-end's whole WGSL: the shared declarations, the texel writer, its own source.
+/// The back-end's whole WGSL: the shared declarations, the texel writer, the see-through
+/// colours, its own source.
 pub(crate) fn source() -> String {
-    wgsl(&[TEXEL_WGSL, include_str!("analytic.wgsl")])
+    wgsl(&[TEXEL_WGSL, SEE_THROUGH_WGSL, include_str!("analytic.wgsl")])
 }
 
 /// The back-end's pipelines (with and without the (u, v) target; with the proxy's depth for
-/// the tests' negative control) and bind group layout.
+/// the tests' negative control; per see-through phase and layer) and bind group layout.
 pub(crate) struct AnalyticBackend {
     module: wgpu::ShaderModule,
     pipeline_layout: wgpu::PipelineLayout,
     layout: wgpu::BindGroupLayout,
+    /// Format of the colour target of the see-through phases.
+    colour: wgpu::TextureFormat,
     /// Indexed by `with_uv + 2 × proxy_depth`.
     pipelines: [OnceLock<wgpu::RenderPipeline>; 4],
+    /// Indexed by `layer + 2 × transparent` (x-ray otherwise).
+    see_through: [OnceLock<wgpu::RenderPipeline>; 4],
 }
 
-/// One frame's primitives on the GPU.
+/// One frame's primitives on the GPU: the opaque and the see-through ones' records, each
+/// with their count.
 pub(crate) struct FramePrimitives {
-    pub buffer: wgpu::Buffer,
-    pub count: u32,
+    pub opaque: (wgpu::Buffer, u32),
+    pub see_through: (wgpu::Buffer, u32),
 }
 
 impl AnalyticBackend {
-    /// Compiles the shader; pipelines come on first use.
-    pub fn new(device: &wgpu::Device) -> AnalyticBackend {
+    /// Compiles the shader; pipelines come on first use (the see-through ones for a `colour`
+    /// target of that format).
+    pub fn new(device: &wgpu::Device, colour: wgpu::TextureFormat) -> AnalyticBackend {
         let module = shader(device, "visibility analytic", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) = layouts(
@@ -53,25 +66,133 @@ impl AnalyticBackend {
             module,
             pipeline_layout,
             layout,
+            colour,
             pipelines: Default::default(),
+            see_through: Default::default(),
         }
     }
 
-    /// Draws the frame's primitives into the opened visibility pass; `proxy_depth` writes
-    /// the proxy's depth instead of the hit's (only for the tests' negative control).
+    /// Draws its part of `phase` into the pass opened for it: the opaque primitives into
+    /// the visibility buffer, the see-through ones over an opaque view, all of them in
+    /// x-ray (each see-through one's farther hit, then its nearer).
     pub fn draw(
+        &self,
+        recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
+        pass: &mut wgpu::RenderPass<'_>,
+        inputs: &PhaseInputs<'_>,
+        phase: Phase,
+    ) {
+        let primitives = &inputs.scene.primitives;
+        let materials = &inputs.scene.materials;
+        match phase {
+            Phase::Visibility => {
+                let pipeline = self.visibility_pipeline(recorder.0, inputs);
+                self.draw_records(
+                    recorder,
+                    pass,
+                    pipeline,
+                    (inputs.frame, materials),
+                    &primitives.opaque,
+                );
+            }
+            Phase::Transparent | Phase::XRay => {
+                let transparent = phase == Phase::Transparent;
+                let sets: &[&(wgpu::Buffer, u32)] = if transparent {
+                    &[&primitives.see_through]
+                } else {
+                    &[&primitives.opaque, &primitives.see_through]
+                };
+                for layer in [1, 0] {
+                    let pipeline = self.see_through_pipeline(recorder.0, transparent, layer);
+                    for records in sets {
+                        self.draw_records(
+                            recorder,
+                            pass,
+                            pipeline,
+                            (inputs.frame, materials),
+                            records,
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// Draws the proxies of `records` with `pipeline`.
+    fn draw_records(
         &self,
         (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
         pass: &mut wgpu::RenderPass<'_>,
-        frame: &wgpu::Buffer,
-        primitives: &FramePrimitives,
-        (with_uv, proxy_depth): (bool, bool),
+        pipeline: &wgpu::RenderPipeline,
+        (frame, materials): (&wgpu::Buffer, &wgpu::Buffer),
+        (records, count): &(wgpu::Buffer, u32),
     ) {
-        if primitives.count == 0 {
+        if *count == 0 {
             return;
         }
+        let bind = binds.get(
+            device,
+            "analytic",
+            &self.layout,
+            &[
+                frame.as_entire_binding(),
+                records.as_entire_binding(),
+                materials.as_entire_binding(),
+            ],
+        );
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.draw(0..PROXY_VERTICES, 0..*count);
+    }
+
+    /// The see-through pipeline of the transparent phase (x-ray otherwise) drawing hit
+    /// `layer` (0 the nearer).
+    fn see_through_pipeline(
+        &self,
+        device: &wgpu::Device,
+        transparent: bool,
+        layer: u32,
+    ) -> &wgpu::RenderPipeline {
+        let k = layer as usize + 2 * usize::from(transparent);
+        self.see_through[k].get_or_init(|| {
+            let targets = [Some(blended(self.colour))];
+            pipeline(
+                device,
+                PipelineSpec {
+                    label: if transparent {
+                        "analytic transparent"
+                    } else {
+                        "analytic x-ray"
+                    },
+                    layout: &self.pipeline_layout,
+                    module: &self.module,
+                    vertex: "vs_main",
+                    // Both sides; `draws_pixel` keeps one fragment per pixel.
+                    cull: None,
+                    fragment: if transparent {
+                        "fs_transparent"
+                    } else {
+                        "fs_xray"
+                    },
+                    buffers: &[],
+                    depth: transparent.then(see_through_depth),
+                    targets: &targets,
+                    constants: &[("LAYER", f64::from(layer))],
+                },
+            )
+        })
+    }
+
+    /// The visibility pipeline of a frame with or without the (u, v) target, and with the
+    /// proxies' depth for the tests' negative control.
+    fn visibility_pipeline(
+        &self,
+        device: &wgpu::Device,
+        inputs: &PhaseInputs<'_>,
+    ) -> &wgpu::RenderPipeline {
+        let (with_uv, proxy_depth) = (inputs.with_uv, inputs.proxy_depth);
         let k = usize::from(with_uv) + 2 * usize::from(proxy_depth);
-        let pipeline = self.pipelines[k].get_or_init(|| {
+        self.pipelines[k].get_or_init(|| {
             pipeline(
                 device,
                 PipelineSpec {
@@ -88,18 +209,6 @@ impl AnalyticBackend {
                     constants: &[("EXACT_DEPTH", if proxy_depth { 0.0 } else { 1.0 })],
                 },
             )
-        });
-        let bind = binds.get(
-            device,
-            "visibility analytic",
-            &self.layout,
-            &[
-                frame.as_entire_binding(),
-                primitives.buffer.as_entire_binding(),
-            ],
-        );
-        pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, &bind, &[]);
-        pass.draw(0..PROXY_VERTICES, 0..primitives.count);
+        })
     }
 }

@@ -1,11 +1,15 @@
-//! The mesh back-end of the visibility pass: the scene's triangles, instanced over their
-//! draw records.
+//! The mesh back-end: the scene's triangles, instanced over their draw records, into the
+//! visibility buffer (`mesh.wgsl`) and in the see-through phases (`see_through.wgsl`).
 
-use super::{TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state};
+use super::{
+    Phase, PhaseInputs, SEE_THROUGH_WGSL, TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state,
+    see_through_depth,
+};
 use crate::gpu_scene::FrameScene;
-use crate::layout::{Binding, FrameUniform, GpuStruct};
+use crate::layout::{Binding, FrameUniform, GpuStruct, Material};
 use crate::passes::common::{
-    PipelineSpec, draw_mesh_call, entries, layouts, mesh_vertex_layout, pipeline, shader, wgsl,
+    PipelineSpec, blended, draw_mesh_call, draw_meshes, entries, layouts, mesh_vertex_layout,
+    pipeline, shader, wgsl,
 };
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 use std::sync::OnceLock;
@@ -17,6 +21,74 @@ pub(crate) const BINDINGS: &[Binding] = &[Binding::Uniform(FrameUniform::WGSL_NA
 /// own source.
 pub(crate) fn source() -> String {
     wgsl(&[INSTANCES_WGSL, TEXEL_WGSL, include_str!("mesh.wgsl")])
+}
+
+/// Bind group 0 of the see-through phases: frame, materials (group 1: the instances).
+pub(crate) const SEE_THROUGH_BINDINGS: &[Binding] = &[
+    Binding::Uniform(FrameUniform::WGSL_NAME),
+    Binding::Storage(Material::WGSL_NAME),
+];
+
+/// The see-through phases' whole WGSL: the shared declarations, the instances, the shared
+/// see-through colours, its own source.
+pub(crate) fn see_through_source() -> String {
+    wgsl(&[
+        INSTANCES_WGSL,
+        SEE_THROUGH_WGSL,
+        include_str!("see_through.wgsl"),
+    ])
+}
+
+/// The pipelines of the see-through phases and their bind group layout.
+struct SeeThrough {
+    /// Every triangle blended, no depth (x-ray mode).
+    xray: wgpu::RenderPipeline,
+    /// See-through parts of an opaque view: lit, blended, hidden behind the opaque depth.
+    transparent: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+impl SeeThrough {
+    fn new(
+        device: &wgpu::Device,
+        colour: wgpu::TextureFormat,
+        instances: &InstanceLayout,
+    ) -> SeeThrough {
+        let module = shader(device, "mesh see-through", &see_through_source());
+        let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let (layout, pipeline_layout) = layouts(
+            device,
+            "mesh see-through",
+            &entries(SEE_THROUGH_BINDINGS, stages),
+            Some(instances),
+        );
+        let buffers = [Some(mesh_vertex_layout())];
+        let targets = [Some(blended(colour))];
+        let spec = |label, fragment, depth| PipelineSpec {
+            label,
+            layout: &pipeline_layout,
+            module: &module,
+            vertex: "vs_main",
+            cull: None,
+            fragment,
+            buffers: &buffers,
+            depth,
+            targets: &targets,
+            constants: &[],
+        };
+        SeeThrough {
+            xray: pipeline(device, spec("mesh x-ray", "fs_xray", None)),
+            transparent: pipeline(
+                device,
+                spec(
+                    "mesh transparent",
+                    "fs_transparent",
+                    Some(see_through_depth()),
+                ),
+            ),
+            layout,
+        }
+    }
 }
 
 /// The back-end's pipelines and bind group layout: the plain one (no section plane, no (u, v)
@@ -33,6 +105,7 @@ pub(crate) struct MeshBackend {
     sections: OnceLock<wgpu::RenderPipeline>,
     with_uv: OnceLock<wgpu::RenderPipeline>,
     layout: wgpu::BindGroupLayout,
+    see_through: SeeThrough,
 }
 
 /// Which of the back-end's pipelines a frame draws with.
@@ -58,8 +131,13 @@ impl MeshVariant {
 }
 
 impl MeshBackend {
-    /// Builds the pipeline.
-    pub fn new(device: &wgpu::Device, instances: &InstanceLayout) -> MeshBackend {
+    /// Builds the plain visibility pipeline and the see-through ones (for a `colour` target
+    /// of that format); the other variants come on first use.
+    pub fn new(
+        device: &wgpu::Device,
+        colour: wgpu::TextureFormat,
+        instances: &InstanceLayout,
+    ) -> MeshBackend {
         let module = shader(device, "visibility mesh", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) = layouts(
@@ -81,11 +159,50 @@ impl MeshBackend {
             sections: OnceLock::new(),
             with_uv: OnceLock::new(),
             layout,
+            see_through: SeeThrough::new(device, colour, instances),
         }
     }
 
-    /// Draws every call of `scene` into the opened visibility pass.
+    /// Draws its part of `phase` into the pass opened for it: the opaque calls into the
+    /// visibility buffer, the see-through calls over an opaque view, every call in x-ray.
     pub fn draw(
+        &self,
+        recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
+        pass: &mut wgpu::RenderPass<'_>,
+        inputs: &PhaseInputs<'_>,
+        phase: Phase,
+    ) {
+        let scene = inputs.scene;
+        match phase {
+            Phase::Visibility => {
+                let variant = MeshVariant::of(inputs.sections, inputs.with_uv);
+                self.draw_visibility(recorder, pass, inputs.frame, scene, variant);
+            }
+            Phase::Transparent | Phase::XRay => {
+                let (device, binds) = recorder;
+                let bind = binds.get(
+                    device,
+                    "mesh see-through",
+                    &self.see_through.layout,
+                    &[
+                        inputs.frame.as_entire_binding(),
+                        scene.materials.as_entire_binding(),
+                    ],
+                );
+                pass.set_bind_group(0, &bind, &[]);
+                if phase == Phase::XRay {
+                    pass.set_pipeline(&self.see_through.xray);
+                    draw_meshes(pass, scene, &scene.calls);
+                } else {
+                    pass.set_pipeline(&self.see_through.transparent);
+                }
+                draw_meshes(pass, scene, &scene.transparent);
+            }
+        }
+    }
+
+    /// Draws every opaque call of `scene` into the opened visibility pass.
+    fn draw_visibility(
         &self,
         (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
         pass: &mut wgpu::RenderPass<'_>,

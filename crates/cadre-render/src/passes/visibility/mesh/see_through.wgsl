@@ -1,5 +1,6 @@
-// X-ray pass: every triangle drawn see-through, without depth test, more opaque where it is
-// seen edge-on (a Fresnel-like rim), so the inside of an assembly shows through its shell.
+// The mesh back-end's see-through phases: every triangle blended without depth test (x-ray
+// mode), or the see-through parts of an opaque view blended over it behind the visibility
+// depth. The colours are `see_through.wgsl`'s, shared with the other back-ends.
 
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
 
@@ -30,27 +31,17 @@ fn vs_main(
 }
 
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_xray(in: VertexOut) -> @location(0) vec4<f32> {
     if section_cut(in.world) {
         discard;
     }
-    let m = materials[in.material];
-    let len = length(in.normal);
-    let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
-    let rim = (1.0 - facing) * (1.0 - facing);
-    let alpha = mix(0.06, 0.45, rim);
-    return vec4<f32>(m.base_color.rgb * (0.55 + 0.45 * facing), alpha);
+    return xray_colour(materials[in.material].base_color, in.normal);
 }
 
-// A see-through part of an opaque view: its material's colour lit by a headlight, with the
-// material's opacity.
 @fragment
 fn fs_transparent(in: VertexOut) -> @location(0) vec4<f32> {
     if section_cut(in.world) {
         discard;
     }
-    let m = materials[in.material];
-    let len = length(in.normal);
-    let facing = select(1.0, abs(in.normal.z) / len, len > 0.0);
-    return vec4<f32>(m.base_color.rgb * (0.35 + 0.65 * facing), m.base_color.a);
+    return transparent_colour(materials[in.material].base_color, in.normal);
 }
