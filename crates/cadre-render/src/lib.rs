@@ -10,10 +10,36 @@
 //! drivers (Vulkan lavapipe, GL llvmpipe through EGL); [`Renderer::prepare`] uploads a
 //! scene once, [`Renderer::render`] returns an image of it, [`Renderer::render_ids`] its
 //! visibility buffer's ids, and [`Renderer::draw`] draws a viewer's frame into a
-//! [`Viewport`] and a window's (or the caller's) texture, for [`Renderer::pick`]. Geometry is placed relative to the camera in `f64` before it is sent to the GPU as
-//! `f32`, so a part 10⁶ mm from the origin renders like one at the origin.
-//! Up to three [`SectionPlane`]s of a [`ViewState`] cut the model; closed solids show hatched
-//! caps where they are cut.
+//! [`Viewport`] and a window's (or the caller's) texture, for [`Renderer::pick`]. Geometry is
+//! placed relative to the camera in `f64` before it is sent to the GPU as `f32`, so a part
+//! 10⁶ mm from the origin renders like one at the origin. Up to three [`SectionPlane`]s of a
+//! [`ViewState`] cut the model; closed solids show hatched caps where they are cut.
+//!
+//! ```no_run
+//! use cadre_render::{Camera, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset, ViewState};
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let file = cadre_step::syntax::StepFile::read("part.step".as_ref())?;
+//! let model = cadre_step::map_file(&file);
+//! let mesh = cadre_mesh::mesh_model(&model, &cadre_mesh::MeshParams::default(), None);
+//! let scene = RenderScene::from_model(&model, &mesh);
+//!
+//! let gpu = Gpu::headless()?;
+//! let renderer = Renderer::new(&gpu)?;
+//! let prepared = renderer.prepare(&gpu, &scene);
+//! let (lo, hi) = scene.bounds().ok_or("nothing to draw")?;
+//! let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, 800.0 / 600.0);
+//! let image = renderer.render(
+//!     &gpu,
+//!     &prepared,
+//!     &camera,
+//!     &FrameOptions::default(),
+//!     &ViewState::default(),
+//! )?;
+//! image.save("part.png")?;
+//! # Ok(())
+//! # }
+//! ```
 
 pub mod analytic;
 mod bounds;
