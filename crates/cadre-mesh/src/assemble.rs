@@ -8,7 +8,7 @@ use cadre_brep::trim::EdgeSamples;
 use cadre_brep::{Body, EdgeId, FaceId, LoopKind, Model, PartId, ShellId, SolidId, Style};
 
 use crate::ModelMesh;
-use crate::export::{
+use crate::scene::{
     Material, Primitive, Scene, SceneEdge, SceneIds, SceneMesh, SceneNode, SceneVertex,
 };
 

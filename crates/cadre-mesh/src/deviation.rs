@@ -35,7 +35,7 @@ pub struct Deviation {
 }
 
 /// The distance, along each triangle's normal, between the triangle and `surface` at the same
-/// barycentric (u, v), over [`SAMPLES`] of every triangle, on the surface the mesher used
+/// barycentric (u, v), over `SAMPLES` of every triangle, on the surface the mesher used
 /// (closed B-splines repeated across their seam). At a pole or an apex the (u, v) of a vertex
 /// is a convention, so a triangle touching one is measured by projecting its samples onto the
 /// surface instead.

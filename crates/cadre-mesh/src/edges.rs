@@ -31,7 +31,7 @@ impl EdgeSamples for EdgeDiscretisation {
 impl EdgeDiscretisation {
     /// Samples every edge of `model` (in parallel). The two vertices of an edge shorter
     /// than a tenth of the deflection become one point of the mesh (see
-    /// [`weld_micro_edges`]).
+    /// `weld_micro_edges`).
     pub fn new(model: &Model, params: &MeshParams, acc: Accuracy) -> Self {
         let mut samples: Vec<Vec<EdgeSample>> = (0..model.edges.len())
             .into_par_iter()

@@ -17,6 +17,7 @@ pub mod face_area;
 pub mod model;
 pub mod params;
 pub mod periodic;
+pub mod scene;
 pub mod stats;
 mod strip;
 pub mod weld;

@@ -4,9 +4,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use cadre_mesh::export::{
-    ExportError, Format, Material, Primitive, Scene, SceneMesh, SceneNode, write_obj, write_scene,
-};
+use cadre_mesh::export::{ExportError, Format, write_obj, write_scene};
+use cadre_mesh::scene::{Material, Primitive, Scene, SceneMesh, SceneNode};
 use glam::{DAffine3, DVec3, Vec3};
 
 /// Unique scratch directory under the system temp dir.

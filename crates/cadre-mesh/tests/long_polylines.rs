@@ -8,7 +8,7 @@
 
 use std::path::Path;
 
-use cadre_mesh::export::Scene;
+use cadre_mesh::scene::Scene;
 use cadre_mesh::{MeshParams, ModelMesh, mesh_model};
 use cadre_step::syntax::StepFile;
 

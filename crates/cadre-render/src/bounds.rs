@@ -1,6 +1,6 @@
 //! The world box of a scene, for framing it.
 
-use cadre_mesh::export::Scene;
+use cadre_mesh::scene::Scene;
 use glam::DVec3;
 
 /// The axis-aligned box of every placed mesh of `scene`, wires included (each mesh's local

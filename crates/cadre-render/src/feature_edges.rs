@@ -5,7 +5,7 @@
 
 use std::collections::HashMap;
 
-use cadre_mesh::export::SceneMesh;
+use cadre_mesh::scene::SceneMesh;
 
 /// A segment's two ends, mesh-local.
 type Segment = [[f32; 3]; 2];
@@ -54,7 +54,7 @@ pub fn feature_edges(mesh: &SceneMesh) -> Vec<Segment> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cadre_mesh::export::Primitive;
+    use cadre_mesh::scene::Primitive;
 
     #[test]
     fn two_faces_of_a_folded_square_give_their_outline_and_shared_edge_once() {

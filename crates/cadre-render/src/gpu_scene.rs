@@ -2,7 +2,7 @@
 //! draw records that place every instance relative to the camera, with the view's styles
 //! ([`FrameScene`]).
 
-use cadre_mesh::export::SceneMesh;
+use cadre_mesh::scene::SceneMesh;
 use glam::{DAffine3, DMat3, DVec3};
 use wgpu::util::DeviceExt;
 

@@ -10,7 +10,7 @@
 
 use glam::{DAffine3, DMat3};
 
-use cadre_mesh::export::{MAX_DEPTH, Scene};
+use cadre_mesh::scene::{MAX_DEPTH, Scene};
 
 use crate::layout::{DRAW_INSIDE_OUT, Local};
 
@@ -296,7 +296,7 @@ impl SubtreeCounts {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cadre_mesh::export::{SceneMesh, SceneNode};
+    use cadre_mesh::scene::{SceneMesh, SceneNode};
     use glam::DVec3;
 
     /// `levels` levels of `uses` shared nodes above one leaf mesh: `uses^levels` instances,

@@ -6,7 +6,7 @@
 use cadre_brep::measure::SurfaceKind;
 use cadre_brep::{FaceId, MeshId, Model, SurfaceId};
 use cadre_mesh::ModelMesh;
-use cadre_mesh::export::{Scene, SceneIds};
+use cadre_mesh::scene::{Scene, SceneIds};
 use glam::DVec3;
 
 use crate::analytic::{AnalyticPrimitive, AnalyticShape};

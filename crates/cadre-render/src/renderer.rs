@@ -857,8 +857,8 @@ mod tests {
         assert!((srgb_to_linear(linear_to_srgb(0.3)) - 0.3).abs() < 1e-6);
     }
     /// A one-triangle scene: enough for every pass to bind its buffers.
-    fn triangle() -> cadre_mesh::export::Scene {
-        use cadre_mesh::export::{Primitive, Scene, SceneMesh, SceneNode};
+    fn triangle() -> cadre_mesh::scene::Scene {
+        use cadre_mesh::scene::{Primitive, Scene, SceneMesh, SceneNode};
         Scene {
             meshes: vec![SceneMesh {
                 positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],

@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use cadre_mesh::export::SceneMesh;
+use cadre_mesh::scene::SceneMesh;
 
 /// `Some(inside_out)` when every triangle side of `mesh` (all primitives together, positions
 /// welded by their bits: the mesher gives each face its own vertices) is shared by exactly
@@ -55,7 +55,7 @@ pub(crate) fn closed_orientation(mesh: &SceneMesh) -> Option<bool> {
 
 #[cfg(test)]
 mod tests {
-    use cadre_mesh::export::Primitive;
+    use cadre_mesh::scene::Primitive;
 
     use super::*;
 

@@ -6,7 +6,7 @@
 
 mod common;
 
-use cadre_mesh::export::{Scene, SceneNode};
+use cadre_mesh::scene::{Scene, SceneNode};
 use cadre_render::{Camera, RenderScene, Renderer, SectionPlane, ViewState};
 use common::{gpu, scene};
 use glam::{DAffine3, DVec3};

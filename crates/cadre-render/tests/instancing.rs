@@ -5,7 +5,7 @@
 
 mod common;
 
-use cadre_mesh::export::{Scene, SceneNode};
+use cadre_mesh::scene::{Scene, SceneNode};
 use cadre_render::{Camera, FrameOptions, RenderScene, Renderer, ViewPreset, ViewState};
 use common::{gpu, scene};
 use glam::{DAffine3, DQuat, DVec3};

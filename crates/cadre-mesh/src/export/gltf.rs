@@ -13,7 +13,7 @@
 //! - one glTF mesh per scene mesh used by an exported node, shared by all its instances,
 //!   with `POSITION` (with `min`/`max`), `NORMAL` (when present), `_FACE_ID` (when any face
 //!   id is given) and `u16`/`u32` indices, one primitive per non-empty
-//!   [`Primitive`](super::Primitive);
+//!   [`Primitive`](crate::scene::Primitive);
 //! - PBR metallic-roughness materials (blended when alpha < 1), for the materials used.
 //!
 //! `_FACE_ID` is a `FLOAT` scalar per vertex (glTF forbids `UNSIGNED_INT` for vertex
@@ -30,7 +30,7 @@ use glam::{DAffine3, DMat4, DVec3};
 use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 
-use super::scene::{Scene, SceneError, SceneIds, SceneMesh, Visit};
+use crate::scene::{Scene, SceneError, SceneIds, SceneMesh, Visit};
 
 /// Largest face id that `_FACE_ID` (a `FLOAT` attribute) stores exactly: 2^24.
 pub const MAX_EXACT_FACE_ID: u32 = 1 << 24;
@@ -393,7 +393,7 @@ impl Builder {
         })))
     }
 
-    fn material(&mut self, mat: &super::scene::Material) -> json::Index<json::Material> {
+    fn material(&mut self, mat: &crate::scene::Material) -> json::Index<json::Material> {
         let opaque = mat.base_color[3] >= 1.0;
         let unit = |x: f32| x.clamp(0.0, 1.0);
         self.root.push(json::Material {
@@ -566,7 +566,7 @@ mod tests {
     fn face_id_limit() {
         let mesh = SceneMesh {
             positions: vec![[0.0; 3]; 3],
-            primitives: vec![super::super::scene::Primitive {
+            primitives: vec![crate::scene::Primitive {
                 indices: vec![0, 1, 2],
                 material: None,
                 face_ids: vec![MAX_EXACT_FACE_ID + 1],

@@ -1,5 +1,5 @@
-//! Mesh export: an export-neutral [`Scene`] (meshes, materials, node tree) and writers for
-//! glTF 2.0 (`.glb`, `.gltf`), binary STL and Wavefront OBJ (+ MTL).
+//! Mesh export: writers of the assembled [`Scene`] (meshes, materials, node tree,
+//! [`crate::scene`]) for glTF 2.0 (`.glb`, `.gltf`), binary STL and Wavefront OBJ (+ MTL).
 //!
 //! - glTF keeps the node tree and writes each mesh once, shared by its instances (see
 //!   [`gltf`] for the exact layout, the mm → m root scale and the `_FACE_ID`
@@ -13,19 +13,16 @@
 
 pub mod gltf;
 pub mod obj;
-pub mod scene;
 pub mod stl;
 
 use std::path::{Path, PathBuf};
+
+use crate::scene::Scene;
 
 pub use self::gltf::{
     GltfDocument, GltfError, build_gltf, write_glb, write_glb_file, write_gltf, write_gltf_file,
 };
 pub use self::obj::{ObjError, write_mtl, write_obj, write_obj_file};
-pub use self::scene::{
-    Instances, MAX_DEPTH, MAX_NODE_VISITS, Material, Primitive, Scene, SceneEdge, SceneError,
-    SceneIds, SceneMesh, SceneNode, SceneVertex,
-};
 pub use self::stl::{StlError, write_stl, write_stl_file};
 
 /// An export file format.

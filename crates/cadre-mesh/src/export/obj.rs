@@ -14,7 +14,7 @@ use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use super::scene::{
+use crate::scene::{
     Scene, SceneError, is_mirror, normal_matrix, transform_normal, transform_point,
 };
 
@@ -102,7 +102,7 @@ pub fn write_obj<W: Write>(
 pub fn write_mtl<W: Write>(scene: &Scene, mut out: W) -> Result<(), ObjError> {
     scene.validate()?;
     writeln!(out, "# cadre-mesh MTL (linear colours)")?;
-    let default = super::scene::Material::default();
+    let default = crate::scene::Material::default();
     let names = material_names(scene);
     let all = scene
         .materials
@@ -189,7 +189,7 @@ mod tests {
     fn names_are_unique_and_clean() {
         let mut s = Scene::default();
         for n in ["steel part", "steel_part", "", "cadre_default"] {
-            s.materials.push(super::super::scene::Material {
+            s.materials.push(crate::scene::Material {
                 name: n.into(),
                 ..Default::default()
             });

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 
-use super::scene::{Scene, SceneError, is_mirror, transform_point};
+use crate::scene::{Scene, SceneError, is_mirror, transform_point};
 
 /// Error of the STL writers.
 #[derive(Debug, thiserror::Error)]

@@ -344,7 +344,7 @@ pub fn measure(doc: &Document, tool: Tool, picks: &[Picked]) -> Result<Measureme
 mod tests {
     use super::*;
     use cadre_brep::{EdgeId, FaceId};
-    use cadre_mesh::export::SceneIds;
+    use cadre_mesh::scene::SceneIds;
     use std::path::Path;
 
     fn doc(name: &str) -> Document {

@@ -132,7 +132,7 @@ fn grid_scene(
     file: &Path,
     grid: u32,
 ) -> Result<(cadre_render::RenderScene, glam::DVec3, glam::DVec3)> {
-    use cadre_mesh::export::SceneNode;
+    use cadre_mesh::scene::SceneNode;
     use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
     use cadre_render::RenderScene;
     use glam::{DAffine3, DVec3};

@@ -1,5 +1,6 @@
-//! The export-neutral scene: meshes, materials and a node tree, filled by the meshing code
-//! (typically from a STEP assembly) and consumed by every writer of [`crate::export`].
+//! The assembled tessellation: part meshes, materials, the occurrence tree and the dense ids
+//! of the model's entities, filled by [`crate::assemble`] (typically from a STEP assembly)
+//! and consumed by every writer of [`crate::export`] and by the renderer's scene.
 
 use glam::{DAffine3, DVec3};
 
