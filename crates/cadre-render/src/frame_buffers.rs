@@ -104,7 +104,7 @@ impl FrameBuffers {
         use wgpu::BufferUsages as U;
         FrameBuffers {
             frame: GrowingBuffer::new(device, "frame", U::UNIFORM),
-            draws: GrowingBuffer::new(device, "draw records", U::STORAGE),
+            draws: GrowingBuffer::new(device, "draw records", U::STORAGE | U::VERTEX),
             // Bound one call wide at a dynamic offset: only the buffer limit applies.
             calls: GrowingBuffer::new(device, "draw calls", U::UNIFORM).windowed(),
             materials: GrowingBuffer::new(device, "materials", U::STORAGE),

@@ -56,6 +56,11 @@ pub(crate) struct DrawCall {
     /// opens it). `None` for open shells, see-through runs and shared sub-assemblies (whose
     /// local placements may mirror some instances and not others).
     pub cull: Option<wgpu::Face>,
+    /// `Some(first)` when the call's instances are its records `first..first + instances`
+    /// themselves (the identity local list): a pass may then read them as instance-step
+    /// vertex attributes ([`crate::layout::DRAW_ATTRIBUTES`]) instead of composing them
+    /// through the call slot.
+    pub direct: Option<u32>,
 }
 
 /// One instanced segment draw: `count` segments from `first` of the segment buffer,
@@ -65,6 +70,8 @@ pub(crate) struct EdgeCall {
     pub count: u32,
     pub slot: u32,
     pub instances: u32,
+    /// As [`DrawCall::direct`].
+    pub direct: Option<u32>,
 }
 
 /// One visible run's B-Rep edges and vertices, for the pick pass: its draw record, where it
@@ -86,6 +93,9 @@ pub(crate) struct PickRun {
 /// offset), draw records and the scene's local placements.
 pub(crate) struct FrameInstances {
     pub bind: wgpu::BindGroup,
+    /// The draw records, also bound as an instance-step vertex buffer by the calls that read
+    /// them directly ([`DrawCall::direct`]).
+    pub records: wgpu::Buffer,
     stride: u64,
 }
 
@@ -105,7 +115,7 @@ impl FrameInstances {
             device,
             "draw records",
             &records,
-            wgpu::BufferUsages::STORAGE,
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::VERTEX,
         )?;
         let calls = buffer(device, "draw calls", &calls, wgpu::BufferUsages::UNIFORM);
         let resources = instance_resources(&calls, &draws, locals);
@@ -116,6 +126,7 @@ impl FrameInstances {
                 &layout.layout,
                 &resources,
             ),
+            records: draws.clone(),
             stride: InstanceLayout::call_stride(device),
         })
     }
@@ -135,6 +146,7 @@ impl FrameInstances {
         let resources = instance_resources(buffers.calls.buffer(), buffers.draws.buffer(), locals);
         Ok(FrameInstances {
             bind: binds.get(&gpu.device, "instances", &layout.layout, &resources),
+            records: buffers.draws.buffer().clone(),
             stride: InstanceLayout::call_stride(&gpu.device),
         })
     }
@@ -630,6 +642,8 @@ impl<'a> FrameScene<'a> {
                 &[(false, None), (true, None)]
             };
             let locals = (list.first, list.count);
+            // Runs on the identity list are drawn once each by their own record.
+            let direct = |first: u32| (list_index == 0).then_some(first);
             let n = group.len() as u32;
             let instances = n * list.count;
             // One record per run for its segments (the default material's).
@@ -643,6 +657,7 @@ impl<'a> FrameScene<'a> {
                         count,
                         slot: own_slot,
                         instances,
+                        direct: direct(own),
                     });
                 }
             };
@@ -698,6 +713,7 @@ impl<'a> FrameScene<'a> {
                         count,
                         slot: out.slot(start, locals),
                         instances: records * list.count,
+                        direct: direct(start),
                         cull: inside_out.map(|i| {
                             if i {
                                 wgpu::Face::Front

@@ -222,6 +222,44 @@ pub struct Draw {
     pub pad: u32,
 }
 
+/// The first shader location of [`DRAW_ATTRIBUTES`] (the mesh's own vertex attributes take
+/// 0–3).
+pub const DRAW_FIRST_LOCATION: u32 = 8;
+
+/// A [`Draw`] read as instance-step vertex attributes, for the calls whose instances are their
+/// own records (nothing to compose: the identity local list): the model's four columns, the
+/// normal matrix's three, then `material`, `instance`, `flags` (and the padding) as one
+/// `vec4<u32>`, at locations [`DRAW_FIRST_LOCATION`] on. The WGSL twin is `DrawAttributes`
+/// (`passes/instances.wgsl`); `tests/shaders.rs` checks each location's type and that the
+/// offsets are the struct's.
+pub const DRAW_ATTRIBUTES: [wgpu::VertexAttribute; 8] = {
+    const M: u64 = std::mem::offset_of!(Draw, model) as u64;
+    const N: u64 = std::mem::offset_of!(Draw, normal) as u64;
+    const IDS: u64 = std::mem::offset_of!(Draw, material) as u64;
+    const L: u32 = DRAW_FIRST_LOCATION;
+    const fn column(offset: u64, location: u32) -> wgpu::VertexAttribute {
+        wgpu::VertexAttribute {
+            format: wgpu::VertexFormat::Float32x4,
+            offset,
+            shader_location: location,
+        }
+    }
+    [
+        column(M, L),
+        column(M + 16, L + 1),
+        column(M + 32, L + 2),
+        column(M + 48, L + 3),
+        column(N, L + 4),
+        column(N + 16, L + 5),
+        column(N + 32, L + 6),
+        wgpu::VertexAttribute {
+            format: wgpu::VertexFormat::Uint32x4,
+            offset: IDS,
+            shader_location: L + 7,
+        },
+    ]
+};
+
 /// [`Draw::flags`] flag: the mesh is a closed, consistently oriented solid, so seeing one
 /// of its faces from inside means looking through a section into the material (a cap).
 pub const DRAW_CLOSED: u32 = 1;

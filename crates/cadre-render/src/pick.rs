@@ -336,6 +336,8 @@ fn pick_calls(runs: &[PickRun], culling: &DMat4) -> (Vec<Call>, Vec<Draw>, Vec<E
                     count,
                     slot,
                     instances: run.locals.1.max(1),
+                    // The pick pipeline composes every instance through its slot.
+                    direct: None,
                 });
             }
         }

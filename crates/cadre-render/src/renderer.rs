@@ -132,7 +132,7 @@ impl Renderer {
         let renderer = Renderer {
             visibility: VisibilityPass::new(&gpu.device, format, &instances),
             shade: ShadePass::new(&gpu.device, format, gpu.read_only_depth),
-            edges: EdgesPass::new(&gpu.device, format, &instances),
+            edges: EdgesPass::new(&gpu.device, format, &instances, gpu.read_only_depth),
             pick: PickPass::new(&gpu.device, &instances),
             instances,
             colour: format,
@@ -660,7 +660,7 @@ impl Renderer {
                 encoder,
                 targets,
                 (frame, selection),
-                scene,
+                (scene, uniform.modes[2] == EDGES_VISIBLE),
                 colour_view,
             );
         }

@@ -5,9 +5,10 @@
 use cadre_render::SECTION_CAP;
 use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders};
 use cadre_render::layout::{
-    Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE,
-    FILL_BACKGROUND, FILL_NONE, FILL_SHADED, FrameUniform, GpuStruct, LightGpu, Local, Material,
-    Member, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Primitive, Segment,
+    Call, DRAW_ATTRIBUTES, DRAW_CLOSED, DRAW_FIRST_LOCATION, DRAW_INSIDE_OUT, Draw, EDGES_ALL,
+    EDGES_HIDDEN_DASHED, EDGES_VISIBLE, FILL_BACKGROUND, FILL_NONE, FILL_SHADED, FrameUniform,
+    GpuStruct, LightGpu, Local, Material, Member, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE,
+    PickRegion, Primitive, Segment,
 };
 
 /// The renderer's shader named `name`, as it compiles it.
@@ -364,4 +365,117 @@ fn the_shaders_flags_are_the_rust_flags() {
     }
     // Negative control: a constant the shaders do not declare is not found.
     assert_eq!(constant_u32(&visibility, "FILL_SOMETHING"), None);
+}
+
+/// The shader location and vertex format of each member of the WGSL struct `name` whose
+/// members are all vertex inputs, in declaration order.
+fn naga_vertex_inputs(
+    module: &naga::Module,
+    name: &str,
+) -> Result<Vec<(u32, wgpu::VertexFormat)>, String> {
+    let members = module
+        .types
+        .iter()
+        .find_map(|(_, ty)| match &ty.inner {
+            naga::TypeInner::Struct { members, .. } if ty.name.as_deref() == Some(name) => {
+                Some(members)
+            }
+            _ => None,
+        })
+        .ok_or_else(|| format!("no struct {name}"))?;
+    members
+        .iter()
+        .map(|m| {
+            let Some(naga::Binding::Location { location, .. }) = m.binding else {
+                return Err(format!("{name}.{:?} has no location", m.name));
+            };
+            let format = match module.types[m.ty].inner {
+                naga::TypeInner::Vector {
+                    size: naga::VectorSize::Quad,
+                    scalar,
+                } if scalar == naga::Scalar::F32 => wgpu::VertexFormat::Float32x4,
+                naga::TypeInner::Vector {
+                    size: naga::VectorSize::Quad,
+                    scalar,
+                } if scalar == naga::Scalar::U32 => wgpu::VertexFormat::Uint32x4,
+                ref other => return Err(format!("{name}.{:?}: {other:?}", m.name)),
+            };
+            Ok((location, format))
+        })
+        .collect()
+}
+
+/// Compares the Rust attributes a [`Draw`] is read through with `DrawAttributes` of `module`:
+/// the same locations and formats, in order, and offsets that land on the WGSL `Draw`'s
+/// members (the model's columns, the normal matrix's, then material, instance, flags).
+fn compare_draw_attributes(
+    module: &naga::Module,
+    rust: &[wgpu::VertexAttribute],
+) -> Result<(), String> {
+    let wgsl = naga_vertex_inputs(module, "DrawAttributes")?;
+    if wgsl.len() != rust.len() {
+        return Err(format!(
+            "{} WGSL attributes, {} Rust",
+            wgsl.len(),
+            rust.len()
+        ));
+    }
+    let (draw, _) = naga_struct(module, "Draw").ok_or("no struct Draw")?;
+    let offset = |name: &str| {
+        draw.iter()
+            .find(|m| m.name == name)
+            .map(|m| m.offset as u64)
+            .ok_or(format!("Draw has no {name}"))
+    };
+    let (model, normal, material) = (offset("model")?, offset("normal")?, offset("material")?);
+    if offset("instance")? != material + 4 || offset("flags")? != material + 8 {
+        return Err("material, instance, flags are not one vec4<u32>".into());
+    }
+    let expected_offsets = [0, 16, 32, 48].map(|c| model + c).into_iter();
+    let expected_offsets = expected_offsets
+        .chain([0, 16, 32].map(|c| normal + c))
+        .chain([material]);
+    for (i, ((r, (location, format)), offset)) in
+        rust.iter().zip(&wgsl).zip(expected_offsets).enumerate()
+    {
+        if (r.shader_location, r.format) != (*location, *format) {
+            return Err(format!(
+                "attribute {i}: Rust {:?} at location {}, WGSL {format:?} at {location}",
+                r.format, r.shader_location
+            ));
+        }
+        if r.offset != offset {
+            return Err(format!(
+                "attribute {i}: Rust offset {}, WGSL Draw member at {offset}",
+                r.offset
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn draw_records_read_as_attributes_match_their_wgsl_twin() {
+    // The passes whose direct calls read their records as attributes.
+    for pass in ["visibility/mesh", "edges"] {
+        compare_draw_attributes(&module(pass), &DRAW_ATTRIBUTES)
+            .unwrap_or_else(|e| panic!("{pass}: {e}"));
+    }
+    assert_eq!(DRAW_ATTRIBUTES[0].shader_location, DRAW_FIRST_LOCATION);
+}
+
+#[test]
+fn wrong_draw_attributes_are_caught() {
+    // Negative controls: two columns of the model swapped (same format, same locations set),
+    // and the ids read as floats.
+    let module = module("visibility/mesh");
+    let mut swapped = DRAW_ATTRIBUTES;
+    swapped.swap(1, 2);
+    (swapped[1].shader_location, swapped[2].shader_location) = (9, 10);
+    let err = compare_draw_attributes(&module, &swapped).expect_err("swapped columns");
+    assert!(err.contains("offset"), "{err}");
+    let mut floats = DRAW_ATTRIBUTES;
+    floats[7].format = wgpu::VertexFormat::Float32x4;
+    let err = compare_draw_attributes(&module, &floats).expect_err("ids as floats");
+    assert!(err.contains("attribute 7"), "{err}");
 }

@@ -2,7 +2,7 @@
 //! layout entries, the mesh vertex layout, overlay render passes and drawing a scene's meshes.
 
 use crate::gpu_scene::{DrawCall, EdgeCall, FrameInstances, FrameScene};
-use crate::layout::{Binding, Vertex};
+use crate::layout::{Binding, DRAW_ATTRIBUTES, Draw, Vertex};
 use crate::passes::instances::InstanceLayout;
 
 /// The WGSL every pass starts with (`common.wgsl`: the layout structs and the frame uniform).
@@ -146,6 +146,22 @@ pub(crate) fn mesh_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     }
 }
 
+/// The layout of the draw records read as instance-step vertex attributes (the calls with
+/// [`DrawCall::direct`] records), bound at slot [`RECORDS_SLOT`].
+pub(crate) fn record_instance_layout() -> wgpu::VertexBufferLayout<'static> {
+    wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Draw>() as u64,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes: &DRAW_ATTRIBUTES,
+    }
+}
+
+/// The vertex buffer slot of the draw records in the pipelines that read them as attributes
+/// (after the mesh vertices in the mesh back-end; the edges pass has no other).
+pub(crate) const fn records_slot(with_mesh: bool) -> u32 {
+    if with_mesh { 1 } else { 0 }
+}
+
 /// A colour target that blends over what is there.
 pub(crate) fn blended(format: wgpu::TextureFormat) -> wgpu::ColorTargetState {
     wgpu::ColorTargetState {
@@ -180,7 +196,8 @@ pub(crate) fn colour_pass<'e>(
     })
 }
 
-/// Draws `calls` of `scene`, each instanced over its draw records (picked by the instance index).
+/// Draws `calls` of `scene`, each instanced over its draw records (picked by the instance
+/// index, composed through the call's slot).
 pub(crate) fn draw_meshes(
     pass: &mut wgpu::RenderPass<'_>,
     scene: &FrameScene<'_>,
@@ -197,6 +214,27 @@ pub(crate) fn draw_mesh_call(
     scene: &FrameScene<'_>,
     call: &DrawCall,
 ) {
+    draw_mesh_call_as(pass, scene, call, None);
+}
+
+/// [`draw_mesh_call`] by a pipeline that reads a direct call's records as instance-step
+/// attributes (slot 1, [`record_instance_layout`]): `call.direct` must be `Some`.
+pub(crate) fn draw_mesh_call_direct(
+    pass: &mut wgpu::RenderPass<'_>,
+    scene: &FrameScene<'_>,
+    call: &DrawCall,
+) {
+    draw_mesh_call_as(pass, scene, call, call.direct);
+}
+
+/// A mesh call, its instances `direct..direct + instances` of the records bound as vertex
+/// attributes, or `0..instances` composed through its slot.
+fn draw_mesh_call_as(
+    pass: &mut wgpu::RenderPass<'_>,
+    scene: &FrameScene<'_>,
+    call: &DrawCall,
+    direct: Option<u32>,
+) {
     let geometry = scene.geometry;
     pass.set_bind_group(
         1,
@@ -208,7 +246,18 @@ pub(crate) fn draw_mesh_call(
         geometry.indices[call.mesh].slice(..),
         wgpu::IndexFormat::Uint32,
     );
-    pass.draw_indexed(call.first..call.first + call.count, 0, 0..call.instances);
+    let first = match direct {
+        Some(first) => {
+            pass.set_vertex_buffer(records_slot(true), scene.instances.records.slice(..));
+            first
+        }
+        None => 0,
+    };
+    pass.draw_indexed(
+        call.first..call.first + call.count,
+        0,
+        first..first + call.instances,
+    );
 }
 
 /// Draws segment `calls` (a quad of four indexed corners per segment, `quads` being
@@ -222,13 +271,32 @@ pub(crate) fn draw_segments(
 ) {
     pass.set_index_buffer(quads.slice(..), wgpu::IndexFormat::Uint32);
     for call in calls {
-        pass.set_bind_group(1, &instances.bind, &[instances.offset(call.slot)]);
-        pass.draw_indexed(
-            0..call.count * 6,
-            (call.first * 4) as i32,
-            0..call.instances,
-        );
+        draw_segment_call(pass, instances, call, false);
     }
+}
+
+/// Draws one segment call, the segments' quad indices bound: with `direct` by a pipeline
+/// that reads a direct call's records as instance-step attributes (slot
+/// [`records_slot`]`(false)`, bound here), else composed through its slot.
+pub(crate) fn draw_segment_call(
+    pass: &mut wgpu::RenderPass<'_>,
+    instances: &FrameInstances,
+    call: &EdgeCall,
+    direct: bool,
+) {
+    pass.set_bind_group(1, &instances.bind, &[instances.offset(call.slot)]);
+    let first = match call.direct.filter(|_| direct) {
+        Some(first) => {
+            pass.set_vertex_buffer(records_slot(false), instances.records.slice(..));
+            first
+        }
+        None => 0,
+    };
+    pass.draw_indexed(
+        0..call.count * 6,
+        (call.first * 4) as i32,
+        first..first + call.instances,
+    );
 }
 
 /// What differs between the passes' render pipelines.

@@ -3,26 +3,71 @@
 // is decided against the visibility buffer's depth (a small relative
 // tolerance keeps edges from fighting with their own faces): hidden fragments are dropped,
 // drawn dashed, or drawn like the others, by the edge mode.
+//
+// The fragments are where a CPU rasterizer spends this pass (a 1.5-pixel line's quad carries
+// a pixel of fringe on every side, and a 4×4 block is shaded for every block a thin quad
+// touches): what each fragment needs is found per corner (the highlight, flat), and where
+// hidden fragments are only dropped (`DEPTH_TESTED`, the visible-edges mode) the pass tests
+// them against the visibility depth as its depth attachment, so that the rasterizer drops
+// them before shading.
 
 @group(0) @binding(1) var<storage, read> segments: array<Segment>;
 // The visibility depth, 0 where nothing is (4 bytes a fragment, where the ids are 16).
 @group(0) @binding(2) var depth_tex: texture_2d<f32>;
 @group(0) @binding(3) var<storage, read> selection: array<vec4<u32>>;
 
-@vertex
-fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> LineOut {
-    let seg = segments[vi / 4u];
-    let d = instance_draw(draw_index);
-    var width = frame.viewport.z;
-    if is_highlighted(seg, d.instance) {
-        width = max(2.0 * width, width + 2.0);
-    }
-    return segment_quad(seg, vi, d, 0.5 * width);
+// The pipeline tests fragments against the visibility depth (read only, `GreaterEqual`):
+// the corners' depth is divided by (1 − tolerance), which makes that test the shader's own
+// `depth < scene × (1 − tolerance)` for hidden fragments. Only in the visible-edges mode.
+override DEPTH_TESTED: bool = false;
+
+struct EdgeOut {
+    @builtin(position) clip: vec4<f32>,
+    // Signed distance across the line and distance along it, in pixels.
+    @location(0) @interpolate(linear) across: f32,
+    @location(1) @interpolate(linear) along: f32,
+    // The segment's colour (the edge colour or its highlight) and its core's half width.
+    @location(2) @interpolate(flat) colour: vec4<f32>,
+    @location(3) @interpolate(flat) half_width: f32,
+    // Camera-relative world position, for the section planes.
+    @location(4) world: vec3<f32>,
 }
 
-// Whether the segment's edge (or part) of instance `instance` is hovered or selected.
-fn is_highlighted(seg: Segment, instance: u32) -> bool {
-    return highlight_of(seg, instance).w > 0.0;
+@vertex
+fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> EdgeOut {
+    return edge_corner(vi, instance_draw(draw_index));
+}
+
+// `vs_main` for the calls whose records are their instances' (`DrawAttributes`).
+@vertex
+fn vs_main_direct(@builtin(vertex_index) vi: u32, record: DrawAttributes) -> EdgeOut {
+    return edge_corner(vi, attribute_draw(record));
+}
+
+// Corner `vi` of its segment's quad, placed by `d`.
+fn edge_corner(vi: u32, d: Draw) -> EdgeOut {
+    let seg = segments[vi / 4u];
+    var width = frame.viewport.z;
+    var colour = frame.edge_colour;
+    let highlight = highlight_of(seg, d.instance);
+    if highlight.w > 0.0 {
+        colour = vec4<f32>(highlight.rgb, 1.0);
+        width = max(2.0 * width, width + 2.0);
+    }
+    let line = segment_quad(seg, vi, d, 0.5 * width);
+    var out: EdgeOut;
+    out.clip = line.clip;
+    if DEPTH_TESTED {
+        // Reverse Z: z / (1 − tolerance) ≥ scene ⟺ z ≥ scene × (1 − tolerance); kept in
+        // the clip volume (a depth of 1 passes every test).
+        out.clip.z = min(line.clip.z / (1.0 - frame.tolerances.x), line.clip.w);
+    }
+    out.across = line.across;
+    out.along = line.along;
+    out.colour = colour;
+    out.half_width = 0.5 * width;
+    out.world = line.world;
+    return out;
 }
 
 // The highlight colour of the segment's edge: selection over hover, alpha 0 for none.
@@ -43,34 +88,29 @@ fn highlight_of(seg: Segment, instance: u32) -> vec4<f32> {
 }
 
 @fragment
-fn fs_main(in: LineOut) -> @location(0) vec4<f32> {
+fn fs_main(in: EdgeOut) -> @location(0) vec4<f32> {
     if section_cut(in.world) {
         discard;
     }
-    let scene_depth = textureLoad(depth_tex, vec2<i32>(in.clip.xy), 0).x;
-    let seg = segments[in.segment];
-    let highlight = highlight_of(seg, in.instance);
-    // Reverse Z: nearer is larger. The tolerance keeps an edge on its own faces visible.
-    let hidden = in.clip.z < scene_depth * (1.0 - frame.tolerances.x);
-    let mode = frame.modes.z;
-    var colour = frame.edge_colour;
-    var width = frame.viewport.z;
-    if highlight.w > 0.0 {
-        colour = vec4<f32>(highlight.rgb, 1.0);
-        width = max(2.0 * width, width + 2.0);
-    }
-    if hidden {
-        if mode == EDGES_VISIBLE {
-            discard;
-        }
-        if mode == EDGES_HIDDEN_DASHED {
-            if fract(in.along / max(frame.viewport.w, 1.0)) > 0.5 {
+    var colour = in.colour;
+    if !DEPTH_TESTED {
+        let scene_depth = textureLoad(depth_tex, vec2<i32>(in.clip.xy), 0).x;
+        // Reverse Z: nearer is larger. The tolerance keeps an edge on its own faces visible.
+        let hidden = in.clip.z < scene_depth * (1.0 - frame.tolerances.x);
+        let mode = frame.modes.z;
+        if hidden {
+            if mode == EDGES_VISIBLE {
                 discard;
             }
-            colour = frame.hidden_colour;
+            if mode == EDGES_HIDDEN_DASHED {
+                if fract(in.along / max(frame.viewport.w, 1.0)) > 0.5 {
+                    discard;
+                }
+                colour = frame.hidden_colour;
+            }
         }
     }
-    let coverage = clamp(0.5 * width + 0.5 - abs(in.across), 0.0, 1.0);
+    let coverage = clamp(in.half_width + 0.5 - abs(in.across), 0.0, 1.0);
     if coverage <= 0.0 {
         discard;
     }

@@ -2,13 +2,15 @@
 //! of constant pixel width, visible, hidden-dashed or all, by the display mode.
 
 use super::common::{
-    PipelineSpec, blended, colour_pass, draw_segments, entries, layouts, pipeline, shader, wgsl,
+    PipelineSpec, blended, draw_segment_call, entries, layouts, pipeline, record_instance_layout,
+    shader, wgsl,
 };
 use super::visibility::VisibilityTargets;
 use crate::frame_buffers::BindCache;
 use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, FrameUniform, GpuStruct, Segment};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
+use std::sync::OnceLock;
 
 /// Bind group 0: frame, segments, the visibility depth, selection (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
@@ -23,54 +25,135 @@ pub(crate) fn source() -> String {
     wgsl(&[INSTANCES_WGSL, include_str!("edges.wgsl")])
 }
 
-/// The pass's pipeline and bind group layout.
+/// The pass's pipelines and bind group layout.
 pub(crate) struct EdgesPass {
-    pipeline: wgpu::RenderPipeline,
+    module: wgpu::ShaderModule,
+    pipeline_layout: wgpu::PipelineLayout,
+    colour: wgpu::TextureFormat,
+    /// By [`EdgePipeline::index`], each built on first use.
+    pipelines: [OnceLock<wgpu::RenderPipeline>; 4],
     layout: wgpu::BindGroupLayout,
+    /// Whether the adapter can test against the depth the shader also reads
+    /// ([`crate::Gpu::read_only_depth`]; GL cannot): else the shader alone drops hidden edges.
+    read_only_depth: bool,
+}
+
+/// What tells the pass's pipelines apart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct EdgePipeline {
+    /// The direct calls' records read as instance-step attributes (`vs_main_direct`), else
+    /// instances composed through the call slot (`vs_main`).
+    direct: bool,
+    /// Hidden fragments dropped by a depth test against the visibility depth before they are
+    /// shaded (`DEPTH_TESTED`; the visible-edges mode), else by the shader.
+    depth_tested: bool,
+}
+
+impl EdgePipeline {
+    /// The four kinds, in [`EdgePipeline::index`] order.
+    #[cfg(test)]
+    const ALL: [EdgePipeline; 4] = [
+        EdgePipeline {
+            direct: false,
+            depth_tested: false,
+        },
+        EdgePipeline {
+            direct: true,
+            depth_tested: false,
+        },
+        EdgePipeline {
+            direct: false,
+            depth_tested: true,
+        },
+        EdgePipeline {
+            direct: true,
+            depth_tested: true,
+        },
+    ];
+
+    /// Its place in [`EdgesPass::pipelines`].
+    fn index(self) -> usize {
+        usize::from(self.direct) + 2 * usize::from(self.depth_tested)
+    }
+}
+
+/// The read-only depth test of the depth-tested pipelines (reverse Z: the edge in front of
+/// the surface, or on it within the tolerance the shader folds into its depth).
+fn edge_depth() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: crate::passes::visibility::DEPTH,
+        depth_write_enabled: Some(false),
+        depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
 }
 
 impl EdgesPass {
-    /// Builds the pipeline for a `colour` target of that format.
+    /// Prepares the pass for a `colour` target of that format; each pipeline is built on
+    /// first use. `read_only_depth`: [`crate::Gpu::read_only_depth`].
     pub fn new(
         device: &wgpu::Device,
         colour: wgpu::TextureFormat,
         instances: &InstanceLayout,
+        read_only_depth: bool,
     ) -> EdgesPass {
         let module = shader(device, "edges", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) =
             layouts(device, "edges", &entries(BINDINGS, stages), Some(instances));
-        let pipeline = pipeline(
-            device,
-            PipelineSpec {
-                label: "edges",
-                layout: &pipeline_layout,
-                module: &module,
-                vertex: "vs_main",
-                cull: None,
-                fragment: "fs_main",
-                buffers: &[],
-                depth: None,
-                targets: &[Some(blended(colour))],
-                constants: &[],
-            },
-        );
-        EdgesPass { pipeline, layout }
+        EdgesPass {
+            module,
+            pipeline_layout,
+            colour,
+            pipelines: std::array::from_fn(|_| OnceLock::new()),
+            layout,
+            read_only_depth,
+        }
     }
 
-    /// Records the pass over `target` (kept, blended onto).
+    /// The pipeline of `kind`, built on first use.
+    fn pipeline(&self, device: &wgpu::Device, kind: EdgePipeline) -> &wgpu::RenderPipeline {
+        self.pipelines[kind.index()].get_or_init(|| {
+            let records = [Some(record_instance_layout())];
+            let tested = if kind.depth_tested { 1.0 } else { 0.0 };
+            pipeline(
+                device,
+                PipelineSpec {
+                    label: "edges",
+                    layout: &self.pipeline_layout,
+                    module: &self.module,
+                    vertex: if kind.direct {
+                        "vs_main_direct"
+                    } else {
+                        "vs_main"
+                    },
+                    cull: None,
+                    fragment: "fs_main",
+                    buffers: if kind.direct { &records } else { &[] },
+                    depth: kind.depth_tested.then(edge_depth),
+                    targets: &[Some(blended(self.colour))],
+                    constants: &[("DEPTH_TESTED", tested)],
+                },
+            )
+        })
+    }
+
+    /// Records the pass over `target` (kept, blended onto); `visible_only` when the frame's
+    /// edge mode draws visible edges alone ([`crate::layout::EDGES_VISIBLE`]).
     pub fn record(
         &self,
         (device, binds): (&wgpu::Device, &BindCache),
         encoder: &mut wgpu::CommandEncoder,
         visibility: &VisibilityTargets,
         (frame, selection): (&wgpu::Buffer, &wgpu::Buffer),
-        scene: &FrameScene<'_>,
+        (scene, visible_only): (&FrameScene<'_>, bool),
         target: &wgpu::TextureView,
     ) {
         if scene.edge_calls.is_empty() {
             return;
         }
+        let depth_tested = visible_only && self.read_only_depth;
         let bind = binds.get(
             device,
             "edges",
@@ -82,14 +165,60 @@ impl EdgesPass {
                 selection.as_entire_binding(),
             ],
         );
-        let mut pass = colour_pass(encoder, "edges", target, None);
-        pass.set_pipeline(&self.pipeline);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("edges"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            // Read only, for the depth-tested pipelines.
+            depth_stencil_attachment: depth_tested.then_some(
+                wgpu::RenderPassDepthStencilAttachment {
+                    view: &visibility.depth,
+                    depth_ops: None,
+                    stencil_ops: None,
+                },
+            ),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
         pass.set_bind_group(0, &bind, &[]);
-        draw_segments(
-            &mut pass,
-            &scene.instances,
-            &scene.edge_calls,
-            &scene.geometry.quad_indices,
+        pass.set_index_buffer(
+            scene.geometry.quad_indices.slice(..),
+            wgpu::IndexFormat::Uint32,
         );
+        // The pipeline is set again only when the way of reading the records changes.
+        let mut current = None;
+        for call in &scene.edge_calls {
+            let kind = EdgePipeline {
+                direct: call.direct.is_some(),
+                depth_tested,
+            };
+            if current != Some(kind) {
+                pass.set_pipeline(self.pipeline(device, kind));
+                current = Some(kind);
+            }
+            draw_segment_call(&mut pass, &scene.instances, call, kind.direct);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::EdgePipeline;
+
+    /// Each kind has its own slot, in order (a shared one would hand a call another's
+    /// pipeline).
+    #[test]
+    fn edge_pipelines_have_distinct_slots() {
+        for (i, kind) in EdgePipeline::ALL.into_iter().enumerate() {
+            assert_eq!(kind.index(), i, "{kind:?}");
+        }
     }
 }

@@ -19,7 +19,22 @@ fn vs_main(
     @location(3) uv: vec2<f32>,
     @builtin(instance_index) draw_index: u32,
 ) -> VertexOut {
-    let d = instance_draw(draw_index);
+    return full_vertex(instance_draw(draw_index), position, normal, face, uv);
+}
+
+// `vs_main` for the calls whose records are their instances' (`DrawAttributes`).
+@vertex
+fn vs_main_direct(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) face: u32,
+    @location(3) uv: vec2<f32>,
+    record: DrawAttributes,
+) -> VertexOut {
+    return full_vertex(attribute_draw(record), position, normal, face, uv);
+}
+
+fn full_vertex(d: Draw, position: vec3<f32>, normal: vec3<f32>, face: u32, uv: vec2<f32>) -> VertexOut {
     let placed = place_vertex(d, position, normal);
     var out: VertexOut;
     out.clip = placed.clip;
@@ -58,7 +73,21 @@ fn vs_plain(
     @location(2) face: u32,
     @builtin(instance_index) draw_index: u32,
 ) -> PlainOut {
-    let d = instance_draw(draw_index);
+    return plain_vertex(instance_draw(draw_index), position, normal, face);
+}
+
+// `vs_plain` for the calls whose records are their instances' (`DrawAttributes`).
+@vertex
+fn vs_plain_direct(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) face: u32,
+    record: DrawAttributes,
+) -> PlainOut {
+    return plain_vertex(attribute_draw(record), position, normal, face);
+}
+
+fn plain_vertex(d: Draw, position: vec3<f32>, normal: vec3<f32>, face: u32) -> PlainOut {
     let placed = place_vertex(d, position, normal);
     var out: PlainOut;
     out.clip = placed.clip;

@@ -8,8 +8,8 @@ use super::{
 use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, FrameUniform, GpuStruct, Material};
 use crate::passes::common::{
-    PipelineSpec, blended, draw_mesh_call, draw_meshes, entries, layouts, mesh_vertex_layout,
-    pipeline, shader, wgsl,
+    PipelineSpec, blended, draw_mesh_call, draw_mesh_call_direct, draw_meshes, entries, layouts,
+    mesh_vertex_layout, pipeline, record_instance_layout, shader, wgsl,
 };
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 use std::sync::OnceLock;
@@ -91,21 +91,59 @@ impl SeeThrough {
     }
 }
 
-/// The back-end's pipelines and bind group layout: the plain one (no section plane, no (u, v)
-/// target; `vs_plain`/`fs_plain`, every image and viewer frame without sections), and, built
-/// on first use, the one with section planes and caps, and the one that also writes the
-/// (u, v) target.
+/// The back-end's pipelines and bind group layout. Each is built on first use, one per
+/// [`PipelineKey`]: the plain ones (no section plane, no (u, v) target; `vs_plain`/`fs_plain`,
+/// every image and viewer frame without sections), culling back or front faces or none;
+/// the one with section planes and caps; the one that also writes the (u, v) target; each
+/// reading its instances' records through the call slot or, for direct calls, as vertex
+/// attributes.
 pub(crate) struct MeshBackend {
     module: wgpu::ShaderModule,
     pipeline_layout: wgpu::PipelineLayout,
-    plain: wgpu::RenderPipeline,
-    /// The plain pipeline culling back faces, then front faces (closed solids' calls,
-    /// `DrawCall::cull`), built on first use.
-    plain_culling: [OnceLock<wgpu::RenderPipeline>; 2],
-    sections: OnceLock<wgpu::RenderPipeline>,
-    with_uv: OnceLock<wgpu::RenderPipeline>,
+    pipelines: [OnceLock<wgpu::RenderPipeline>; PipelineKey::COUNT],
     layout: wgpu::BindGroupLayout,
     see_through: SeeThrough,
+}
+
+/// What tells the back-end's pipelines apart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct PipelineKey {
+    variant: MeshVariant,
+    /// Faces culled (only in the plain variant: with section planes back faces show caps).
+    cull: Option<wgpu::Face>,
+    /// Records read as instance-step vertex attributes (`DrawCall::direct`).
+    direct: bool,
+}
+
+impl PipelineKey {
+    /// Keys there are: 3 variants × 3 cullings × 2 ways of reading the records.
+    const COUNT: usize = 18;
+
+    /// The key of `variant` for a call culling `cull` (kept in the plain variant only) and
+    /// read `direct` or not.
+    fn new(variant: MeshVariant, cull: Option<wgpu::Face>, direct: bool) -> PipelineKey {
+        let cull = cull.filter(|_| variant == MeshVariant::Plain);
+        PipelineKey {
+            variant,
+            cull,
+            direct,
+        }
+    }
+
+    /// Its place in [`MeshBackend::pipelines`].
+    fn index(self) -> usize {
+        let variant = match self.variant {
+            MeshVariant::Plain => 0,
+            MeshVariant::Sections => 1,
+            MeshVariant::WithUv => 2,
+        };
+        let cull = match self.cull {
+            None => 0,
+            Some(wgpu::Face::Back) => 1,
+            Some(wgpu::Face::Front) => 2,
+        };
+        (variant * 3 + cull) * 2 + usize::from(self.direct)
+    }
 }
 
 /// Which of the back-end's pipelines a frame draws with.
@@ -131,8 +169,8 @@ impl MeshVariant {
 }
 
 impl MeshBackend {
-    /// Builds the plain visibility pipeline and the see-through ones (for a `colour` target
-    /// of that format); the other variants come on first use.
+    /// Builds the see-through pipelines (for a `colour` target of that format); the
+    /// visibility ones come on first use.
     pub fn new(
         device: &wgpu::Device,
         colour: wgpu::TextureFormat,
@@ -146,18 +184,10 @@ impl MeshBackend {
             &entries(BINDINGS, stages),
             Some(instances),
         );
-        let plain = mesh_pipeline(
-            device,
-            (&pipeline_layout, &module),
-            (MeshVariant::Plain, None),
-        );
         MeshBackend {
             module,
             pipeline_layout,
-            plain,
-            plain_culling: [OnceLock::new(), OnceLock::new()],
-            sections: OnceLock::new(),
-            with_uv: OnceLock::new(),
+            pipelines: std::array::from_fn(|_| OnceLock::new()),
             layout,
             see_through: SeeThrough::new(device, colour, instances),
         }
@@ -217,43 +247,46 @@ impl MeshBackend {
             &[frame.as_entire_binding()],
         );
         let parts = (&self.pipeline_layout, &self.module);
-        let pipeline = |cull: Option<wgpu::Face>| match (variant, cull) {
-            (MeshVariant::Plain, None) => &self.plain,
-            (MeshVariant::Plain, Some(face)) => {
-                let k = usize::from(face == wgpu::Face::Front);
-                self.plain_culling[k].get_or_init(|| mesh_pipeline(device, parts, (variant, cull)))
-            }
-            // With section planes back faces show the caps: nothing is culled.
-            (MeshVariant::Sections, _) => self
-                .sections
-                .get_or_init(|| mesh_pipeline(device, parts, (variant, None))),
-            (MeshVariant::WithUv, _) => self
-                .with_uv
-                .get_or_init(|| mesh_pipeline(device, parts, (variant, None))),
-        };
         pass.set_bind_group(0, &bind, &[]);
-        // The pipeline is set again only when the culling changes between calls.
-        let mut current: Option<Option<wgpu::Face>> = None;
+        // The pipeline is set again only when the culling or the way of reading the records
+        // changes between calls.
+        let mut current: Option<PipelineKey> = None;
         for call in &scene.calls {
-            if current != Some(call.cull) {
-                pass.set_pipeline(pipeline(call.cull));
-                current = Some(call.cull);
+            let key = PipelineKey::new(variant, call.cull, call.direct.is_some());
+            if current != Some(key) {
+                let pipeline =
+                    self.pipelines[key.index()].get_or_init(|| mesh_pipeline(device, parts, key));
+                pass.set_pipeline(pipeline);
+                current = Some(key);
             }
-            draw_mesh_call(pass, scene, call);
+            if key.direct {
+                draw_mesh_call_direct(pass, scene, call);
+            } else {
+                draw_mesh_call(pass, scene, call);
+            }
         }
     }
 }
 
-/// The back-end's pipeline of `variant`, culling `cull`.
+/// The back-end's pipeline of `key`.
 fn mesh_pipeline(
     device: &wgpu::Device,
     (layout, module): (&wgpu::PipelineLayout, &wgpu::ShaderModule),
-    (variant, cull): (MeshVariant, Option<wgpu::Face>),
+    key: PipelineKey,
 ) -> wgpu::RenderPipeline {
-    let (vertex, fragment, sections, targets) = match variant {
-        MeshVariant::Plain => ("vs_plain", "fs_plain", 0.0, &TARGETS_NO_UV),
-        MeshVariant::Sections => ("vs_main", "fs_main", 1.0, &TARGETS_NO_UV),
-        MeshVariant::WithUv => ("vs_main", "fs_main", 1.0, &TARGETS),
+    let (vertex, fragment, sections, targets) = match (key.variant, key.direct) {
+        (MeshVariant::Plain, false) => ("vs_plain", "fs_plain", 0.0, &TARGETS_NO_UV),
+        (MeshVariant::Plain, true) => ("vs_plain_direct", "fs_plain", 0.0, &TARGETS_NO_UV),
+        (MeshVariant::Sections, false) => ("vs_main", "fs_main", 1.0, &TARGETS_NO_UV),
+        (MeshVariant::Sections, true) => ("vs_main_direct", "fs_main", 1.0, &TARGETS_NO_UV),
+        (MeshVariant::WithUv, false) => ("vs_main", "fs_main", 1.0, &TARGETS),
+        (MeshVariant::WithUv, true) => ("vs_main_direct", "fs_main", 1.0, &TARGETS),
+    };
+    let with_records = [Some(mesh_vertex_layout()), Some(record_instance_layout())];
+    let buffers = if key.direct {
+        &with_records[..]
+    } else {
+        &with_records[..1]
     };
     pipeline(
         device,
@@ -262,12 +295,41 @@ fn mesh_pipeline(
             layout,
             module,
             vertex,
-            cull,
+            cull: key.cull,
             fragment,
-            buffers: &[Some(mesh_vertex_layout())],
+            buffers,
             depth: Some(depth_state()),
             targets,
             constants: &[("SECTIONS", sections)],
         },
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{MeshVariant, PipelineKey};
+
+    /// Every key has its own slot (a shared one would hand a call another's pipeline).
+    #[test]
+    fn pipeline_keys_have_distinct_slots() {
+        let mut seen = std::collections::BTreeSet::new();
+        for variant in [
+            MeshVariant::Plain,
+            MeshVariant::Sections,
+            MeshVariant::WithUv,
+        ] {
+            for cull in [None, Some(wgpu::Face::Back), Some(wgpu::Face::Front)] {
+                for direct in [false, true] {
+                    let key = PipelineKey::new(variant, cull, direct);
+                    assert!(key.index() < PipelineKey::COUNT);
+                    if variant == MeshVariant::Plain {
+                        assert!(seen.insert(key.index()), "{key:?}");
+                    } else {
+                        assert_eq!(key.cull, None, "only plain pipelines cull");
+                    }
+                }
+            }
+        }
+        assert_eq!(seen.len(), 6);
+    }
 }
