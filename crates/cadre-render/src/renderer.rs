@@ -660,7 +660,7 @@ impl Renderer {
                 encoder,
                 targets,
                 (frame, selection),
-                (scene, uniform.modes[2] == EDGES_VISIBLE),
+                (scene, uniform),
                 colour_view,
             );
         }

@@ -349,6 +349,7 @@ fn the_shaders_flags_are_the_rust_flags() {
         ("EDGES_VISIBLE", EDGES_VISIBLE),
         ("EDGES_ALL", EDGES_ALL),
         ("EDGES_HIDDEN_DASHED", EDGES_HIDDEN_DASHED),
+        ("MAX_SECTIONS", cadre_render::MAX_SECTIONS as u32),
     ] {
         assert_eq!(constant_u32(&visibility, name), Some(value), "{name}");
     }
@@ -478,4 +479,192 @@ fn wrong_draw_attributes_are_caught() {
     floats[7].format = wgpu::VertexFormat::Float32x4;
     let err = compare_draw_attributes(&module, &floats).expect_err("ids as floats");
     assert!(err.contains("attribute 7"), "{err}");
+}
+
+/// What the leaves of an expression tree read, for [`uniform_bound_loops`].
+#[derive(Default)]
+struct Leaves {
+    /// A value loaded from a uniform buffer.
+    uniform: bool,
+    /// Anything else that varies: storage, textures, arguments, calls, queries.
+    other: bool,
+}
+
+/// Walks the expression `e` of `function` down to its leaves.
+fn leaves(
+    module: &naga::Module,
+    function: &naga::Function,
+    e: naga::Handle<naga::Expression>,
+    out: &mut Leaves,
+) {
+    use naga::Expression as E;
+    let mut walk = |h| leaves(module, function, h, out);
+    match &function.expressions[e] {
+        E::Literal(_) | E::Constant(_) | E::Override(_) | E::ZeroValue(_) | E::LocalVariable(_) => {
+        }
+        E::GlobalVariable(g) => {
+            if module.global_variables[*g].space == naga::AddressSpace::Uniform {
+                out.uniform = true;
+            } else {
+                out.other = true;
+            }
+        }
+        E::Load { pointer } => walk(*pointer),
+        E::AccessIndex { base, .. } => walk(*base),
+        E::Access { base, index } => {
+            walk(*base);
+            walk(*index);
+        }
+        E::Splat { value, .. } => walk(*value),
+        E::Swizzle { vector, .. } => walk(*vector),
+        E::Compose { components, .. } => components.iter().for_each(|c| walk(*c)),
+        E::Unary { expr, .. } => walk(*expr),
+        E::Binary { left, right, .. } => {
+            walk(*left);
+            walk(*right);
+        }
+        E::Select {
+            condition,
+            accept,
+            reject,
+        } => {
+            walk(*condition);
+            walk(*accept);
+            walk(*reject);
+        }
+        E::Relational { argument, .. } => walk(*argument),
+        E::As { expr, .. } => walk(*expr),
+        E::Math {
+            arg,
+            arg1,
+            arg2,
+            arg3,
+            ..
+        } => {
+            walk(*arg);
+            [arg1, arg2, arg3]
+                .into_iter()
+                .flatten()
+                .for_each(|a| walk(*a));
+        }
+        _ => out.other = true,
+    }
+}
+
+/// The loops of `module` whose exit condition reads a uniform buffer and nothing else that
+/// varies (besides local variables: the counter), by function name. lavapipe inlines such
+/// uniform values into the shader and compiles it again each time the uniforms are bound
+/// (measured: a recompile per edge draw call, 8–20 ms of a frame).
+fn uniform_bound_loops(module: &naga::Module) -> Vec<String> {
+    fn visit(
+        module: &naga::Module,
+        function: &naga::Function,
+        block: &naga::Block,
+        name: &str,
+        found: &mut Vec<String>,
+    ) {
+        for statement in block.iter() {
+            match statement {
+                naga::Statement::Loop {
+                    body,
+                    continuing,
+                    break_if,
+                } => {
+                    let mut conditions: Vec<_> = break_if.iter().copied().collect();
+                    // WGSL's `for` and `while` open their body with `if cond {} else { break; }`.
+                    if let Some(naga::Statement::If {
+                        condition,
+                        accept,
+                        reject,
+                    }) = body.iter().find(|s| !matches!(s, naga::Statement::Emit(_)))
+                    {
+                        let breaks = |b: &naga::Block| {
+                            matches!(b.iter().next(), Some(naga::Statement::Break))
+                        };
+                        if breaks(accept) || breaks(reject) {
+                            conditions.push(*condition);
+                        }
+                    }
+                    for c in conditions {
+                        let mut l = Leaves::default();
+                        leaves(module, function, c, &mut l);
+                        if l.uniform && !l.other {
+                            found.push(name.to_string());
+                        }
+                    }
+                    visit(module, function, body, name, found);
+                    visit(module, function, continuing, name, found);
+                }
+                naga::Statement::Block(b) => visit(module, function, b, name, found),
+                naga::Statement::If { accept, reject, .. } => {
+                    visit(module, function, accept, name, found);
+                    visit(module, function, reject, name, found);
+                }
+                naga::Statement::Switch { cases, .. } => {
+                    cases
+                        .iter()
+                        .for_each(|c| visit(module, function, &c.body, name, found));
+                }
+                _ => {}
+            }
+        }
+    }
+    let mut found = Vec::new();
+    for (_, f) in module.functions.iter() {
+        visit(
+            module,
+            f,
+            &f.body,
+            f.name.as_deref().unwrap_or("?"),
+            &mut found,
+        );
+    }
+    for ep in &module.entry_points {
+        visit(
+            module,
+            &ep.function,
+            &ep.function.body,
+            &ep.name,
+            &mut found,
+        );
+    }
+    found
+}
+
+#[test]
+fn no_loop_is_bounded_by_a_uniform_alone() {
+    for pass in pass_shaders() {
+        let m = validated(pass.name, &pass.source);
+        let found = uniform_bound_loops(&m);
+        assert!(
+            found.is_empty(),
+            "{}: loops bounded by uniforms in {found:?}",
+            pass.name
+        );
+    }
+}
+
+#[test]
+fn a_loop_bounded_by_a_uniform_is_caught() {
+    // Negative control: the section loop as it was, and the form that passes.
+    let source = |bound: &str| {
+        format!(
+            "struct F {{ n: u32 }}
+             @group(0) @binding(0) var<uniform> f: F;
+             @group(0) @binding(1) var<storage, read> s: array<u32>;
+             @fragment fn main() -> @location(0) vec4<f32> {{
+                 var x = 0u;
+                 for (var i = 0u; i < {bound}; i++) {{ x += s[i]; }}
+                 return vec4<f32>(f32(x));
+             }}"
+        )
+    };
+    let flagged = validated("control", &source("f.n"));
+    assert_eq!(uniform_bound_loops(&flagged), ["main"]);
+    let flagged = validated("control", &source("f.n * 2u + 1u"));
+    assert_eq!(uniform_bound_loops(&flagged), ["main"]);
+    let fine = validated("control", &source("min(f.n, arrayLength(&s))"));
+    assert!(uniform_bound_loops(&fine).is_empty());
+    let fine = validated("control", &source("3u"));
+    assert!(uniform_bound_loops(&fine).is_empty());
 }

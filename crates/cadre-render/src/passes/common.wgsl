@@ -16,7 +16,7 @@ struct FrameUniform {
     hover: vec4<u32>,
     hover_colour: vec4<f32>,
     selection_colour: vec4<f32>,
-    planes: array<vec4<f32>, 3>,
+    planes: array<vec4<f32>, MAX_SECTIONS>,
     plane_normals: array<vec4<f32>, 3>,
     forward: vec4<f32>,
     section: vec4<f32>,
@@ -120,6 +120,8 @@ const DRAW_INSIDE_OUT: u32 = 2u;
 // Material channel of a section cap's ids (view::SECTION_CAP): the flag, the plane's index in
 // bits 28–29, the material in the bits below.
 const SECTION_CAP: u32 = 0x80000000u;
+// The section planes the frame uniform holds (`MAX_SECTIONS`).
+const MAX_SECTIONS: u32 = 3u;
 const CAP_MATERIAL: u32 = 0x0fffffffu;
 
 // Whether the ids of a pixel show a section cap.
@@ -128,14 +130,18 @@ fn is_cap(ids: vec4<u32>) -> bool {
 }
 
 // Whether the camera-relative point `p` lies in a half-space a section plane cuts away.
+//
+// The loop runs over every plane slot with the count tested inside: lavapipe recompiles a
+// shader whose loop is bounded by a uniform-buffer value each time that buffer is bound
+// again (it inlines the value), which was once per draw call (`tests/shaders.rs` checks that
+// no loop is bounded so).
 fn section_cut(p: vec3<f32>) -> bool {
-    for (var i = 0u; i < frame.counts.z; i++) {
+    var cut = false;
+    for (var i = 0u; i < MAX_SECTIONS; i++) {
         let plane = frame.planes[i];
-        if dot(plane.xyz, p) > plane.w {
-            return true;
-        }
+        cut = cut | ((i < frame.counts.z) & (dot(plane.xyz, p) > plane.w));
     }
-    return false;
+    return cut;
 }
 
 // A segment of `segments` as a screen-aligned quad `half` pixels wide each side (plus one

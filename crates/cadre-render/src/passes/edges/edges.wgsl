@@ -20,6 +20,10 @@
 // the corners' depth is divided by (1 − tolerance), which makes that test the shader's own
 // `depth < scene × (1 − tolerance)` for hidden fragments. Only in the visible-edges mode.
 override DEPTH_TESTED: bool = false;
+// Section planes are set (the frame's `counts.z > 0`): fragments in a cut-away half-space are
+// dropped. Compiled out otherwise: a CPU rasterizer pays for code under a false uniform
+// branch at every fragment.
+override SECTIONS: bool = true;
 
 struct EdgeOut {
     @builtin(position) clip: vec4<f32>,
@@ -76,7 +80,9 @@ fn highlight_of(seg: Segment, instance: u32) -> vec4<f32> {
     if bitcast<u32>(seg.b.w) != 1u {
         return vec4<f32>(0.0);
     }
-    for (var i = 0u; i < frame.counts.y; i++) {
+    // Bounded by the buffer too: a loop bounded by a uniform value alone is recompiled by
+    // lavapipe whenever the uniforms are bound again (see `section_cut`, common.wgsl).
+    for (var i = 0u; i < min(frame.counts.y, arrayLength(&selection)); i++) {
         if is_target(selection[i], 2u, instance + 1u, id) {
             return frame.selection_colour;
         }
@@ -89,7 +95,7 @@ fn highlight_of(seg: Segment, instance: u32) -> vec4<f32> {
 
 @fragment
 fn fs_main(in: EdgeOut) -> @location(0) vec4<f32> {
-    if section_cut(in.world) {
+    if SECTIONS && section_cut(in.world) {
         discard;
     }
     var colour = in.colour;

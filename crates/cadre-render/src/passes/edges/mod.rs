@@ -8,7 +8,7 @@ use super::common::{
 use super::visibility::VisibilityTargets;
 use crate::frame_buffers::BindCache;
 use crate::gpu_scene::FrameScene;
-use crate::layout::{Binding, FrameUniform, GpuStruct, Segment};
+use crate::layout::{Binding, EDGES_VISIBLE, FrameUniform, GpuStruct, Segment};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 use std::sync::OnceLock;
 
@@ -31,7 +31,7 @@ pub(crate) struct EdgesPass {
     pipeline_layout: wgpu::PipelineLayout,
     colour: wgpu::TextureFormat,
     /// By [`EdgePipeline::index`], each built on first use.
-    pipelines: [OnceLock<wgpu::RenderPipeline>; 4],
+    pipelines: [OnceLock<wgpu::RenderPipeline>; EdgePipeline::COUNT],
     layout: wgpu::BindGroupLayout,
     /// Whether the adapter can test against the depth the shader also reads
     /// ([`crate::Gpu::read_only_depth`]; GL cannot): else the shader alone drops hidden edges.
@@ -47,33 +47,19 @@ struct EdgePipeline {
     /// Hidden fragments dropped by a depth test against the visibility depth before they are
     /// shaded (`DEPTH_TESTED`; the visible-edges mode), else by the shader.
     depth_tested: bool,
+    /// The frame has section planes (`SECTIONS`).
+    sections: bool,
 }
 
 impl EdgePipeline {
-    /// The four kinds, in [`EdgePipeline::index`] order.
-    #[cfg(test)]
-    const ALL: [EdgePipeline; 4] = [
-        EdgePipeline {
-            direct: false,
-            depth_tested: false,
-        },
-        EdgePipeline {
-            direct: true,
-            depth_tested: false,
-        },
-        EdgePipeline {
-            direct: false,
-            depth_tested: true,
-        },
-        EdgePipeline {
-            direct: true,
-            depth_tested: true,
-        },
-    ];
+    /// The kinds there are.
+    const COUNT: usize = 8;
 
     /// Its place in [`EdgesPass::pipelines`].
     fn index(self) -> usize {
-        usize::from(self.direct) + 2 * usize::from(self.depth_tested)
+        usize::from(self.direct)
+            + 2 * usize::from(self.depth_tested)
+            + 4 * usize::from(self.sections)
     }
 }
 
@@ -116,7 +102,7 @@ impl EdgesPass {
     fn pipeline(&self, device: &wgpu::Device, kind: EdgePipeline) -> &wgpu::RenderPipeline {
         self.pipelines[kind.index()].get_or_init(|| {
             let records = [Some(record_instance_layout())];
-            let tested = if kind.depth_tested { 1.0 } else { 0.0 };
+            let flag = |on: bool| if on { 1.0 } else { 0.0 };
             pipeline(
                 device,
                 PipelineSpec {
@@ -133,27 +119,32 @@ impl EdgesPass {
                     buffers: if kind.direct { &records } else { &[] },
                     depth: kind.depth_tested.then(edge_depth),
                     targets: &[Some(blended(self.colour))],
-                    constants: &[("DEPTH_TESTED", tested)],
+                    constants: &[
+                        ("DEPTH_TESTED", flag(kind.depth_tested)),
+                        ("SECTIONS", flag(kind.sections)),
+                    ],
                 },
             )
         })
     }
 
-    /// Records the pass over `target` (kept, blended onto); `visible_only` when the frame's
-    /// edge mode draws visible edges alone ([`crate::layout::EDGES_VISIBLE`]).
+    /// Records the pass over `target` (kept, blended onto) for the frame `uniform` holds
+    /// (its edge mode and section planes pick the pipelines).
     pub fn record(
         &self,
         (device, binds): (&wgpu::Device, &BindCache),
         encoder: &mut wgpu::CommandEncoder,
         visibility: &VisibilityTargets,
         (frame, selection): (&wgpu::Buffer, &wgpu::Buffer),
-        (scene, visible_only): (&FrameScene<'_>, bool),
+        (scene, uniform): (&FrameScene<'_>, &FrameUniform),
         target: &wgpu::TextureView,
     ) {
         if scene.edge_calls.is_empty() {
             return;
         }
+        let visible_only = uniform.modes[2] == EDGES_VISIBLE;
         let depth_tested = visible_only && self.read_only_depth;
+        let sections = uniform.counts[2] > 0;
         let bind = binds.get(
             device,
             "edges",
@@ -199,6 +190,7 @@ impl EdgesPass {
             let kind = EdgePipeline {
                 direct: call.direct.is_some(),
                 depth_tested,
+                sections,
             };
             if current != Some(kind) {
                 pass.set_pipeline(self.pipeline(device, kind));
@@ -213,12 +205,18 @@ impl EdgesPass {
 mod tests {
     use super::EdgePipeline;
 
-    /// Each kind has its own slot, in order (a shared one would hand a call another's
-    /// pipeline).
+    /// Each kind has its own slot (a shared one would hand a call another's pipeline).
     #[test]
     fn edge_pipelines_have_distinct_slots() {
-        for (i, kind) in EdgePipeline::ALL.into_iter().enumerate() {
-            assert_eq!(kind.index(), i, "{kind:?}");
+        let mut seen = std::collections::BTreeSet::new();
+        for bits in 0..8u8 {
+            let kind = EdgePipeline {
+                direct: bits & 1 != 0,
+                depth_tested: bits & 2 != 0,
+                sections: bits & 4 != 0,
+            };
+            assert!(kind.index() < EdgePipeline::COUNT, "{kind:?}");
+            assert!(seen.insert(kind.index()), "{kind:?}");
         }
     }
 }

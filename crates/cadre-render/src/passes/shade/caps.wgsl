@@ -4,7 +4,10 @@
 // a pixel that is not a cap of the same part and plane.
 fn on_cap_boundary(p: vec2<i32>, ids: vec4<u32>) -> bool {
     let offsets = array<vec2<i32>, 4>(vec2<i32>(1, 0), vec2<i32>(-1, 0), vec2<i32>(0, 1), vec2<i32>(0, -1));
-    let reach = max(i32(frame.section.z + 0.5), 1);
+    // No farther than the image: the bound then is not the uniform value alone, which
+    // lavapipe would inline and recompile the pass for at every frame (see `section_cut`,
+    // common.wgsl).
+    let reach = min(max(i32(frame.section.z + 0.5), 1), i32(textureDimensions(ids_tex).x));
     for (var k = 0; k < 4; k++) {
         for (var r = 1; r <= reach; r++) {
             let q = ids_at(p + offsets[k] * r, ids);

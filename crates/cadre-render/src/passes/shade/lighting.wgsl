@@ -7,37 +7,51 @@ const GROUND: vec3<f32> = vec3<f32>(0.15, 0.14, 0.13);
 
 const PI: f32 = 3.14159265;
 
-fn distribution_ggx(nh: f32, alpha: f32) -> f32 {
-    let a2 = alpha * alpha;
-    let d = nh * nh * (a2 - 1.0) + 1.0;
-    return a2 / (PI * d * d);
+// What every light's term shares at one pixel: the surface, the view, and the parts of the
+// BRDF that depend on them alone.
+struct Surface {
+    n: vec3<f32>,
+    v: vec3<f32>,
+    base: vec3<f32>,
+    metallic: f32,
+    // GGX's alpha² (alpha = roughness²).
+    a2: f32,
+    // Schlick-GGX's k, (roughness + 1)² / 8.
+    k: f32,
+    f0: vec3<f32>,
+    // Smith's view term without its n·v numerator: n·v (1 − k) + k.
+    gv: f32,
 }
 
-fn geometry_smith(nv: f32, nl: f32, roughness: f32) -> f32 {
-    let k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
-    let gv = nv / (nv * (1.0 - k) + k);
-    let gl = nl / (nl * (1.0 - k) + k);
-    return gv * gl;
-}
-
-fn fresnel_schlick(f0: vec3<f32>, cos_theta: f32) -> vec3<f32> {
-    return f0 + (vec3<f32>(1.0) - f0) * pow(clamp(1.0 - cos_theta, 0.0, 1.0), 5.0);
-}
-
-fn light(n: vec3<f32>, v: vec3<f32>, l: vec3<f32>, radiance: vec3<f32>, base: vec3<f32>,
-         metallic: f32, roughness: f32) -> vec3<f32> {
-    let nl = max(dot(n, l), 0.0);
-    if nl <= 0.0 {
-        return vec3<f32>(0.0);
-    }
-    let h = normalize(v + l);
-    let nv = max(dot(n, v), 1e-4);
-    let f0 = mix(vec3<f32>(0.04), base, metallic);
-    let f = fresnel_schlick(f0, max(dot(h, v), 0.0));
+fn surface(n: vec3<f32>, v: vec3<f32>, base: vec3<f32>, metallic: f32, roughness: f32) -> Surface {
     let alpha = roughness * roughness;
-    let spec = distribution_ggx(max(dot(n, h), 0.0), alpha) * geometry_smith(nv, nl, roughness)
-        * f / (4.0 * nv * nl + 1e-4);
-    let diffuse = (vec3<f32>(1.0) - f) * (1.0 - metallic) * base / PI;
+    let k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
+    let nv = max(dot(n, v), 1e-4);
+    return Surface(n, v, base, metallic, alpha * alpha, k, mix(vec3<f32>(0.04), base, metallic),
+        nv * (1.0 - k) + k);
+}
+
+// The fifth power by products: a CPU rasterizer (llvmpipe) may lower `pow` to a log2 and an
+// exp2 approximation.
+fn fresnel_schlick(f0: vec3<f32>, cos_theta: f32) -> vec3<f32> {
+    let x = clamp(1.0 - cos_theta, 0.0, 1.0);
+    let x2 = x * x;
+    return f0 + (vec3<f32>(1.0) - f0) * (x2 * x2 * x);
+}
+
+// One light's Cook–Torrance term: GGX distribution D, Smith Schlick-GGX geometry G,
+// Fresnel–Schlick F; the specular D G F / (4 n·v n·l) with G's n·v and n·l numerators
+// cancelled against the denominator, so that one division remains, and no branch: a CPU
+// rasterizer runs both sides of a branch for every pixel anyway.
+fn light(s: Surface, l: vec3<f32>, radiance: vec3<f32>) -> vec3<f32> {
+    let nl = max(dot(s.n, l), 0.0);
+    let h = normalize(s.v + l);
+    let nh = max(dot(s.n, h), 0.0);
+    let f = fresnel_schlick(s.f0, max(dot(h, s.v), 0.0));
+    let d = nh * nh * (s.a2 - 1.0) + 1.0;
+    let gl = nl * (1.0 - s.k) + s.k;
+    let spec = f * (s.a2 / (4.0 * PI * d * d * s.gv * gl));
+    let diffuse = (vec3<f32>(1.0) - f) * (1.0 - s.metallic) * s.base / PI;
     return (diffuse + spec) * radiance * nl;
 }
 

@@ -48,8 +48,14 @@ fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
 fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(pos.xy);
     let ids = textureLoad(ids_tex, p, 0);
-    if SILHOUETTES && ids.y != 0u && frame.modes.w != 0u && on_silhouette(p) {
-        return frame.edge_colour;
+    let depth = bitcast<f32>(ids.w);
+    if SILHOUETTES {
+        // The depth target's, not the ids' (a cap's ids carry the cut plane's depth, its
+        // depth target the back face it was drawn from: its neighbours' kind).
+        let surface = textureLoad(depth_tex, p, 0).x;
+        if (ids.y != 0u) & (frame.modes.w != 0u) & on_silhouette(p, surface) {
+            return frame.edge_colour;
+        }
     }
     let cap = SECTIONS && is_cap(ids);
     // Caps are outlined whenever faces are filled (shaded or hidden-line).
@@ -71,7 +77,6 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let metallic = clamp(m.params.x, 0.0, 1.0);
     let roughness = clamp(m.params.y, 0.04, 1.0);
     // View direction from the depth: towards the eye (perspective) or along +z (orthographic).
-    let depth = bitcast<f32>(ids.w);
     let ndc = vec2<f32>(pos.x / frame.viewport.x * 2.0 - 1.0, 1.0 - pos.y / frame.viewport.y * 2.0);
     let view_h = frame.inv_proj * vec4<f32>(ndc, depth, 1.0);
     let view_pos = view_h.xyz / view_h.w;
@@ -84,6 +89,7 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     if dot(n, v) < 0.0 {
         n = -n;
     }
+    let lit = surface(n, v, base, metallic, roughness);
     var colour = vec3<f32>(0.0);
     for (var i = 0u; i < LIGHTS; i++) {
         let li = lights[i];
@@ -106,7 +112,7 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
                 radiance *= smoothstep(li.colour.w, li.params.x, dot(-l, normalize(li.direction.xyz)));
             }
         }
-        colour += light(n, v, l, radiance, base, metallic, roughness);
+        colour += light(lit, l, radiance);
     }
     colour += ambient(n, v, base, metallic, roughness);
     var mapped = aces(colour);
@@ -120,7 +126,8 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
 // `colour` tinted when its face (or part) is selected or hovered.
 fn highlighted(colour: vec3<f32>, ids: vec4<u32>) -> vec3<f32> {
     if SELECTION {
-        for (var i = 0u; i < frame.counts.y; i++) {
+        // Bounded by the buffer too (see `section_cut`, common.wgsl).
+        for (var i = 0u; i < min(frame.counts.y, arrayLength(&selection)); i++) {
             if is_target(selection[i], 1u, ids.y, ids.x) {
                 return mix(colour, frame.selection_colour.rgb, frame.selection_colour.w);
             }

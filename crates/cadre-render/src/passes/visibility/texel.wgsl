@@ -41,11 +41,12 @@ fn cap_of(p: vec3<f32>) -> Cap {
     var best = dot(p, dir);
     var cap: Cap;
     cap.plane = -1;
-    for (var i = 0u; i < frame.counts.z; i++) {
+    // Every plane slot, the count tested inside (see `section_cut`).
+    for (var i = 0u; i < MAX_SECTIONS; i++) {
         let plane = frame.planes[i];
         let towards = dot(plane.xyz, dir);
         // Walking back (−dir) leaves this half-space only where the normal faces the eye.
-        if towards < 0.0 {
+        if (i < frame.counts.z) & (towards < 0.0) {
             let t = max((dot(plane.xyz, p) - plane.w) / towards, 0.0);
             if t < best {
                 best = t;
