@@ -11,6 +11,7 @@ use std::collections::BTreeMap;
 use crate::Camera;
 use crate::analytic::AnalyticPrimitive;
 use crate::coverage::{ImageCoverage, MAX_IMAGE_COVERAGE, bounding_sphere, placed_sphere};
+use crate::edge_faces::EdgeFaces;
 use crate::error::RenderError;
 use crate::feature_edges::feature_edges;
 use crate::frame_buffers::{BindCache, FrameBuffers, GrowingBuffer};
@@ -282,37 +283,51 @@ impl PreparedScene {
                 bytemuck::cast_slice(&all),
                 wgpu::BufferUsages::INDEX,
             ));
-            let lines = append(&mut segments, mesh.lines.iter().map(|&[a, b]| (a, b, 0, 0)));
-            let edges = if mesh.edges.is_empty() {
-                // Meshes from the file: edges where the face id or the surface folds.
-                append(
-                    &mut segments,
-                    feature_edges(mesh)
-                        .into_iter()
-                        .map(|[a, b]| (a, b, 0, SEGMENT_EDGE)),
-                )
+            let solid = closed_orientation(mesh);
+            let lines = append(
+                &mut segments,
+                mesh.lines.iter().map(|&[a, b]| (a, b, 0, 0, [0; 2])),
+            );
+            // (a, b, edge id) of the edges; meshes from the file: edges where the face id or
+            // the surface folds.
+            let edge_segments: Vec<([f32; 3], [f32; 3], u32)> = if mesh.edges.is_empty() {
+                feature_edges(mesh)
+                    .into_iter()
+                    .map(|[a, b]| (a, b, 0))
+                    .collect()
             } else {
-                append(
-                    &mut segments,
-                    mesh.edges.iter().flat_map(|e| {
-                        e.points
-                            .windows(2)
-                            .map(move |w| (w[0], w[1], e.id, SEGMENT_EDGE))
-                    }),
-                )
+                mesh.edges
+                    .iter()
+                    .flat_map(|e| e.points.windows(2).map(move |w| (w[0], w[1], e.id)))
+                    .collect()
             };
+            // The faces along each edge of a closed solid, for hidden-edge culling.
+            let faces = solid.map(|inside_out| {
+                EdgeFaces::new(
+                    mesh,
+                    inside_out,
+                    edge_segments.iter().map(|&(a, b, _)| (a, b)),
+                )
+            });
+            let edges = append(
+                &mut segments,
+                edge_segments.iter().map(|&(a, b, id)| {
+                    let packed = faces.as_ref().map_or([0; 2], |f| f.packed(a, b));
+                    (a, b, id, SEGMENT_EDGE, packed)
+                }),
+            );
             let points = append(
                 &mut segments,
                 mesh.vertices
                     .iter()
-                    .map(|v| (v.position, v.position, v.id, SEGMENT_VERTEX)),
+                    .map(|v| (v.position, v.position, v.id, SEGMENT_VERTEX, [0; 2])),
             );
             meshes.push(MeshRanges {
                 primitives,
                 lines,
                 edges,
                 points,
-                solid: closed_orientation(mesh),
+                solid,
                 sphere: bounding_sphere(
                     mesh.positions
                         .iter()
@@ -486,15 +501,17 @@ fn mesh_buffers(mesh: &SceneMesh) -> MeshBuffers {
     (verts, all, prims)
 }
 
-/// Appends segments `(a, b, id, kind)` and returns their (first, count).
+/// Appends segments `(a, b, id, kind, faces)` and returns their (first, count).
 fn append(
     segments: &mut Vec<Segment>,
-    items: impl Iterator<Item = ([f32; 3], [f32; 3], u32, u32)>,
+    items: impl Iterator<Item = ([f32; 3], [f32; 3], u32, u32, [u32; 2])>,
 ) -> (u32, u32) {
     let first = segments.len() as u32;
-    segments.extend(items.map(|(a, b, id, kind)| Segment {
+    segments.extend(items.map(|(a, b, id, kind, faces)| Segment {
         a: [a[0], a[1], a[2], f32::from_bits(id)],
         b: [b[0], b[1], b[2], f32::from_bits(kind)],
+        faces,
+        pad: [0; 2],
     }));
     (first, segments.len() as u32 - first)
 }

@@ -202,6 +202,13 @@ pub struct Segment {
     pub a: [f32; 4],
     /// Second end (xyz); kind as `u32` bits (w: 0 wire line, 1 edge, 2 vertex).
     pub b: [f32; 4],
+    /// The outward unit normals of the two triangles of a closed solid's mesh along this
+    /// segment, mesh-local, each packed as WGSL's `pack4x8snorm` (xyz); 0 where the segment
+    /// does not lie between exactly two triangles of a closed solid. The edges pass drops
+    /// the segments whose both faces turn away from the eye (hidden behind their own solid).
+    pub faces: [u32; 2],
+    /// Padding to the WGSL struct's 16-byte alignment.
+    pub pad: [u32; 2],
 }
 
 /// One draw: a primitive of a mesh placed by one instance.
@@ -405,7 +412,7 @@ gpu_struct!(
     ]
 );
 gpu_struct!(LightGpu, "Light", [position, direction, colour, params]);
-gpu_struct!(Segment, "Segment", [a, b]);
+gpu_struct!(Segment, "Segment", [a, b, faces, pad]);
 gpu_struct!(
     Draw,
     "Draw",

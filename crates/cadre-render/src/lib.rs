@@ -46,6 +46,7 @@ mod bounds;
 mod camera;
 pub mod compare;
 mod coverage;
+mod edge_faces;
 mod error;
 mod feature_edges;
 mod frame_buffers;

@@ -160,6 +160,16 @@ impl Renderer {
         self
     }
 
+    /// This renderer with the edges hidden behind their own closed solid drawn (`None`, then
+    /// dropped by the depth test like any hidden edge) or dropped past another margin than
+    /// the default: for the tests that check that dropping them changes no pixel, and its
+    /// negative control.
+    #[doc(hidden)]
+    pub fn with_edge_culling_margin(mut self, margin: Option<f32>) -> Renderer {
+        self.edges.set_behind_margin(margin);
+        self
+    }
+
     /// [`Renderer::prepare`] with its placements factored past `flat_limit` instances
     /// instead of [`crate::FLAT_LIMIT`]: for tests that draw one scene both ways.
     #[doc(hidden)]

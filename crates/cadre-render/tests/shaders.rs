@@ -481,7 +481,7 @@ fn wrong_draw_attributes_are_caught() {
     assert!(err.contains("attribute 7"), "{err}");
 }
 
-/// What the leaves of an expression tree read, for [`uniform_bound_loops`].
+/// What the leaves of an expression tree read, for [`uniform_only_control_flow`].
 #[derive(Default)]
 struct Leaves {
     /// A value loaded from a uniform buffer.
@@ -551,11 +551,11 @@ fn leaves(
     }
 }
 
-/// The loops of `module` whose exit condition reads a uniform buffer and nothing else that
-/// varies (besides local variables: the counter), by function name. lavapipe inlines such
-/// uniform values into the shader and compiles it again each time the uniforms are bound
-/// (measured: a recompile per edge draw call, 8–20 ms of a frame).
-fn uniform_bound_loops(module: &naga::Module) -> Vec<String> {
+/// The loops and `if`s of `module` whose condition reads a uniform buffer and nothing else
+/// that varies (besides local variables: a loop's counter), by function name (`if`s marked).
+/// lavapipe inlines such uniform values into the shader and compiles it again each time the
+/// uniforms are bound (measured: a recompile per edge draw call, 8–20 ms of a frame).
+fn uniform_only_control_flow(module: &naga::Module) -> Vec<String> {
     fn visit(
         module: &naga::Module,
         function: &naga::Function,
@@ -596,7 +596,19 @@ fn uniform_bound_loops(module: &naga::Module) -> Vec<String> {
                     visit(module, function, continuing, name, found);
                 }
                 naga::Statement::Block(b) => visit(module, function, b, name, found),
-                naga::Statement::If { accept, reject, .. } => {
+                naga::Statement::If {
+                    condition,
+                    accept,
+                    reject,
+                } => {
+                    // A loop's exit test is the loop's (above).
+                    let breaks =
+                        |b: &naga::Block| matches!(b.iter().next(), Some(naga::Statement::Break));
+                    let mut l = Leaves::default();
+                    leaves(module, function, *condition, &mut l);
+                    if l.uniform && !l.other && !breaks(accept) && !breaks(reject) {
+                        found.push(format!("{name} (if)"));
+                    }
                     visit(module, function, accept, name, found);
                     visit(module, function, reject, name, found);
                 }
@@ -632,21 +644,21 @@ fn uniform_bound_loops(module: &naga::Module) -> Vec<String> {
 }
 
 #[test]
-fn no_loop_is_bounded_by_a_uniform_alone() {
+fn no_control_flow_is_decided_by_uniforms_alone() {
     for pass in pass_shaders() {
         let m = validated(pass.name, &pass.source);
-        let found = uniform_bound_loops(&m);
+        let found = uniform_only_control_flow(&m);
         assert!(
             found.is_empty(),
-            "{}: loops bounded by uniforms in {found:?}",
+            "{}: control flow decided by uniforms alone in {found:?}",
             pass.name
         );
     }
 }
 
 #[test]
-fn a_loop_bounded_by_a_uniform_is_caught() {
-    // Negative control: the section loop as it was, and the form that passes.
+fn control_flow_decided_by_a_uniform_is_caught() {
+    // Negative controls: the section loop as it was, and the forms that pass.
     let source = |bound: &str| {
         format!(
             "struct F {{ n: u32 }}
@@ -660,11 +672,27 @@ fn a_loop_bounded_by_a_uniform_is_caught() {
         )
     };
     let flagged = validated("control", &source("f.n"));
-    assert_eq!(uniform_bound_loops(&flagged), ["main"]);
+    assert_eq!(uniform_only_control_flow(&flagged), ["main"]);
     let flagged = validated("control", &source("f.n * 2u + 1u"));
-    assert_eq!(uniform_bound_loops(&flagged), ["main"]);
+    assert_eq!(uniform_only_control_flow(&flagged), ["main"]);
     let fine = validated("control", &source("min(f.n, arrayLength(&s))"));
-    assert!(uniform_bound_loops(&fine).is_empty());
+    assert!(uniform_only_control_flow(&fine).is_empty());
     let fine = validated("control", &source("3u"));
-    assert!(uniform_bound_loops(&fine).is_empty());
+    assert!(uniform_only_control_flow(&fine).is_empty());
+    // An `if` on a uniform alone, and one joined with a varying value.
+    let branch = |condition: &str| {
+        format!(
+            "struct F {{ n: u32 }}
+             @group(0) @binding(0) var<uniform> f: F;
+             @fragment fn main(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {{
+                 var x = 0.0;
+                 if {condition} {{ x = 1.0; }}
+                 return vec4<f32>(x);
+             }}"
+        )
+    };
+    let flagged = validated("control", &branch("f.n == 1u"));
+    assert_eq!(uniform_only_control_flow(&flagged), ["main (if)"]);
+    let fine = validated("control", &branch("(f.n == 1u) & (p.x > 2.0)"));
+    assert!(uniform_only_control_flow(&fine).is_empty());
 }

@@ -54,6 +54,9 @@ struct Material {
 struct Segment {
     a: vec4<f32>,
     b: vec4<f32>,
+    // The outward normals of its two faces (`pack4x8snorm`), 0 for none.
+    faces: vec2<u32>,
+    pad: vec2<u32>,
 }
 
 struct Primitive {
@@ -131,10 +134,11 @@ fn is_cap(ids: vec4<u32>) -> bool {
 
 // Whether the camera-relative point `p` lies in a half-space a section plane cuts away.
 //
-// The loop runs over every plane slot with the count tested inside: lavapipe recompiles a
-// shader whose loop is bounded by a uniform-buffer value each time that buffer is bound
-// again (it inlines the value), which was once per draw call (`tests/shaders.rs` checks that
-// no loop is bounded so).
+// The loop runs over every plane slot with the count tested inside: lavapipe inlines the
+// uniform-buffer values that alone decide a loop's bound or an `if` and compiles the shader
+// again each time that buffer is bound again, which was once per draw call (measured: 8–20
+// ms of a frame). `tests/shaders.rs` checks that no loop or `if` is decided so; such
+// choices are made with `select`, or joined with a per-fragment value.
 fn section_cut(p: vec3<f32>) -> bool {
     var cut = false;
     for (var i = 0u; i < MAX_SECTIONS; i++) {

@@ -36,7 +36,13 @@ pub(crate) struct EdgesPass {
     /// Whether the adapter can test against the depth the shader also reads
     /// ([`crate::Gpu::read_only_depth`]; GL cannot): else the shader alone drops hidden edges.
     read_only_depth: bool,
+    /// The margin past edge-on beyond which segments between two faces turned away are
+    /// dropped (`BACK_MARGIN`), or `None` to draw them (`CULL_BEHIND` unset).
+    behind_margin: Option<f32>,
 }
+
+/// `BACK_MARGIN` of edges.wgsl, its default.
+const BACK_MARGIN: f32 = 0.25;
 
 /// What tells the pass's pipelines apart.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -95,7 +101,15 @@ impl EdgesPass {
             pipelines: std::array::from_fn(|_| OnceLock::new()),
             layout,
             read_only_depth,
+            behind_margin: Some(BACK_MARGIN),
         }
+    }
+
+    /// Sets the margin of [`EdgesPass::behind_margin`] (before any frame: the pipelines are
+    /// built again).
+    pub fn set_behind_margin(&mut self, margin: Option<f32>) {
+        self.behind_margin = margin;
+        self.pipelines = std::array::from_fn(|_| OnceLock::new());
     }
 
     /// The pipeline of `kind`, built on first use.
@@ -122,6 +136,11 @@ impl EdgesPass {
                     constants: &[
                         ("DEPTH_TESTED", flag(kind.depth_tested)),
                         ("SECTIONS", flag(kind.sections)),
+                        ("CULL_BEHIND", flag(self.behind_margin.is_some())),
+                        (
+                            "BACK_MARGIN",
+                            f64::from(self.behind_margin.unwrap_or(BACK_MARGIN)),
+                        ),
                     ],
                 },
             )

@@ -80,10 +80,8 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let ndc = vec2<f32>(pos.x / frame.viewport.x * 2.0 - 1.0, 1.0 - pos.y / frame.viewport.y * 2.0);
     let view_h = frame.inv_proj * vec4<f32>(ndc, depth, 1.0);
     let view_pos = view_h.xyz / view_h.w;
-    var v = normalize(-view_pos);
-    if frame.modes.x == PROJECTION_ORTHOGRAPHIC {
-        v = vec3<f32>(0.0, 0.0, 1.0);
-    }
+    let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
+    let v = select(normalize(-view_pos), vec3<f32>(0.0, 0.0, 1.0), ortho);
     var n = normalize(textureLoad(normal_tex, p, 0).xyz);
     // Both sides of a face are lit alike (open shells, views from inside).
     if dot(n, v) < 0.0 {

@@ -33,10 +33,8 @@ struct Cap {
 
 fn cap_of(p: vec3<f32>) -> Cap {
     // From the eye through `p` (perspective) or along the view direction (orthographic).
-    var dir = normalize(p);
-    if frame.modes.x == PROJECTION_ORTHOGRAPHIC {
-        dir = frame.forward.xyz;
-    }
+    let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
+    let dir = select(normalize(p), frame.forward.xyz, ortho);
     // Crossings behind the eye (or its plane) do not count.
     var best = dot(p, dir);
     var cap: Cap;

@@ -112,12 +112,10 @@ struct PixelRay {
 }
 
 fn pixel_ray(p: Primitive, world: vec3<f32>) -> PixelRay {
-    var origin = vec3<f32>(0.0);
-    var dir = world;
-    if frame.modes.x == PROJECTION_ORTHOGRAPHIC {
-        origin = world;
-        dir = frame.forward.xyz;
-    }
+    // By `select`, not `if` (see `section_cut`, common.wgsl).
+    let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
+    let origin = select(vec3<f32>(0.0), world, ortho);
+    let dir = select(world, frame.forward.xyz, ortho);
     let o = (p.to_local * vec4<f32>(origin, 1.0)).xyz;
     let d = (p.to_local * vec4<f32>(dir, 0.0)).xyz;
     return PixelRay(origin, dir, o, d);
