@@ -148,9 +148,9 @@ fn section_cut(p: vec3<f32>) -> bool {
     return cut;
 }
 
-// A segment of `segments` as a screen-aligned quad `half` pixels wide each side (plus one
-// pixel of fringe, and past the ends): corner `vi % 4` of segment `vi / 4`, placed by draw
-// record `d`. A segment of zero length is a square (a B-Rep vertex).
+// A segment of `segments` as a screen-aligned quad `half_width` pixels wide each side (plus
+// `fringe`, also past the ends): corner `vi % 4` of segment `vi / 4`, placed by draw record
+// `d`. A segment of zero length is a square (a B-Rep vertex).
 struct LineOut {
     @builtin(position) clip: vec4<f32>,
     // Signed distance across the line and distance along it, in pixels.
@@ -163,7 +163,12 @@ struct LineOut {
     @location(4) world: vec3<f32>,
 }
 
-fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32) -> LineOut {
+//
+// `fringe`: how far past `half_width` the quad reaches across (and past the ends): the edges
+// pass needs half a pixel (its coverage is 0 at half_width + 0.5 from the line, so a wider
+// quad only adds fragments it discards: a third more of them for a 1.5-pixel line), picking
+// a pixel of tolerance.
+fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32, fringe: f32) -> LineOut {
     // Corner `vi % 4`: bit 0 the end (a or b), bit 1 the side (−, +); the index buffer
     // makes the triangles (a−, b−, b+) and (a−, b+, a+).
     let corner = vi % 4u;
@@ -178,12 +183,12 @@ fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32) -> LineOut {
     let len = length(dir);
     dir = select(vec2<f32>(1.0, 0.0), dir / len, len > 1e-6);
     let side = vec2<f32>(-dir.y, dir.x);
-    let half = half_width + 1.0;
+    let half = half_width + fringe;
     let at_b = (corner & 1u) == 1u;
     let across = select(-1.0, 1.0, (corner & 2u) != 0u);
     let c = select(ca, cb, at_b);
     let s = select(sa, sb, at_b) + side * across * half
-        + dir * select(-1.0, 1.0, at_b) * select(1.0, half, len <= 1e-6);
+        + dir * select(-1.0, 1.0, at_b) * select(fringe, half, len <= 1e-6);
     var out: LineOut;
     out.clip = vec4<f32>(s / (0.5 * size) * c.w, c.z, c.w);
     out.across = across * half;

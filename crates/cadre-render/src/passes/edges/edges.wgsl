@@ -58,7 +58,7 @@ fn edge_corner(vi: u32, d: Draw) -> EdgeOut {
         colour = vec4<f32>(highlight.rgb, 1.0);
         width = max(2.0 * width, width + 2.0);
     }
-    let line = segment_quad(seg, vi, d, 0.5 * width);
+    let line = segment_quad(seg, vi, d, 0.5 * width, 0.5);
     var out: EdgeOut;
     out.clip = line.clip;
     if behind_its_solid(seg, d) {

@@ -16,7 +16,7 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: 
     let seg = segments[vi / 4u];
     // Vertices a little larger than the one-pixel edges, so an edge's end still shows them.
     let vertex = bitcast<u32>(seg.b.w) == 2u;
-    return segment_quad(seg, vi, instance_draw(draw_index), select(0.0, 1.0, vertex));
+    return segment_quad(seg, vi, instance_draw(draw_index), select(0.0, 1.0, vertex), 1.0);
 }
 
 @fragment
