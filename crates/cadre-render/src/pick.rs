@@ -69,6 +69,9 @@ pub struct PendingPick {
     /// Bytes per row of each of the two regions in the buffer (faces, then lines).
     padded: u32,
     mapped: std::sync::mpsc::Receiver<Result<(), wgpu::BufferAsyncError>>,
+    /// A window with nothing to read (the cursor outside the view) not yet answered: the
+    /// first poll gives it at once (else a caller polling for it would wait forever).
+    empty_unanswered: bool,
 }
 
 impl PendingPick {
@@ -80,6 +83,9 @@ impl PendingPick {
     /// The answer if the GPU has finished, without waiting; `None` while it runs. After an
     /// answer (or an error) it gives `None`.
     pub fn poll(&mut self, gpu: &Gpu) -> Option<Result<PickWindow, RenderError>> {
+        if std::mem::take(&mut self.empty_unanswered) {
+            return Some(Ok(self.window.clone()));
+        }
         self.buffer.as_ref()?;
         if let Err(e) = gpu.device.poll(wgpu::PollType::Poll) {
             self.buffer = None;
@@ -177,6 +183,7 @@ impl Renderer {
                 buffer: None,
                 padded: 0,
                 mapped: rx,
+                empty_unanswered: true,
             });
         }
         let device = &gpu.device;
@@ -305,6 +312,7 @@ impl Renderer {
             buffer: Some(buffer),
             padded,
             mapped: rx,
+            empty_unanswered: false,
         })
     }
 }
