@@ -82,7 +82,8 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let view_pos = view_h.xyz / view_h.w;
     let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
     let v = select(normalize(-view_pos), vec3<f32>(0.0, 0.0, 1.0), ortho);
-    var n = normalize(textureLoad(normal_tex, p, 0).xyz);
+    // The normal target holds 0.5 n + 0.5 (`encode_normal`, texel.wgsl).
+    var n = normalize(2.0 * textureLoad(normal_tex, p, 0).xyz - 1.0);
     // Both sides of a face are lit alike (open shells, views from inside).
     if dot(n, v) < 0.0 {
         n = -n;

@@ -49,8 +49,11 @@ pub(crate) struct PhaseInputs<'a> {
 
 /// Formats of the visibility buffer.
 pub(crate) const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// View-space unit normal (xyz), coverage (w).
-pub(crate) const NORMAL: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// View-space unit normal, each component mapped from [−1, 1] to [0, 1] (xyz, 10 bits: a
+/// step of 0.002, under 0.1°), 1 where a surface is (w). Four bytes a pixel where
+/// `Rgba16Float` took eight: on a CPU rasterizer every byte of a target is cleared, converted,
+/// stored and read again each frame.
+pub(crate) const NORMAL: wgpu::TextureFormat = wgpu::TextureFormat::Rgb10a2Unorm;
 /// Face id, instance + 1 (0 = background), material, depth (f32 bits).
 pub(crate) const IDS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 /// (u, v) on the face's exact surface, as f32 bits (float targets of 32 bits are not

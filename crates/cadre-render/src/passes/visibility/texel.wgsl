@@ -31,6 +31,12 @@ struct Cap {
     point: vec3<f32>,
 }
 
+// The normal target's texel of the unit normal `n` (`visibility::NORMAL`: [−1, 1] to [0, 1];
+// `decode_normal` in common.wgsl undoes it).
+fn encode_normal(n: vec3<f32>) -> vec4<f32> {
+    return vec4<f32>(0.5 * n + 0.5, 1.0);
+}
+
 fn cap_of(p: vec3<f32>) -> Cap {
     // From the eye through `p` (perspective) or along the view direction (orthographic).
     let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
@@ -70,7 +76,7 @@ fn visibility_texel(
 ) -> VisibilityOut {
     var out: VisibilityOut;
     let len = length(normal);
-    out.normal = vec4<f32>(select(vec3<f32>(0.0, 0.0, 1.0), normal / len, len > 0.0), 1.0);
+    out.normal = encode_normal(select(vec3<f32>(0.0, 0.0, 1.0), normal / len, len > 0.0));
     out.ids = vec4<u32>(face, d.instance + 1u, d.material, bitcast<u32>(depth));
     out.uv = bitcast<vec2<u32>>(uv);
     // Seen from inside: from the back, unless the draw is inside out.
@@ -80,7 +86,7 @@ fn visibility_texel(
         if cap.plane >= 0 {
             let clip = frame.view_proj * vec4<f32>(cap.point, 1.0);
             let cap_depth = clamp(clip.z / clip.w, 0.0, 1.0);
-            out.normal = vec4<f32>(frame.plane_normals[cap.plane].xyz, 1.0);
+            out.normal = encode_normal(frame.plane_normals[cap.plane].xyz);
             let material = SECTION_CAP | (u32(cap.plane) << 28u) | (d.material & CAP_MATERIAL);
             out.ids = vec4<u32>(0u, d.instance + 1u, material, bitcast<u32>(cap_depth));
             out.uv = vec2<u32>(0u);
