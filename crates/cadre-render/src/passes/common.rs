@@ -171,12 +171,14 @@ pub(crate) fn blended(format: wgpu::TextureFormat) -> wgpu::ColorTargetState {
     }
 }
 
-/// A render pass over `target` that keeps its content (`clear` to start from a colour).
+/// A render pass over `target` that keeps its content (`clear` to start from a colour), with
+/// `read_only_depth`, if any, as its depth attachment read only: the pipelines' depth test,
+/// while their shaders may read the same texture (not on GL: `Gpu::read_only_depth`).
 pub(crate) fn colour_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     label: &str,
-    target: &wgpu::TextureView,
-    clear: Option<wgpu::Color>,
+    (target, clear): (&wgpu::TextureView, Option<wgpu::Color>),
+    read_only_depth: Option<&wgpu::TextureView>,
 ) -> wgpu::RenderPass<'e> {
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
@@ -189,7 +191,13 @@ pub(crate) fn colour_pass<'e>(
                 store: wgpu::StoreOp::Store,
             },
         })],
-        depth_stencil_attachment: None,
+        depth_stencil_attachment: read_only_depth.map(|view| {
+            wgpu::RenderPassDepthStencilAttachment {
+                view,
+                depth_ops: None,
+                stencil_ops: None,
+            }
+        }),
         timestamp_writes: None,
         occlusion_query_set: None,
         multiview_mask: None,

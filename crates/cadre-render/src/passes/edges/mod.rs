@@ -2,8 +2,8 @@
 //! of constant pixel width, visible, hidden-dashed or all, by the display mode.
 
 use super::common::{
-    PipelineSpec, blended, draw_segment_call, entries, layouts, pipeline, record_instance_layout,
-    shader, wgsl,
+    PipelineSpec, blended, colour_pass, draw_segment_call, entries, layouts, pipeline,
+    record_instance_layout, shader, wgsl,
 };
 use super::visibility::VisibilityTargets;
 use crate::frame_buffers::BindCache;
@@ -175,29 +175,9 @@ impl EdgesPass {
                 selection.as_entire_binding(),
             ],
         );
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("edges"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            // Read only, for the depth-tested pipelines.
-            depth_stencil_attachment: depth_tested.then_some(
-                wgpu::RenderPassDepthStencilAttachment {
-                    view: &visibility.depth,
-                    depth_ops: None,
-                    stencil_ops: None,
-                },
-            ),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        // The visibility depth read only, for the depth-tested pipelines.
+        let depth = depth_tested.then_some(&visibility.depth);
+        let mut pass = colour_pass(encoder, "edges", (target, None), depth);
         pass.set_bind_group(0, &bind, &[]);
         pass.set_index_buffer(
             scene.geometry.quad_indices.slice(..),

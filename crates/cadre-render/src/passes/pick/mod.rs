@@ -89,7 +89,12 @@ impl PickPass {
                 inputs.region.as_entire_binding(),
             ],
         );
-        let mut pass = colour_pass(encoder, "pick", target, Some(wgpu::Color::TRANSPARENT));
+        let mut pass = colour_pass(
+            encoder,
+            "pick",
+            (target, Some(wgpu::Color::TRANSPARENT)),
+            None,
+        );
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
         draw_segments(&mut pass, inputs.instances, inputs.calls, inputs.quads);

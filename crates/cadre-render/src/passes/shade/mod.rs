@@ -1,6 +1,6 @@
 //! Shading pass: lights the visibility buffer into the colour target.
 
-use super::common::{PipelineSpec, entries, layouts, pipeline, shader, wgsl};
+use super::common::{PipelineSpec, colour_pass, entries, layouts, pipeline, shader, wgsl};
 use super::visibility::{DEPTH, VisibilityTargets};
 use crate::frame_buffers::BindCache;
 use crate::layout::{Binding, FrameUniform, GpuStruct, LightGpu, Material};
@@ -218,27 +218,9 @@ impl ShadePass {
                 wgpu::BindingResource::TextureView(&visibility.depth),
             ],
         );
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("shade"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(*background),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            // Read only: the depth test keeps the shader off the background.
-            depth_stencil_attachment: self.cull.then_some(wgpu::RenderPassDepthStencilAttachment {
-                view: &visibility.depth,
-                depth_ops: None,
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        // Read only: the depth test keeps the shader off the background.
+        let depth = self.cull.then_some(&visibility.depth);
+        let mut pass = colour_pass(encoder, "shade", (target, Some(*background)), depth);
         pass.set_pipeline(&self.pipeline(device, *variant));
         pass.set_bind_group(0, &bind, &[]);
         pass.draw(0..3, 0..1);
