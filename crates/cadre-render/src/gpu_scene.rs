@@ -20,6 +20,7 @@ use crate::passes::instances::InstanceLayout;
 use crate::passes::visibility::analytic::FramePrimitives;
 use crate::placements::{Placements, normal_columns, normal_matrix};
 use crate::solid::closed_orientation;
+use crate::vertex_cache;
 use crate::view::{InstanceStyle, ViewState};
 
 /// Default CAD material (light grey, dielectric, fairly rough) for primitives without one.
@@ -480,12 +481,14 @@ fn mesh_buffers(mesh: &SceneMesh) -> MeshBuffers {
                 }
             }
         }
-        prims.push((all.len() as u32, prim.indices.len() as u32, prim.material));
+        let first = all.len();
+        prims.push((first as u32, prim.indices.len() as u32, prim.material));
         all.extend(
             prim.indices
                 .iter()
                 .map(|&i| i.min(mesh.positions.len().saturating_sub(1) as u32)),
         );
+        vertex_cache::optimize(&mut all[first..]);
     }
     let verts = mesh
         .positions

@@ -62,6 +62,7 @@ mod render_scene;
 mod renderer;
 mod smooth;
 mod solid;
+mod vertex_cache;
 mod view;
 mod viewport;
 
