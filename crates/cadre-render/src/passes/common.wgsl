@@ -172,10 +172,26 @@ fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32, fringe: f32) ->
     // Corner `vi % 4`: bit 0 the end (a or b), bit 1 the side (−, +); the index buffer
     // makes the triangles (a−, b−, b+) and (a−, b+, a+).
     let corner = vi % 4u;
-    let wa = d.model * vec4<f32>(seg.a.xyz, 1.0);
-    let wb = d.model * vec4<f32>(seg.b.xyz, 1.0);
-    let ca = frame.view_proj * wa;
-    let cb = frame.view_proj * wb;
+    var wa = d.model * vec4<f32>(seg.a.xyz, 1.0);
+    var wb = d.model * vec4<f32>(seg.b.xyz, 1.0);
+    var ca = frame.view_proj * wa;
+    var cb = frame.view_proj * wb;
+    // The segment clipped to the near plane (reverse Z: in front where z ≤ w) before its
+    // ends are divided by w: an end behind the eye has w ≤ 0, and its division would throw
+    // the quad across the screen. The rasterizer clips triangles, not the line the quad
+    // was built from.
+    let da = ca.w - ca.z;
+    let db = cb.w - cb.z;
+    let t = da / (da - db);
+    let a_behind = (da < 0.0) & (db >= 0.0);
+    let b_behind = (db < 0.0) & (da >= 0.0);
+    let both_behind = (da < 0.0) & (db < 0.0);
+    let on_near = mix(ca, cb, t);
+    let world_on_near = mix(wa, wb, t);
+    ca = select(ca, on_near, a_behind);
+    wa = select(wa, world_on_near, a_behind);
+    cb = select(cb, on_near, b_behind);
+    wb = select(wb, world_on_near, b_behind);
     let size = frame.viewport.xy;
     let sa = (ca.xy / ca.w) * 0.5 * size;
     let sb = (cb.xy / cb.w) * 0.5 * size;
@@ -191,6 +207,10 @@ fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32, fringe: f32) ->
         + dir * select(-1.0, 1.0, at_b) * select(fringe, half, len <= 1e-6);
     var out: LineOut;
     out.clip = vec4<f32>(s / (0.5 * size) * c.w, c.z, c.w);
+    if both_behind {
+        // Every corner outside the clip volume: nothing of the segment is in front.
+        out.clip = vec4<f32>(2.0, 2.0, 2.0, 1.0);
+    }
     out.across = across * half;
     out.along = select(0.0, len, at_b);
     out.segment = vi / 4u;
