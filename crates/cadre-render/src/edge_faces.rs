@@ -5,9 +5,8 @@
 //! block: on a CPU rasterizer (llvmpipe) most of the edges pass is that per-triangle work,
 //! and about half the edges of a closed solid lie on its far side.
 
-use std::collections::HashMap;
-
 use cadre_mesh::scene::SceneMesh;
+use rustc_hash::FxHashMap;
 
 /// Exact bits of a segment's two ends, the lower end first (the mesher gives the faces along
 /// an edge the edge's own samples, so both faces' triangle sides carry the same bits).
@@ -34,7 +33,9 @@ struct Sides {
 
 /// The faces along the segments asked for, of one closed mesh.
 pub(crate) struct EdgeFaces {
-    sides: HashMap<SideKey, Sides>,
+    /// By exact bits (Fx hashing: std's SipHash made this 5.4 ms of a 12 k-triangle mesh's
+    /// upload).
+    sides: FxHashMap<SideKey, Sides>,
 }
 
 impl EdgeFaces {
@@ -46,7 +47,7 @@ impl EdgeFaces {
         inside_out: bool,
         wanted: impl Iterator<Item = ([f32; 3], [f32; 3])>,
     ) -> EdgeFaces {
-        let mut sides: HashMap<SideKey, Sides> = wanted
+        let mut sides: FxHashMap<SideKey, Sides> = wanted
             .map(|(a, b)| (side_key(a, b), Sides::default()))
             .collect();
         let sign = if inside_out { -1.0 } else { 1.0 };

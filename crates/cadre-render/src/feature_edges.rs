@@ -3,7 +3,7 @@
 //! is on a B-Rep edge. Both faces of an edge share the edge's 3D samples, so the two copies
 //! coincide exactly and are kept once.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use cadre_mesh::scene::SceneMesh;
 
@@ -22,7 +22,7 @@ pub fn feature_edges(mesh: &SceneMesh) -> Vec<Segment> {
     };
     // Sides by position within each face: a seam (the face's own two copies of one line)
     // counts twice and is not drawn, as CAD viewers do not draw seams.
-    let mut uses: HashMap<(u32, SideKey), (u32, Segment)> = HashMap::new();
+    let mut uses: FxHashMap<(u32, SideKey), (u32, Segment)> = FxHashMap::default();
     for prim in &mesh.primitives {
         for (t, tri) in prim.indices.chunks_exact(3).enumerate() {
             let face = prim.face_ids.get(t).copied().unwrap_or(0);

@@ -2,7 +2,7 @@
 //! closed surface through a cut sees the solid's material, so the renderer draws a cap there;
 //! an open shell seen from behind is just its back side.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 use cadre_mesh::scene::SceneMesh;
 
@@ -14,7 +14,8 @@ use cadre_mesh::scene::SceneMesh;
 /// without triangles.
 pub(crate) fn closed_orientation(mesh: &SceneMesh) -> Option<bool> {
     // One id per distinct position; −0 and +0 weld.
-    let mut ids: HashMap<[u32; 3], u32> = HashMap::with_capacity(mesh.positions.len());
+    let mut ids: FxHashMap<[u32; 3], u32> =
+        FxHashMap::with_capacity_and_hasher(mesh.positions.len(), Default::default());
     let welded: Vec<u32> = mesh
         .positions
         .iter()
@@ -25,7 +26,7 @@ pub(crate) fn closed_orientation(mesh: &SceneMesh) -> Option<bool> {
         })
         .collect();
     // Per undirected side: (uses, uses from the lower id to the higher minus the reverse).
-    let mut sides: HashMap<(u32, u32), (u32, i32)> = HashMap::new();
+    let mut sides: FxHashMap<(u32, u32), (u32, i32)> = FxHashMap::default();
     let mut volume = 0.0f64;
     let mut triangles = 0usize;
     for prim in &mesh.primitives {
