@@ -59,38 +59,28 @@ fn a_line_through_the_eye_plane_is_clipped_to_the_near_plane() {
         far: 100.0,
     };
     let options = common::shaded_edges(160, 120);
-    let through = renderer
-        .image_of(
-            &gpu,
-            &wire([-1.0, 0.3, 5.0], [-1.0, 0.3, -50.0]),
-            &camera,
-            &options,
-        )
-        .expect("image");
+    // The image of the line at x = −1, y = 0.3 from z = `start` to 50 in front of the eye.
+    let line_from = |start: f32| {
+        renderer
+            .image_of(
+                &gpu,
+                &wire([-1.0, 0.3, start], [-1.0, 0.3, -50.0]),
+                &camera,
+                &options,
+            )
+            .expect("image")
+    };
+    let through = line_from(5.0);
     // The same line cut on the CPU just in front of the near plane (the piece between it
     // and the near plane projects off the image).
-    let cut = renderer
-        .image_of(
-            &gpu,
-            &wire([-1.0, 0.3, -0.2], [-1.0, 0.3, -50.0]),
-            &camera,
-            &options,
-        )
-        .expect("image");
+    let cut = line_from(-0.2);
     let (left, right) = drawn(&through);
     assert!(left > 40, "{left} pixels of the line");
     assert_eq!(right, 0, "{right} pixels thrown to the right half");
     let diff = cadre_render::compare::compare(&through, &cut, 8);
     assert!(diff.passes(0.0), "{} of the pixels differ", diff.differing);
     // The comparison sees a difference where there is one: the line starting 3 in front.
-    let shorter = renderer
-        .image_of(
-            &gpu,
-            &wire([-1.0, 0.3, -3.0], [-1.0, 0.3, -50.0]),
-            &camera,
-            &options,
-        )
-        .expect("image");
+    let shorter = line_from(-3.0);
     let diff = cadre_render::compare::compare(&through, &shorter, 8);
     assert!(!diff.passes(0.0), "a shorter line draws the same");
 }

@@ -147,7 +147,7 @@ pub(crate) fn mesh_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
 }
 
 /// The layout of the draw records read as instance-step vertex attributes (the calls with
-/// [`DrawCall::direct`] records), bound at slot [`RECORDS_SLOT`].
+/// [`DrawCall::direct`] records), bound at slot [`records_slot`].
 pub(crate) fn record_instance_layout() -> wgpu::VertexBufferLayout<'static> {
     wgpu::VertexBufferLayout {
         array_stride: std::mem::size_of::<Draw>() as u64,

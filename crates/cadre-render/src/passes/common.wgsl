@@ -225,6 +225,14 @@ fn scene_depth_at(ids: vec4<u32>) -> f32 {
     return select(0.0, bitcast<f32>(ids.w), ids.y != 0u);
 }
 
+// A mesh vertex as the mesh passes read it (`layout::Vertex`, `MESH_ATTRIBUTES`).
+struct MeshVertex {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) face: u32,
+    @location(3) uv: vec2<f32>,
+}
+
 // A mesh vertex placed by draw record `d`: clip position, camera-relative world position
 // (for the section planes) and view-space normal; the mesh passes' vertex shaders share it.
 struct PlacedVertex {

@@ -5,7 +5,7 @@ use super::common::{
     PipelineSpec, blended, colour_pass, draw_segment_call, entries, layouts, pipeline,
     record_instance_layout, shader, wgsl,
 };
-use super::visibility::VisibilityTargets;
+use super::visibility::{VisibilityTargets, tested_not_written};
 use crate::frame_buffers::BindCache;
 use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, EDGES_VISIBLE, FrameUniform, GpuStruct, Segment};
@@ -69,18 +69,6 @@ impl EdgePipeline {
     }
 }
 
-/// The read-only depth test of the depth-tested pipelines (reverse Z: the edge in front of
-/// the surface, or on it within the tolerance the shader folds into its depth).
-fn edge_depth() -> wgpu::DepthStencilState {
-    wgpu::DepthStencilState {
-        format: crate::passes::visibility::DEPTH,
-        depth_write_enabled: Some(false),
-        depth_compare: Some(wgpu::CompareFunction::GreaterEqual),
-        stencil: Default::default(),
-        bias: Default::default(),
-    }
-}
-
 impl EdgesPass {
     /// Prepares the pass for a `colour` target of that format; each pipeline is built on
     /// first use. `read_only_depth`: [`crate::Gpu::read_only_depth`].
@@ -131,7 +119,8 @@ impl EdgesPass {
                     cull: None,
                     fragment: "fs_main",
                     buffers: if kind.direct { &records } else { &[] },
-                    depth: kind.depth_tested.then(edge_depth),
+                    // The shader folds the tolerance into its depth.
+                    depth: kind.depth_tested.then(tested_not_written),
                     targets: &[Some(blended(self.colour))],
                     constants: &[
                         ("DEPTH_TESTED", flag(kind.depth_tested)),

@@ -77,9 +77,10 @@ pub(crate) fn depth_state() -> wgpu::DepthStencilState {
     }
 }
 
-/// Depth state of the transparent phase: tested against the visibility depth (reverse Z: in
-/// front of the opaque surfaces, or on them), not written.
-pub(crate) fn see_through_depth() -> wgpu::DepthStencilState {
+/// Depth state of what is drawn over the visibility buffer without writing its depth (the
+/// transparent phase, the edges' depth-tested pipelines): tested against it (reverse Z: in
+/// front of the opaque surfaces, or on them).
+pub(crate) fn tested_not_written() -> wgpu::DepthStencilState {
     wgpu::DepthStencilState {
         depth_write_enabled: Some(false),
         depth_compare: Some(wgpu::CompareFunction::GreaterEqual),

@@ -7,7 +7,7 @@ use std::sync::OnceLock;
 
 use super::{
     Phase, PhaseInputs, SEE_THROUGH_WGSL, TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state,
-    see_through_depth,
+    tested_not_written,
 };
 use crate::layout::{Binding, FrameUniform, GpuStruct, Material, Primitive};
 use crate::passes::common::{PipelineSpec, blended, entries, layouts, pipeline, shader, wgsl};
@@ -175,7 +175,7 @@ impl AnalyticBackend {
                         "fs_xray"
                     },
                     buffers: &[],
-                    depth: transparent.then(see_through_depth),
+                    depth: transparent.then(tested_not_written),
                     targets: &targets,
                     constants: &[("LAYER", f64::from(layer))],
                 },

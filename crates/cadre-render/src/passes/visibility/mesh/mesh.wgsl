@@ -12,37 +12,25 @@ struct VertexOut {
 }
 
 @vertex
-fn vs_main(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) face: u32,
-    @location(3) uv: vec2<f32>,
-    @builtin(instance_index) draw_index: u32,
-) -> VertexOut {
-    return full_vertex(instance_draw(draw_index), position, normal, face, uv);
+fn vs_main(v: MeshVertex, @builtin(instance_index) draw_index: u32) -> VertexOut {
+    return full_vertex(instance_draw(draw_index), v);
 }
 
 // `vs_main` for the calls whose records are their instances' (`DrawAttributes`).
 @vertex
-fn vs_main_direct(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) face: u32,
-    @location(3) uv: vec2<f32>,
-    record: DrawAttributes,
-) -> VertexOut {
-    return full_vertex(attribute_draw(record), position, normal, face, uv);
+fn vs_main_direct(v: MeshVertex, record: DrawAttributes) -> VertexOut {
+    return full_vertex(attribute_draw(record), v);
 }
 
-fn full_vertex(d: Draw, position: vec3<f32>, normal: vec3<f32>, face: u32, uv: vec2<f32>) -> VertexOut {
-    let placed = place_vertex(d, position, normal);
+fn full_vertex(d: Draw, v: MeshVertex) -> VertexOut {
+    let placed = place_vertex(d, v.position, v.normal);
     var out: VertexOut;
     out.clip = placed.clip;
     out.world = placed.world;
     out.normal = placed.normal;
-    out.face = face;
+    out.face = v.face;
     out.instance = pack_instance(d);
-    out.uv = uv;
+    out.uv = v.uv;
     return out;
 }
 
@@ -67,32 +55,23 @@ struct PlainOut {
 }
 
 @vertex
-fn vs_plain(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) face: u32,
-    @builtin(instance_index) draw_index: u32,
-) -> PlainOut {
-    return plain_vertex(instance_draw(draw_index), position, normal, face);
+fn vs_plain(v: MeshVertex, @builtin(instance_index) draw_index: u32) -> PlainOut {
+    return plain_vertex(instance_draw(draw_index), v);
 }
 
 // `vs_plain` for the calls whose records are their instances' (`DrawAttributes`).
 @vertex
-fn vs_plain_direct(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) face: u32,
-    record: DrawAttributes,
-) -> PlainOut {
-    return plain_vertex(attribute_draw(record), position, normal, face);
+fn vs_plain_direct(v: MeshVertex, record: DrawAttributes) -> PlainOut {
+    return plain_vertex(attribute_draw(record), v);
 }
 
-fn plain_vertex(d: Draw, position: vec3<f32>, normal: vec3<f32>, face: u32) -> PlainOut {
-    let placed = place_vertex(d, position, normal);
+// The (u, v) is not carried: nothing reads it without sections.
+fn plain_vertex(d: Draw, v: MeshVertex) -> PlainOut {
+    let placed = place_vertex(d, v.position, v.normal);
     var out: PlainOut;
     out.clip = placed.clip;
     out.normal = placed.normal;
-    out.face = face;
+    out.face = v.face;
     out.instance = pack_instance(d);
     return out;
 }

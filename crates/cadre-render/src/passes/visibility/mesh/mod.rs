@@ -3,7 +3,7 @@
 
 use super::{
     Phase, PhaseInputs, SEE_THROUGH_WGSL, TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state,
-    see_through_depth,
+    tested_not_written,
 };
 use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, FrameUniform, GpuStruct, Material};
@@ -83,7 +83,7 @@ impl SeeThrough {
                 spec(
                     "mesh transparent",
                     "fs_transparent",
-                    Some(see_through_depth()),
+                    Some(tested_not_written()),
                 ),
             ),
             layout,

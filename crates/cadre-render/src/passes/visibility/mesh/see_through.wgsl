@@ -13,15 +13,9 @@ struct VertexOut {
 }
 
 @vertex
-fn vs_main(
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) face: u32,
-    @location(3) uv: vec2<f32>,
-    @builtin(instance_index) draw_index: u32,
-) -> VertexOut {
+fn vs_main(v: MeshVertex, @builtin(instance_index) draw_index: u32) -> VertexOut {
     let d = instance_draw(draw_index);
-    let placed = place_vertex(d, position, normal);
+    let placed = place_vertex(d, v.position, v.normal);
     var out: VertexOut;
     out.clip = placed.clip;
     out.world = placed.world;
