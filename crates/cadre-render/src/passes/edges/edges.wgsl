@@ -4,9 +4,9 @@
 // tolerance keeps edges from fighting with their own faces): hidden fragments are dropped,
 // drawn dashed, or drawn like the others, by the edge mode.
 //
-// The fragments are where a CPU rasterizer spends this pass (a 1.5-pixel line's quad carries
-// a pixel of fringe on every side, and a 4×4 block is shaded for every block a thin quad
-// touches): what each fragment needs is found per corner (the highlight, flat), and where
+// The fragments are much of what a CPU rasterizer spends on this pass (a 1.5-pixel line's
+// quad carries half a pixel of fringe on every side, and a 4×4 block is shaded for every
+// block a thin quad touches): what each fragment needs is found per corner (the highlight, flat), and where
 // hidden fragments are only dropped (`DEPTH_TESTED`, the visible-edges mode) the pass tests
 // them against the visibility depth as its depth attachment, so that the rasterizer drops
 // them before shading.
