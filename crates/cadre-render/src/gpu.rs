@@ -14,6 +14,10 @@ pub struct Gpu {
     /// (read-only attachment; `DownlevelFlags::READ_ONLY_DEPTH_STENCIL`, which GL lacks): the
     /// shade pass then tests the visibility depth to skip the background.
     pub read_only_depth: bool,
+    /// Whether the adapter runs compute shaders with storage buffers
+    /// (`DownlevelFlags::COMPUTE_SHADERS`): the B-Rep edges of the visible-edges mode are
+    /// then rasterized in compute ([`crate::passes`]' edges raster), else drawn as quads.
+    pub compute: bool,
 }
 
 impl Gpu {
@@ -91,13 +95,21 @@ impl Gpu {
                 backend: info.backend,
             });
         }
-        let read_only_depth = adapter
-            .get_downlevel_capabilities()
-            .flags
-            .contains(wgpu::DownlevelFlags::READ_ONLY_DEPTH_STENCIL);
+        let downlevel = adapter.get_downlevel_capabilities().flags;
+        let read_only_depth = downlevel.contains(wgpu::DownlevelFlags::READ_ONLY_DEPTH_STENCIL);
+        // The edges' compute rasterizer binds five storage buffers (segments, selection,
+        // coverage, records, locals): one more than the downlevel default.
+        let storage_buffers = adapter.limits().max_storage_buffers_per_shader_stage.min(8);
+        let compute =
+            downlevel.contains(wgpu::DownlevelFlags::COMPUTE_SHADERS) && storage_buffers >= 5;
+        let mut required_limits =
+            wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits());
+        required_limits.max_storage_buffers_per_shader_stage = required_limits
+            .max_storage_buffers_per_shader_stage
+            .max(storage_buffers);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("cadre"),
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            required_limits,
             ..Default::default()
         }))
         .map_err(RenderError::Device)?;
@@ -106,6 +118,7 @@ impl Gpu {
             queue,
             info,
             read_only_depth,
+            compute,
         })
     }
 

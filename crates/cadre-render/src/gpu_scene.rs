@@ -556,13 +556,21 @@ struct FrameCalls {
 }
 
 impl FrameCalls {
-    /// A call slot over the records from `record` on, each drawn once per local of `list`.
-    fn slot(&mut self, record: u32, (locals_first, locals_count): (u32, u32)) -> u32 {
+    /// A call slot over `instances` instances: the records from `record` on, each drawn
+    /// once per local of `list`, and for a segment call its `segments` (first, count).
+    fn slot(
+        &mut self,
+        (record, instances): (u32, u32),
+        (locals_first, locals_count): (u32, u32),
+        segments: [u32; 2],
+    ) -> u32 {
         self.headers.push(Call {
             record,
             locals_first,
             locals_count,
-            pad: 0,
+            instances,
+            segments,
+            pad: [0; 2],
         });
         self.headers.len() as u32 - 1
     }
@@ -669,21 +677,23 @@ impl<'a> FrameScene<'a> {
             // One record per run for its segments (the default material's).
             let own = out.draws.len() as u32;
             out.draws.extend(group.iter().map(|(d, _, _)| *d));
-            let own_slot = out.slot(own, locals);
-            let segment_call = |calls: &mut Vec<EdgeCall>, (first, count): (u32, u32)| {
+            // Each segment call has its own slot: the edges' compute rasterizer reads its
+            // segments there.
+            let segment_call = |out: &mut FrameCalls, (first, count): (u32, u32)| {
                 if count > 0 {
-                    calls.push(EdgeCall {
+                    let slot = out.slot((own, instances), locals, [first, count]);
+                    out.edge_calls.push(EdgeCall {
                         first,
                         count,
-                        slot: own_slot,
+                        slot,
                         instances,
                         direct: direct(own),
                     });
                 }
             };
-            segment_call(&mut out.edge_calls, ranges.lines);
+            segment_call(&mut out, ranges.lines);
             if with_edges {
-                segment_call(&mut out.edge_calls, ranges.edges);
+                segment_call(&mut out, ranges.edges);
             }
             if ranges.edges.1 + ranges.points.1 > 0 {
                 out.pick_runs
@@ -731,7 +741,7 @@ impl<'a> FrameScene<'a> {
                         mesh,
                         first,
                         count,
-                        slot: out.slot(start, locals),
+                        slot: out.slot((start, records * list.count), locals, [0; 2]),
                         instances: records * list.count,
                         direct: direct(start),
                         cull: inside_out.map(|i| {

@@ -19,6 +19,9 @@ pub enum Binding {
     FloatTexture,
     /// A 2D `u32` texture read with `textureLoad`.
     UintTexture,
+    /// A read-write storage buffer of `atomic<u32>` (the edges' coverage, summed by the
+    /// compute rasterizer).
+    AtomicStorage,
 }
 
 /// A shader the renderer compiles: its name, its whole WGSL as compiled, and its bind group.
@@ -58,6 +61,18 @@ pub fn pass_shaders() -> Vec<PassShader> {
         ),
         shader("shade", shade::source(), shade::BINDINGS, false),
         shader("edges", edges::source(), edges::BINDINGS, true),
+        shader(
+            "edges raster",
+            edges::raster::source(),
+            edges::raster::BINDINGS,
+            true,
+        ),
+        shader(
+            "edges composite",
+            edges::raster::composite_source(),
+            edges::raster::COMPOSITE_BINDINGS,
+            false,
+        ),
         shader(
             "visibility/mesh see-through",
             visibility::mesh::see_through_source(),
@@ -328,8 +343,13 @@ pub struct Call {
     pub locals_first: u32,
     /// Local placements per record (at least 1).
     pub locals_count: u32,
-    /// Padding to 16 bytes.
-    pub pad: u32,
+    /// Instances the call draws.
+    pub instances: u32,
+    /// A segment call's segments (first, count) in the segment buffer, each drawn once per
+    /// instance: what the edges' compute rasterizer dispatches over (0 for a mesh call).
+    pub segments: [u32; 2],
+    /// Padding to the WGSL struct's 16-byte alignment.
+    pub pad: [u32; 2],
 }
 
 /// Bind group 1 of every pass that draws the scene's instances: the call (uniform at a
@@ -420,7 +440,11 @@ gpu_struct!(
 );
 gpu_struct!(Material, "Material", [base_color, params]);
 gpu_struct!(Local, "Local", [model, normal, offset, flags, pad]);
-gpu_struct!(Call, "Call", [record, locals_first, locals_count, pad]);
+gpu_struct!(
+    Call,
+    "Call",
+    [record, locals_first, locals_count, instances, segments, pad]
+);
 gpu_struct!(PickRegion, "PickRegion", [origin, pad]);
 gpu_struct!(
     Primitive,

@@ -333,7 +333,8 @@ fn pick_calls(runs: &[PickRun], culling: &DMat4) -> (Vec<Call>, Vec<Draw>, Vec<E
             record: records.len() as u32,
             locals_first: run.locals.0,
             locals_count: run.locals.1,
-            pad: 0,
+            instances: run.locals.1.max(1),
+            ..Call::default()
         });
         records.push(run.record);
         // Edges, then vertices, so vertices win where both fall.

@@ -128,11 +128,11 @@ impl Renderer {
     /// `Bgra8UnormSrgb`; an sRGB format gives correct output, the shading is linear).
     pub fn for_format(gpu: &Gpu, format: wgpu::TextureFormat) -> Result<Renderer, RenderError> {
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let instances = InstanceLayout::new(&gpu.device);
+        let instances = InstanceLayout::new(&gpu.device, gpu.compute);
         let renderer = Renderer {
             visibility: VisibilityPass::new(&gpu.device, format, &instances),
             shade: ShadePass::new(&gpu.device, format, gpu.read_only_depth),
-            edges: EdgesPass::new(&gpu.device, format, &instances, gpu.read_only_depth),
+            edges: EdgesPass::new(gpu, format, &instances),
             pick: PickPass::new(&gpu.device, &instances),
             instances,
             colour: format,
@@ -168,6 +168,23 @@ impl Renderer {
     pub fn with_edge_culling_margin(mut self, margin: Option<f32>) -> Renderer {
         self.edges.set_behind_margin(margin);
         self
+    }
+
+    /// This renderer with every edge drawn as a quad (`None`), or with the visible-edges
+    /// mode rasterized in compute where the adapter can for frames of at least `from`
+    /// segments (by default 0 on a GPU, 16,384 on a CPU adapter): for the tests that compare
+    /// the two paths.
+    #[doc(hidden)]
+    pub fn with_edge_raster(mut self, from: Option<u64>) -> Renderer {
+        self.edges.set_raster(from);
+        self
+    }
+
+    /// How many frames this renderer drew whose edges were rasterized in compute (for the
+    /// tests that compare the paths).
+    #[doc(hidden)]
+    pub fn edge_rastered_frames(&self) -> usize {
+        self.edges.rastered_frames()
     }
 
     /// [`Renderer::prepare`] with its placements factored past `flat_limit` instances

@@ -237,6 +237,7 @@ fn naga_bindings(module: &naga::Module, group: u32) -> Result<Vec<(u32, Binding)
                 size: naga::VectorSize::Quad,
                 scalar: naga::Scalar::U32,
             } => Ok("vec4<u32>"),
+            naga::TypeInner::Scalar(naga::Scalar::U32) => Ok("u32"),
             ref other => Err(format!("unnamed binding type {other:?}")),
         }
     };
@@ -255,6 +256,14 @@ fn naga_bindings(module: &naga::Module, group: u32) -> Result<Vec<(u32, Binding)
                 if !access.contains(naga::StorageAccess::STORE) =>
             {
                 Binding::Storage(type_name(*base)?)
+            }
+            (naga::AddressSpace::Storage { access }, naga::TypeInner::Array { base, .. })
+                if matches!(
+                    module.types[*base].inner,
+                    naga::TypeInner::Atomic(naga::Scalar::U32)
+                ) && access.contains(naga::StorageAccess::STORE) =>
+            {
+                Binding::AtomicStorage
             }
             (
                 naga::AddressSpace::Handle,

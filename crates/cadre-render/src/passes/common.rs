@@ -27,11 +27,16 @@ pub(crate) fn shader(device: &wgpu::Device, label: &str, source: &str) -> wgpu::
 }
 
 /// The bind group layout entries of a pass's [`Binding`] list: buffers visible to `stages`,
-/// textures to the fragment stage.
+/// textures to the fragment stage (the compute stage for a compute pass).
 pub(crate) fn entries(
     bindings: &[Binding],
     stages: wgpu::ShaderStages,
 ) -> Vec<wgpu::BindGroupLayoutEntry> {
+    let texture_stages = if stages.contains(wgpu::ShaderStages::COMPUTE) {
+        wgpu::ShaderStages::COMPUTE
+    } else {
+        wgpu::ShaderStages::FRAGMENT
+    };
     bindings
         .iter()
         .enumerate()
@@ -40,10 +45,19 @@ pub(crate) fn entries(
             match b {
                 Binding::Uniform(_) => buffer_entry(i, wgpu::BufferBindingType::Uniform, stages),
                 Binding::Storage(_) => buffer_entry(i, STORAGE, stages),
-                Binding::FloatTexture => {
-                    texture_entry(i, wgpu::TextureSampleType::Float { filterable: false })
+                Binding::AtomicStorage => buffer_entry(
+                    i,
+                    wgpu::BufferBindingType::Storage { read_only: false },
+                    stages,
+                ),
+                Binding::FloatTexture => texture_entry(
+                    i,
+                    wgpu::TextureSampleType::Float { filterable: false },
+                    texture_stages,
+                ),
+                Binding::UintTexture => {
+                    texture_entry(i, wgpu::TextureSampleType::Uint, texture_stages)
                 }
-                Binding::UintTexture => texture_entry(i, wgpu::TextureSampleType::Uint),
             }
         })
         .collect()
@@ -71,14 +85,15 @@ pub(crate) fn buffer_entry(
 pub(crate) const STORAGE: wgpu::BufferBindingType =
     wgpu::BufferBindingType::Storage { read_only: true };
 
-/// A 2D texture read by `textureLoad` in fragment shaders.
+/// A 2D texture read by `textureLoad` in the `visibility` stages.
 pub(crate) fn texture_entry(
     binding: u32,
     sample_type: wgpu::TextureSampleType,
+    visibility: wgpu::ShaderStages,
 ) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::FRAGMENT,
+        visibility,
         ty: wgpu::BindingType::Texture {
             sample_type,
             view_dimension: wgpu::TextureViewDimension::D2,

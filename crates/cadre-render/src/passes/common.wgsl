@@ -43,7 +43,10 @@ struct Call {
     record: u32,
     locals_first: u32,
     locals_count: u32,
-    pad: u32,
+    instances: u32,
+    // A segment call's segments (first, count), each drawn once per instance.
+    segments: vec2<u32>,
+    pad: vec2<u32>,
 }
 
 struct Material {
@@ -172,52 +175,75 @@ fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32, fringe: f32) ->
     // Corner `vi % 4`: bit 0 the end (a or b), bit 1 the side (−, +); the index buffer
     // makes the triangles (a−, b−, b+) and (a−, b+, a+).
     let corner = vi % 4u;
-    var wa = d.model * vec4<f32>(seg.a.xyz, 1.0);
-    var wb = d.model * vec4<f32>(seg.b.xyz, 1.0);
-    var ca = frame.view_proj * wa;
-    var cb = frame.view_proj * wb;
-    // The segment clipped to the near plane (reverse Z: in front where z ≤ w) before its
-    // ends are divided by w: an end behind the eye has w ≤ 0, and its division would throw
-    // the quad across the screen. The rasterizer clips triangles, not the line the quad
-    // was built from.
-    let da = ca.w - ca.z;
-    let db = cb.w - cb.z;
-    let t = da / (da - db);
-    let a_behind = (da < 0.0) & (db >= 0.0);
-    let b_behind = (db < 0.0) & (da >= 0.0);
-    let both_behind = (da < 0.0) & (db < 0.0);
-    let on_near = mix(ca, cb, t);
-    let world_on_near = mix(wa, wb, t);
-    ca = select(ca, on_near, a_behind);
-    wa = select(wa, world_on_near, a_behind);
-    cb = select(cb, on_near, b_behind);
-    wb = select(wb, world_on_near, b_behind);
-    let size = frame.viewport.xy;
-    let sa = (ca.xy / ca.w) * 0.5 * size;
-    let sb = (cb.xy / cb.w) * 0.5 * size;
-    var dir = sb - sa;
-    let len = length(dir);
-    dir = select(vec2<f32>(1.0, 0.0), dir / len, len > 1e-6);
-    let side = vec2<f32>(-dir.y, dir.x);
+    let e = screen_segment(seg, d);
+    let side = vec2<f32>(-e.dir.y, e.dir.x);
     let half = half_width + fringe;
     let at_b = (corner & 1u) == 1u;
     let across = select(-1.0, 1.0, (corner & 2u) != 0u);
-    let c = select(ca, cb, at_b);
-    let s = select(sa, sb, at_b) + side * across * half
-        + dir * select(-1.0, 1.0, at_b) * select(fringe, half, len <= 1e-6);
+    let c = select(e.ca, e.cb, at_b);
+    let s = select(e.sa, e.sb, at_b) + side * across * half
+        + e.dir * select(-1.0, 1.0, at_b) * select(fringe, half, e.len <= 1e-6);
     var out: LineOut;
-    out.clip = vec4<f32>(s / (0.5 * size) * c.w, c.z, c.w);
-    if both_behind {
+    out.clip = vec4<f32>(s / (0.5 * frame.viewport.xy) * c.w, c.z, c.w);
+    if e.both_behind {
         // Every corner outside the clip volume: nothing of the segment is in front.
         out.clip = vec4<f32>(2.0, 2.0, 2.0, 1.0);
     }
     out.across = across * half;
-    out.along = select(0.0, len, at_b);
+    out.along = select(0.0, e.len, at_b);
     out.segment = vi / 4u;
     out.instance = d.instance;
     // The corners past the ends keep the end's position: the fringe is a pixel or two.
-    out.world = select(wa.xyz, wb.xyz, at_b);
+    out.world = select(e.wa.xyz, e.wb.xyz, at_b);
     return out;
+}
+
+// A segment placed by a draw record and projected: its ends in clip space and camera-relative
+// world space, clipped to the near plane, and on screen in pixels from the image's centre
+// (y up), with its length there and its direction ((1, 0) for a point).
+struct ScreenSegment {
+    ca: vec4<f32>,
+    cb: vec4<f32>,
+    wa: vec4<f32>,
+    wb: vec4<f32>,
+    sa: vec2<f32>,
+    sb: vec2<f32>,
+    len: f32,
+    dir: vec2<f32>,
+    // Nothing of the segment is in front of the near plane.
+    both_behind: bool,
+}
+
+// `seg` placed by `d`, as the edges pass's quads and its compute rasterizer both see it.
+fn screen_segment(seg: Segment, d: Draw) -> ScreenSegment {
+    var e: ScreenSegment;
+    e.wa = d.model * vec4<f32>(seg.a.xyz, 1.0);
+    e.wb = d.model * vec4<f32>(seg.b.xyz, 1.0);
+    e.ca = frame.view_proj * e.wa;
+    e.cb = frame.view_proj * e.wb;
+    // The segment clipped to the near plane (reverse Z: in front where z ≤ w) before its
+    // ends are divided by w: an end behind the eye has w ≤ 0, and its division would throw
+    // the quad across the screen. The rasterizer clips triangles, not the line the quad
+    // was built from.
+    let da = e.ca.w - e.ca.z;
+    let db = e.cb.w - e.cb.z;
+    let t = da / (da - db);
+    let a_behind = (da < 0.0) & (db >= 0.0);
+    let b_behind = (db < 0.0) & (da >= 0.0);
+    e.both_behind = (da < 0.0) & (db < 0.0);
+    let on_near = mix(e.ca, e.cb, t);
+    let world_on_near = mix(e.wa, e.wb, t);
+    e.ca = select(e.ca, on_near, a_behind);
+    e.wa = select(e.wa, world_on_near, a_behind);
+    e.cb = select(e.cb, on_near, b_behind);
+    e.wb = select(e.wb, world_on_near, b_behind);
+    let size = frame.viewport.xy;
+    e.sa = (e.ca.xy / e.ca.w) * 0.5 * size;
+    e.sb = (e.cb.xy / e.cb.w) * 0.5 * size;
+    let dir = e.sb - e.sa;
+    e.len = length(dir);
+    e.dir = select(vec2<f32>(1.0, 0.0), dir / e.len, e.len > 1e-6);
+    return e;
 }
 
 // Reverse-Z depth kept in the visibility buffer's ids at `p` (0 for the background).

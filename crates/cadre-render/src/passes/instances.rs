@@ -11,15 +11,22 @@ pub(crate) const INSTANCES_WGSL: &str = include_str!("instances.wgsl");
 
 /// Bind group 1's layout, built once per renderer and shared by its pipelines (the bind
 /// group made with it is set on each of them).
+#[derive(Clone)]
 pub(crate) struct InstanceLayout {
     pub layout: wgpu::BindGroupLayout,
 }
 
 impl InstanceLayout {
     /// The layout of [`INSTANCE_BINDINGS`]: the call uniform with a dynamic offset, then the
-    /// records and locals, visible to vertex and fragment stages.
-    pub fn new(device: &wgpu::Device) -> InstanceLayout {
-        let mut entries = entries(INSTANCE_BINDINGS, wgpu::ShaderStages::VERTEX_FRAGMENT);
+    /// records and locals, visible to vertex and fragment stages, and to compute shaders
+    /// where the adapter has them (`compute`: [`crate::Gpu::compute`]).
+    pub fn new(device: &wgpu::Device, compute: bool) -> InstanceLayout {
+        let stages = if compute {
+            wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE
+        } else {
+            wgpu::ShaderStages::VERTEX_FRAGMENT
+        };
+        let mut entries = entries(INSTANCE_BINDINGS, stages);
         // The call: one `Call` wide, at a per-draw dynamic offset.
         entries[0].ty = wgpu::BindingType::Buffer {
             ty: wgpu::BufferBindingType::Uniform,

@@ -62,6 +62,10 @@ enum BenchWhat {
         /// Frames timed (after one warm-up frame).
         #[arg(long, default_value_t = 30)]
         frames: u32,
+        /// Display mode (as `cadre render --mode`); shaded-edges is the viewer's default,
+        /// shaded the same frame without the edges pass.
+        #[arg(long, default_value = "shaded-edges", value_parser = crate::commands::render::parse_mode)]
+        mode: cadre_render::DisplayMode,
     },
 }
 
@@ -93,7 +97,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             grid,
             size,
             frames,
-        } => bench_view(file, *grid, *size, *frames),
+            mode,
+        } => bench_view(file, *grid, *size, *frames, *mode),
         BenchWhat::Import { path, repeat } => {
             for file in step_files(path)? {
                 let bytes = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
@@ -176,7 +181,13 @@ fn median(values: &[f64]) -> f64 {
 }
 
 /// `cadre bench view`: see [`BenchWhat::View`].
-fn bench_view(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) -> Result<()> {
+fn bench_view(
+    file: &Path,
+    grid: u32,
+    (width, height): (u32, u32),
+    frames: u32,
+    mode: cadre_render::DisplayMode,
+) -> Result<()> {
     use cadre_render::{
         Camera, FrameOptions, Gpu, Renderer, ViewPreset, ViewState, Viewport, wgpu,
     };
@@ -212,7 +223,7 @@ fn bench_view(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) 
         width,
         height,
         supersample: 1,
-        mode: cadre_render::DisplayMode::ShadedEdges,
+        mode,
         ..FrameOptions::default()
     };
     let state = ViewState::default();
@@ -287,6 +298,7 @@ fn bench_view(file: &Path, grid: u32, (width, height): (u32, u32), frames: u32) 
             "triangles": scene.assembly.instance_triangle_count(),
             "width": width,
             "height": height,
+            "mode": format!("{mode:?}"),
             "upload_ms": upload_ms,
             "frame_ms": ms,
             "median_frame_ms": median(&ms),

@@ -1,5 +1,9 @@
 //! Edges pass: wire bodies and B-Rep edges drawn over the shaded image as anti-aliased lines
-//! of constant pixel width, visible, hidden-dashed or all, by the display mode.
+//! of constant pixel width, visible, hidden-dashed or all, by the display mode. Where the
+//! adapter runs compute shaders, the visible-edges mode without section planes rasterizes
+//! its segments in compute ([`raster`]) and draws only the highlighted ones as quads.
+
+pub(crate) mod raster;
 
 use super::common::{
     PipelineSpec, blended, colour_pass, draw_segment_call, entries, layouts, pipeline,
@@ -10,7 +14,12 @@ use crate::frame_buffers::BindCache;
 use crate::gpu_scene::FrameScene;
 use crate::layout::{Binding, EDGES_VISIBLE, FrameUniform, GpuStruct, Segment};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
+use raster::EdgeRaster;
 use std::sync::OnceLock;
+
+/// What the quads and the compute rasterizer share: bind group 0's segments, depth and
+/// selection, the culling behind a segment's own solid, the highlight.
+pub(crate) const EDGE_SEGMENTS_WGSL: &str = include_str!("segments.wgsl");
 
 /// Bind group 0: frame, segments, the visibility depth, selection (group 1: the instances).
 pub(crate) const BINDINGS: &[Binding] = &[
@@ -22,7 +31,11 @@ pub(crate) const BINDINGS: &[Binding] = &[
 
 /// The pass's whole WGSL: the shared declarations and its own source.
 pub(crate) fn source() -> String {
-    wgsl(&[INSTANCES_WGSL, include_str!("edges.wgsl")])
+    wgsl(&[
+        INSTANCES_WGSL,
+        EDGE_SEGMENTS_WGSL,
+        include_str!("edges.wgsl"),
+    ])
 }
 
 /// The pass's pipelines and bind group layout.
@@ -39,7 +52,28 @@ pub(crate) struct EdgesPass {
     /// The margin past edge-on beyond which segments between two faces turned away are
     /// dropped (`BACK_MARGIN`), or `None` to draw them (`CULL_BEHIND` unset).
     behind_margin: Option<f32>,
+    /// The instances' layout, for the compute rasterizer's pipeline.
+    instances: InstanceLayout,
+    /// The compute rasterizer, built on first use; `None` inside where the adapter has no
+    /// compute shaders or the renderer was told to draw quads only.
+    raster: OnceLock<Option<EdgeRaster>>,
+    /// Whether the compute rasterizer may be used ([`crate::Gpu::compute`], and not turned
+    /// off by [`EdgesPass::set_raster`]).
+    raster_allowed: bool,
+    /// The fewest segments (all instances counted) a frame rasterizes in compute: its
+    /// clear and full-screen composite cost a CPU adapter a few milliseconds that few quads
+    /// do not ([`RASTER_FROM_ON_CPU`]); 0 on a GPU.
+    raster_from: u64,
+    /// Frames whose edges were rasterized in compute, for the tests that compare the paths.
+    rastered_frames: std::sync::atomic::AtomicUsize,
 }
+
+/// The fewest segments a frame rasterizes in compute on a CPU adapter. Measured on lavapipe
+/// (2 cores, 1280×960): the clear and the composite cost ≈ 6 ms a frame, a quad ≈ 0.43 µs
+/// of the submitting thread and a segment rasterized in compute ≈ 0.04 µs, so compute pays
+/// from ≈ 15,000 segments (trj4_pm2-ec-214, 8,347 segments: 28 → 32 ms in compute, pr2db
+/// 23 → 30 ms; the 100× scene, 165,600 segments: 175 → 115 ms).
+const RASTER_FROM_ON_CPU: u64 = 16_384;
 
 /// `BACK_MARGIN` of edges.wgsl, its default.
 const BACK_MARGIN: f32 = 0.25;
@@ -55,29 +89,33 @@ struct EdgePipeline {
     depth_tested: bool,
     /// The frame has section planes (`SECTIONS`).
     sections: bool,
+    /// The other segments were rasterized in compute: only the highlighted ones are drawn
+    /// (`RASTERED`).
+    rastered: bool,
 }
 
 impl EdgePipeline {
     /// The kinds there are.
-    const COUNT: usize = 8;
+    const COUNT: usize = 16;
 
     /// Its place in [`EdgesPass::pipelines`].
     fn index(self) -> usize {
         usize::from(self.direct)
             + 2 * usize::from(self.depth_tested)
             + 4 * usize::from(self.sections)
+            + 8 * usize::from(self.rastered)
     }
 }
 
 impl EdgesPass {
     /// Prepares the pass for a `colour` target of that format; each pipeline is built on
-    /// first use. `read_only_depth`: [`crate::Gpu::read_only_depth`].
+    /// first use.
     pub fn new(
-        device: &wgpu::Device,
+        gpu: &crate::Gpu,
         colour: wgpu::TextureFormat,
         instances: &InstanceLayout,
-        read_only_depth: bool,
     ) -> EdgesPass {
+        let device = &gpu.device;
         let module = shader(device, "edges", &source());
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) =
@@ -88,8 +126,13 @@ impl EdgesPass {
             colour,
             pipelines: std::array::from_fn(|_| OnceLock::new()),
             layout,
-            read_only_depth,
+            read_only_depth: gpu.read_only_depth,
             behind_margin: Some(BACK_MARGIN),
+            instances: instances.clone(),
+            raster: OnceLock::new(),
+            raster_allowed: gpu.compute,
+            raster_from: if gpu.is_cpu() { RASTER_FROM_ON_CPU } else { 0 },
+            rastered_frames: Default::default(),
         }
     }
 
@@ -98,6 +141,40 @@ impl EdgesPass {
     pub fn set_behind_margin(&mut self, margin: Option<f32>) {
         self.behind_margin = margin;
         self.pipelines = std::array::from_fn(|_| OnceLock::new());
+        self.raster = OnceLock::new();
+    }
+
+    /// Allows the compute rasterizer (where the adapter has compute shaders) for frames of
+    /// at least `from` segments, or draws every segment as a quad (`None`).
+    pub fn set_raster(&mut self, from: Option<u64>) {
+        self.raster_allowed = from.is_some();
+        self.raster_from = from.unwrap_or(u64::MAX);
+        self.raster = OnceLock::new();
+    }
+
+    /// How many frames rasterized their edges in compute.
+    pub fn rastered_frames(&self) -> usize {
+        self.rastered_frames
+            .load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    /// The compute rasterizer, built on first use, if allowed.
+    fn raster(&self, device: &wgpu::Device) -> Option<&EdgeRaster> {
+        self.raster
+            .get_or_init(|| {
+                self.raster_allowed.then(|| {
+                    EdgeRaster::new(
+                        device,
+                        self.colour,
+                        &self.instances,
+                        (
+                            self.behind_margin.is_some(),
+                            self.behind_margin.unwrap_or(BACK_MARGIN),
+                        ),
+                    )
+                })
+            })
+            .as_ref()
     }
 
     /// The pipeline of `kind`, built on first use.
@@ -125,6 +202,7 @@ impl EdgesPass {
                     constants: &[
                         ("DEPTH_TESTED", flag(kind.depth_tested)),
                         ("SECTIONS", flag(kind.sections)),
+                        ("RASTERED", flag(kind.rastered)),
                         ("CULL_BEHIND", flag(self.behind_margin.is_some())),
                         (
                             "BACK_MARGIN",
@@ -153,6 +231,35 @@ impl EdgesPass {
         let visible_only = uniform.modes[2] == EDGES_VISIBLE;
         let depth_tested = visible_only && self.read_only_depth;
         let sections = uniform.counts[2] > 0;
+        let size = (uniform.viewport[0] as u32, uniform.viewport[1] as u32);
+        let segments: u64 = scene
+            .edge_calls
+            .iter()
+            .map(|c| u64::from(c.count) * u64::from(c.instances))
+            .sum();
+        let raster = (visible_only && !sections && segments >= self.raster_from)
+            .then(|| self.raster(device))
+            .flatten()
+            .filter(|r| r.fits(size));
+        if let Some(raster) = raster {
+            raster.record(
+                (device, binds),
+                encoder,
+                visibility,
+                (frame, selection),
+                scene,
+                size,
+                target,
+            );
+            self.rastered_frames
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            // The quads are left only the highlighted segments: none without a selection or
+            // a hovered item.
+            let highlights = uniform.counts[1] > 0 || uniform.hover[0] != 0;
+            if !highlights {
+                return;
+            }
+        }
         let bind = binds.get(
             device,
             "edges",
@@ -179,6 +286,7 @@ impl EdgesPass {
                 direct: call.direct.is_some(),
                 depth_tested,
                 sections,
+                rastered: raster.is_some(),
             };
             if current != Some(kind) {
                 pass.set_pipeline(self.pipeline(device, kind));
@@ -197,11 +305,12 @@ mod tests {
     #[test]
     fn edge_pipelines_have_distinct_slots() {
         let mut seen = std::collections::BTreeSet::new();
-        for bits in 0..8u8 {
+        for bits in 0..16u8 {
             let kind = EdgePipeline {
                 direct: bits & 1 != 0,
                 depth_tested: bits & 2 != 0,
                 sections: bits & 4 != 0,
+                rastered: bits & 8 != 0,
             };
             assert!(kind.index() < EdgePipeline::COUNT, "{kind:?}");
             assert!(seen.insert(kind.index()), "{kind:?}");
