@@ -34,6 +34,7 @@ def parse_args():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--new", required=True)
     p.add_argument("--old")
+    p.add_argument("--prev", help="a second build to time on the heavy scene beside NEW")
     p.add_argument("--step", required=True, help="folder of the corpus' STEP files")
     p.add_argument("--out", required=True)
     p.add_argument("--tests", help="folder of test binaries to run on the GPU")
@@ -104,22 +105,26 @@ def fmt(x, digits=1):
 def heavy(args, log):
     path = os.path.join(args.step, HEAVY)
     log.text("## The 10 M-triangle scene (issue 14)\n")
-    frames = {"shaded-edges": [], "shaded": []}
+    frames = {"shaded-edges": [], "shaded": [], "prev shaded-edges": [], "prev shaded": []}
+    builds = [("", args.new)] + ([("prev ", args.prev)] if args.prev else [])
     for r in range(3):
-        for mode in (("shaded-edges", "shaded") if r % 2 == 0 else ("shaded", "shaded-edges")):
-            j = bench(args.new, "view", path, "--grid", args.heavy_grid, "--size", "1920x1080",
+        modes = ("shaded-edges", "shaded") if r % 2 == 0 else ("shaded", "shaded-edges")
+        for mode, (tag, binary) in [(m, b) for m in modes for b in builds]:
+            j = bench(binary, "view", path, "--grid", args.heavy_grid, "--size", "1920x1080",
                       "--frames", str(args.frames + 10), "--mode", mode)
-            log.row(j, kind="heavy_view", round=r, mode=mode)
-            frames[mode].append(j.get("median_frame_ms"))
-            log.text(f"- round {r}, {mode}: median frame {fmt(j.get('median_frame_ms'), 2)} ms, "
+            log.row(j, kind="heavy_view", round=r, mode=tag + mode)
+            frames[tag + mode].append(j.get("median_frame_ms"))
+            log.text(f"- round {r}, {tag}{mode}: median frame "
+                     f"{fmt(j.get('median_frame_ms'), 2)} ms, "
                      f"pick {fmt(j.get('median_pick_ms'), 2)} ms, hover answer "
                      f"{fmt(j.get('median_hover_answer_ms'), 2)} ms, upload "
                      f"{fmt(j.get('upload_ms'), 1)} ms, {j.get('triangles')} triangles, "
                      f"{j.get('instances')} instances, {j.get('adapter')} {j.get('error', '')}")
-    e, s = med(frames["shaded-edges"]), med(frames["shaded"])
-    if e and s:
-        log.text(f"\n**viewer frame with edges / shaded-only: {e:.2f} / {s:.2f} ms = "
-                 f"{e / s:.3f}×** (target ≤ 1.1)\n")
+    for tag, _ in builds:
+        e, s = med(frames[tag + "shaded-edges"]), med(frames[tag + "shaded"])
+        if e and s:
+            log.text(f"\n**{tag}viewer frame with edges / shaded-only: {e:.2f} / {s:.2f} ms = "
+                     f"{e / s:.3f}×** (target ≤ 1.1)\n")
     for grid in ("10", args.heavy_grid):
         for mode in ("shaded", "shaded-edges"):
             j = bench(args.new, "render", path, "--grid", grid, "--size", "1920x1080",
@@ -190,21 +195,37 @@ def regression(args, log):
         log.text(f"- whole folder at 256×192, {b}: {s:.2f} s, {images} images")
 
 
+def run_captured(cmd, timeout):
+    """A process's status and output, also when it is killed at `timeout` (status None)."""
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        out, _ = proc.communicate(timeout=timeout)
+        return proc.returncode, out
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        out, _ = proc.communicate()
+        return None, out
+
+
 def tests(args, log):
+    """Each test binary but its GL-backend tests, then those alone with a short timeout (the
+    first lent H200 run saw the golden binary time out at 300 s)."""
     log.text("\n## Test binaries on the GPU\n")
-    for name in sorted(os.listdir(args.tests)):
+    names = sorted(os.listdir(args.tests))
+    runs = [(n, ["--skip", "gl_backend"], 60) for n in names]
+    runs += [(n, ["gl_backend"], 30) for n in ("golden", "sections") if n in names]
+    for name, extra, timeout in runs:
         binary = os.path.join(args.tests, name)
         t = time.perf_counter()
-        try:
-            run = subprocess.run([binary, "--test-threads", "4"], capture_output=True,
-                                 text=True, timeout=300)
-            tail = (run.stdout + run.stderr)[-1500:]
-            ok = run.returncode == 0
-        except subprocess.TimeoutExpired:
-            tail, ok = "timed out", False
-        log.row(kind="test", name=name, ok=ok, seconds=time.perf_counter() - t, tail=tail)
+        status, out = run_captured([binary, "--test-threads", "4", *extra], timeout)
+        tail = out[-1500:]
+        ok = status == 0
+        label = f"{name} {' '.join(extra)}"
+        log.row(kind="test", name=label, ok=ok, status=status,
+                seconds=time.perf_counter() - t, tail=tail)
         summary = [ln for ln in tail.splitlines() if ln.startswith("test result")]
-        log.text(f"- {name}: {'ok' if ok else 'FAILED'} {summary[-1] if summary else ''}")
+        verdict = "ok" if ok else ("TIMED OUT" if status is None else "FAILED")
+        log.text(f"- {label}: {verdict} {summary[-1] if summary else ''}")
         if not ok:
             log.text("```\n" + tail + "\n```")
 
