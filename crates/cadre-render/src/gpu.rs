@@ -113,6 +113,15 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(RenderError::Device)?;
+        // The flag is not enough on GL: NVIDIA's EGL context (H200, driver 580, 2026-12-04)
+        // reports it, yet the GLSL version wgpu selects has no storage buffers and every
+        // pipeline fails. A probe pipeline tells.
+        if info.backend == wgpu::Backend::Gl && !compiles_vertex_storage(&device) {
+            return Err(RenderError::NoVertexStorage {
+                adapter: info.name.clone(),
+                backend: info.backend,
+            });
+        }
         Ok(Gpu {
             device,
             queue,
@@ -133,4 +142,55 @@ impl Gpu {
     pub fn max_side(&self) -> u32 {
         self.device.limits().max_texture_dimension_2d
     }
+}
+
+/// Whether `device` builds a render pipeline whose vertex shader reads a storage buffer.
+fn compiles_vertex_storage(device: &wgpu::Device) -> bool {
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("vertex storage probe"),
+        source: wgpu::ShaderSource::Wgsl(
+            "@group(0) @binding(0) var<storage, read> corners: array<vec4<f32>>;
+             @vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+                 return corners[i];
+             }
+             @fragment fn fs() -> @location(0) vec4<f32> { return vec4<f32>(1.0); }"
+                .into(),
+        ),
+    });
+    let group = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("vertex storage probe"),
+        entries: &[crate::passes::common::buffer_entry(
+            0,
+            crate::passes::common::STORAGE,
+            wgpu::ShaderStages::VERTEX,
+        )],
+    });
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("vertex storage probe"),
+        bind_group_layouts: &[Some(&group)],
+        immediate_size: 0,
+    });
+    let _pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("vertex storage probe"),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::TextureFormat::Rgba8Unorm.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    pollster::block_on(scope.pop()).is_none()
 }

@@ -172,8 +172,7 @@ impl Renderer {
 
     /// This renderer with every edge drawn as a quad (`None`), or with the visible-edges
     /// mode rasterized in compute where the adapter can for frames of at least `from`
-    /// segments (by default 0 on a GPU, 16,384 on a CPU adapter): for the tests that compare
-    /// the two paths.
+    /// segments (by default 16,384): for the tests that compare the two paths.
     #[doc(hidden)]
     pub fn with_edge_raster(mut self, from: Option<u64>) -> Renderer {
         self.edges.set_raster(from);

@@ -60,20 +60,22 @@ pub(crate) struct EdgesPass {
     /// Whether the compute rasterizer may be used ([`crate::Gpu::compute`], and not turned
     /// off by [`EdgesPass::set_raster`]).
     raster_allowed: bool,
-    /// The fewest segments (all instances counted) a frame rasterizes in compute: its
-    /// clear and full-screen composite cost a CPU adapter a few milliseconds that few quads
-    /// do not ([`RASTER_FROM_ON_CPU`]); 0 on a GPU.
+    /// The fewest segments (all instances counted) a frame rasterizes in compute
+    /// ([`RASTER_FROM`]).
     raster_from: u64,
     /// Frames whose edges were rasterized in compute, for the tests that compare the paths.
     rastered_frames: std::sync::atomic::AtomicUsize,
 }
 
-/// The fewest segments a frame rasterizes in compute on a CPU adapter. Measured on lavapipe
-/// (2 cores, 1280×960): the clear and the composite cost ≈ 6 ms a frame, a quad ≈ 0.43 µs
-/// of the submitting thread and a segment rasterized in compute ≈ 0.04 µs, so compute pays
-/// from ≈ 15,000 segments (trj4_pm2-ec-214, 8,347 segments: 28 → 32 ms in compute, pr2db
-/// 23 → 30 ms; the 100× scene, 165,600 segments: 175 → 115 ms).
-const RASTER_FROM_ON_CPU: u64 = 16_384;
+/// The fewest segments a frame rasterizes in compute: below, the compute pass, its clear and
+/// its full-screen composite cost more than the quads they save. Measured at 1280×960: on
+/// lavapipe (2 cores) the three cost ≈ 6 ms a frame, a quad ≈ 0.43 µs of the submitting
+/// thread and a segment rasterized in compute ≈ 0.04 µs, so compute pays from ≈ 15,000
+/// segments (trj4_pm2-ec-214, 8,347 segments: 28 → 32 ms in compute, pr2db 23 → 30 ms; the
+/// 100× scene, 165,600 segments: 175 → 115 ms). On an H200 the small files' frames went
+/// from 1.1–1.4 ms to 1.3–3.0 ms in compute, the 100× scene's from 3.7 to 3.3 ms and the
+/// 10 M-triangle scene's (1.5 M segments) from 26.8 to 21.3 ms.
+const RASTER_FROM: u64 = 16_384;
 
 /// `BACK_MARGIN` of edges.wgsl, its default.
 const BACK_MARGIN: f32 = 0.25;
@@ -131,7 +133,7 @@ impl EdgesPass {
             instances: instances.clone(),
             raster: OnceLock::new(),
             raster_allowed: gpu.compute,
-            raster_from: if gpu.is_cpu() { RASTER_FROM_ON_CPU } else { 0 },
+            raster_from: RASTER_FROM,
             rastered_frames: Default::default(),
         }
     }
