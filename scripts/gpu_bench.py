@@ -27,7 +27,8 @@ import subprocess
 import sys
 import time
 
-HEAVY = "trj3_s1-ug-214.stp"
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from compare_render import HEAVY, spread  # noqa: E402  (the same files as the comparison)
 
 
 def parse_args():
@@ -45,16 +46,6 @@ def parse_args():
     p.add_argument("--heavy-grid", default="30", help="instances per side of the heavy scene")
     p.add_argument("--frames", type=int, default=20, help="frames per `bench view` run")
     return p.parse_args()
-
-
-def spread(corpus, n):
-    """The same files as scripts/compare_render.py: every len/n-th by size."""
-    files = sorted(
-        (os.path.join(corpus, f) for f in os.listdir(corpus)
-         if f.lower().endswith((".stp", ".step"))),
-        key=os.path.getsize, reverse=True)
-    step = max(len(files) // n, 1)
-    return files[::step][:n]
 
 
 class Log:

@@ -266,12 +266,7 @@ impl EdgesPass {
             device,
             "edges",
             &self.layout,
-            &[
-                frame.as_entire_binding(),
-                scene.geometry.segments.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&visibility.depth),
-                selection.as_entire_binding(),
-            ],
+            &segment_bindings(frame, scene, visibility, selection),
         );
         // The visibility depth read only, for the depth-tested pipelines.
         let depth = depth_tested.then_some(&visibility.depth);
@@ -297,6 +292,22 @@ impl EdgesPass {
             draw_segment_call(&mut pass, &scene.instances, call, kind.direct);
         }
     }
+}
+
+/// The bindings 0–3 that the quads and the compute rasterizer share (`segments.wgsl`): the
+/// frame, the segments, the visibility depth, the selection.
+fn segment_bindings<'a>(
+    frame: &'a wgpu::Buffer,
+    scene: &'a FrameScene<'_>,
+    visibility: &'a VisibilityTargets,
+    selection: &'a wgpu::Buffer,
+) -> [wgpu::BindingResource<'a>; 4] {
+    [
+        frame.as_entire_binding(),
+        scene.geometry.segments.as_entire_binding(),
+        wgpu::BindingResource::TextureView(&visibility.depth),
+        selection.as_entire_binding(),
+    ]
 }
 
 #[cfg(test)]

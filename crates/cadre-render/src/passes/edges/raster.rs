@@ -170,17 +170,12 @@ impl EdgeRaster {
         target: &wgpu::TextureView,
     ) {
         let cover = self.cover(device, encoder, size);
+        let [b0, b1, b2, b3] = super::segment_bindings(frame, scene, visibility, selection);
         let bind = binds.get(
             device,
             "edges raster",
             &self.raster_layout,
-            &[
-                frame.as_entire_binding(),
-                scene.geometry.segments.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&visibility.depth),
-                selection.as_entire_binding(),
-                cover.as_entire_binding(),
-            ],
+            &[b0, b1, b2, b3, cover.as_entire_binding()],
         );
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
