@@ -5,23 +5,9 @@
 //! block: on a CPU rasterizer (llvmpipe) most of the edges pass is that per-triangle work,
 //! and about half the edges of a closed solid lie on its far side.
 
+use crate::position_key::{SideKey, side_key};
 use cadre_mesh::scene::SceneMesh;
 use rustc_hash::FxHashMap;
-
-/// Exact bits of a segment's two ends, the lower end first (the mesher gives the faces along
-/// an edge the edge's own samples, so both faces' triangle sides carry the same bits).
-type SideKey = [u32; 6];
-
-fn point_key(p: [f32; 3]) -> [u32; 3] {
-    // −0 and +0 weld.
-    p.map(|c| (c + 0.0).to_bits())
-}
-
-fn side_key(a: [f32; 3], b: [f32; 3]) -> SideKey {
-    let (ka, kb) = (point_key(a), point_key(b));
-    let (lo, hi) = if ka <= kb { (ka, kb) } else { (kb, ka) };
-    [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]]
-}
 
 /// The triangles met along one segment: their outward unit normals (the first two), and how
 /// many there are.

@@ -5,21 +5,14 @@
 
 use rustc_hash::FxHashMap;
 
+use crate::position_key::{SideKey, point_key, side_key};
 use cadre_mesh::scene::SceneMesh;
 
 /// A segment's two ends, mesh-local.
 type Segment = [[f32; 3]; 2];
-/// Exact bits of a segment's two ends, the lower end first.
-type SideKey = [u32; 6];
 
 /// Segments (pairs of mesh-local points) of the face boundaries of `mesh`.
 pub fn feature_edges(mesh: &SceneMesh) -> Vec<Segment> {
-    let key = |p: [f32; 3]| p.map(|c| (c + 0.0).to_bits());
-    let side_key = |a: [f32; 3], b: [f32; 3]| {
-        let (ka, kb) = (key(a), key(b));
-        let (lo, hi) = if ka <= kb { (ka, kb) } else { (kb, ka) };
-        [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]]
-    };
     // Sides by position within each face: a seam (the face's own two copies of one line)
     // counts twice and is not drawn, as CAD viewers do not draw seams.
     let mut uses: FxHashMap<(u32, SideKey), (u32, Segment)> = FxHashMap::default();
@@ -33,7 +26,7 @@ pub fn feature_edges(mesh: &SceneMesh) -> Vec<Segment> {
                 ) else {
                     continue;
                 };
-                if key(a) == key(b) {
+                if point_key(a) == point_key(b) {
                     continue;
                 }
                 uses.entry((face, side_key(a, b))).or_insert((0, [a, b])).0 += 1;

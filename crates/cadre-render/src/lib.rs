@@ -57,6 +57,7 @@ mod lights;
 mod passes;
 mod pick;
 mod placements;
+mod position_key;
 pub mod raycast;
 mod render_scene;
 mod renderer;

@@ -4,6 +4,7 @@
 
 use rustc_hash::FxHashMap;
 
+use crate::position_key::point_key;
 use cadre_mesh::scene::SceneMesh;
 
 /// `Some(inside_out)` when every triangle side of `mesh` (all primitives together, positions
@@ -13,16 +14,15 @@ use cadre_mesh::scene::SceneMesh;
 /// enclosed signed volume is negative). `None` for open or non-manifold meshes and meshes
 /// without triangles.
 pub(crate) fn closed_orientation(mesh: &SceneMesh) -> Option<bool> {
-    // One id per distinct position; −0 and +0 weld.
+    // One id per distinct position.
     let mut ids: FxHashMap<[u32; 3], u32> =
         FxHashMap::with_capacity_and_hasher(mesh.positions.len(), Default::default());
     let welded: Vec<u32> = mesh
         .positions
         .iter()
         .map(|p| {
-            let key = p.map(|c| (c + 0.0).to_bits());
             let next = ids.len() as u32;
-            *ids.entry(key).or_insert(next)
+            *ids.entry(point_key(*p)).or_insert(next)
         })
         .collect();
     // Per undirected side: (uses, uses from the lower id to the higher minus the reverse).
