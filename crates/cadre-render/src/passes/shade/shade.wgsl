@@ -93,7 +93,8 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     for (var i = 0u; i < LIGHTS; i++) {
         let li = lights[i];
         let kind = u32(li.position.w + 0.5);
-        var l = normalize(li.direction.xyz);
+        // Unit already (`Light::to_gpu`).
+        var l = li.direction.xyz;
         var radiance = li.colour.rgb;
         if POSITIONAL_LIGHTS && kind != 0u {
             let to_light = li.position.xyz - view_pos;
@@ -113,7 +114,7 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
         }
         colour += light(lit, l, radiance);
     }
-    colour += ambient(n, v, base, metallic, roughness);
+    colour += ambient(lit);
     var mapped = aces(colour);
     if cap {
         // Dark lines in the cap's own hue.
