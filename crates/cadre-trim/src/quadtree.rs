@@ -1,0 +1,381 @@
+//! The multiresolution trim quadtree of one face (seed 000, Part III): the (u, v) box of its
+//! trim pieces split into cells until each is on the face, off it, crossed by one piece, or
+//! crossed by two pieces that a line separates (two pieces meeting at a joint, or two whose
+//! boxes a vertical or horizontal line parts). A point is classified by the leaf that holds
+//! it: a constant, one implicit form's sign, or the separating line's side then one form.
+//! Every node carries whether most of its cell lies on the face, for the fragments whose
+//! pixel covers the cell (the stop rule that keeps distant perforated faces free of moiré).
+//!
+//! Where three or more pieces still meet in a cell at the depth cap, the cell is a fallback
+//! leaf: the crossing parity of a ray to +u over all the face's monotone pieces, exact and
+//! slower; [`TrimTree::fallback_leaves`] counts them (the thesis gave up there instead).
+
+use crate::Uv;
+use crate::quad::{Implicit, QuadPiece};
+
+/// Depth of the deepest cells (the thesis' cap): 4¹³ cells across a face's box.
+pub const MAX_DEPTH: u32 = 13;
+
+/// How a leaf classifies its points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Leaf {
+    /// The whole cell is on the face (`true`) or off it.
+    Constant(bool),
+    /// One piece crosses the cell: on the face where its form is ≥ 0.
+    One(u32),
+    /// Two pieces, parted by the line `n · p ≥ d`: the first piece decides on that side, the
+    /// second on the other.
+    Two {
+        /// The separating line's normal and offset.
+        line: (Uv, f64),
+        /// The pieces on the line's positive and negative sides.
+        pieces: [u32; 2],
+    },
+    /// Too many pieces at the depth cap: the crossing parity over all pieces.
+    Fallback,
+}
+
+/// A node: a leaf or four children (index of the first; the others follow, in the order
+/// (low u, low v), (high u, low v), (low u, high v), (high u, high v)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Node {
+    /// Split into four.
+    Split {
+        /// Index of the first child in [`TrimTree::nodes`].
+        first: u32,
+        /// Whether most of the cell is on the face.
+        coverage: bool,
+    },
+    /// A leaf.
+    Leaf {
+        /// How it classifies.
+        leaf: Leaf,
+        /// Whether most of the cell is on the face.
+        coverage: bool,
+    },
+}
+
+/// One face's trim tree over its monotone pieces.
+#[derive(Clone, Debug)]
+pub struct TrimTree {
+    /// The face's pieces, each monotone in u and in v, the face on their left.
+    pub pieces: Vec<QuadPiece>,
+    /// Their implicit forms, by index.
+    pub forms: Vec<Implicit>,
+    /// The cells' box: the root cell.
+    pub bounds: (Uv, Uv),
+    /// Nodes, the root first.
+    pub nodes: Vec<Node>,
+}
+
+impl TrimTree {
+    /// The tree of the loops made of `pieces` (closed loops, the face on each piece's left:
+    /// outer loops counter-clockwise, holes clockwise; the face is what they enclose by the
+    /// even-odd rule). Pieces are cut into monotone parts first.
+    pub fn build(pieces: &[QuadPiece]) -> TrimTree {
+        let pieces: Vec<QuadPiece> = pieces.iter().flat_map(|p| p.monotone_parts()).collect();
+        let forms = pieces.iter().map(QuadPiece::implicit).collect();
+        let (mut lo, mut hi) = (Uv::splat(f64::INFINITY), Uv::splat(f64::NEG_INFINITY));
+        for p in &pieces {
+            let (a, b) = p.bounds();
+            lo = lo.min(a);
+            hi = hi.max(b);
+        }
+        if pieces.is_empty() {
+            (lo, hi) = (Uv::ZERO, Uv::ZERO);
+        }
+        // A margin so that no piece runs along the root's border.
+        let pad = 1e-6 * (hi - lo).max_element().max(1e-9);
+        let mut tree = TrimTree {
+            pieces,
+            forms,
+            bounds: (lo - pad, hi + pad),
+            nodes: vec![Node::Leaf {
+                leaf: Leaf::Constant(false),
+                coverage: false,
+            }],
+        };
+        let all: Vec<u32> = (0..tree.pieces.len() as u32).collect();
+        tree.build_node(0, tree.bounds, &all, 0);
+        tree
+    }
+
+    /// Fills node `index` for `cell`, crossed by (at most) the pieces `crossing`; returns the
+    /// share of the cell on the face (4 × 4 samples per leaf, the children's mean above).
+    fn build_node(&mut self, index: usize, cell: (Uv, Uv), crossing: &[u32], depth: u32) -> f64 {
+        let inside: Vec<u32> = crossing
+            .iter()
+            .copied()
+            .filter(|&k| crosses(&self.pieces[k as usize], cell))
+            .collect();
+        let leaf = match inside.len() {
+            0 => Some(Leaf::Constant(self.parity(0.5 * (cell.0 + cell.1)))),
+            1 => Some(Leaf::One(inside[0])),
+            2 => self.separating_line(inside[0], inside[1], cell),
+            _ => None,
+        };
+        let leaf = match leaf {
+            Some(leaf) => leaf,
+            None if depth >= MAX_DEPTH => Leaf::Fallback,
+            None => {
+                let first = self.nodes.len() as u32;
+                self.nodes.extend([self.nodes[index]; 4]);
+                let mid = 0.5 * (cell.0 + cell.1);
+                let mut share = 0.0;
+                for (k, quarter) in quarters(cell, mid).into_iter().enumerate() {
+                    share +=
+                        0.25 * self.build_node(first as usize + k, quarter, &inside, depth + 1);
+                }
+                self.nodes[index] = Node::Split {
+                    first,
+                    coverage: share >= 0.5,
+                };
+                return share;
+            }
+        };
+        let mut on = 0;
+        for i in 0..4 {
+            for j in 0..4 {
+                let f = Uv::new((f64::from(i) + 0.5) / 4.0, (f64::from(j) + 0.5) / 4.0);
+                if self.leaf_classify(leaf, cell.0 + f * (cell.1 - cell.0)) {
+                    on += 1;
+                }
+            }
+        }
+        let share = f64::from(on) / 16.0;
+        self.nodes[index] = Node::Leaf {
+            leaf,
+            coverage: share >= 0.5,
+        };
+        share
+    }
+
+    /// A line parting pieces `a` and `b` within `cell`: through their joint where they meet
+    /// (across the corner's bisector, or square to a smooth joint), else between their boxes
+    /// along u or v. The leaf it makes, or `None` to subdivide.
+    fn separating_line(&self, a: u32, b: u32, cell: (Uv, Uv)) -> Option<Leaf> {
+        let (pa, pb) = (&self.pieces[a as usize], &self.pieces[b as usize]);
+        // A joint: b follows a, or a follows b (ends within a hair of each other: a loop's
+        // closing point may differ from its first by rounding).
+        let hair = 1e-9 * (cell.1 - cell.0).max_element();
+        let joint = if (pa.p[2] - pb.p[0]).length() <= hair {
+            Some((a, b))
+        } else if (pb.p[2] - pa.p[0]).length() <= hair {
+            Some((b, a))
+        } else {
+            None
+        };
+        if let Some((incoming, outgoing)) = joint {
+            let (pi, po) = (
+                &self.pieces[incoming as usize],
+                &self.pieces[outgoing as usize],
+            );
+            let at = 0.5 * (pi.p[2] + po.p[0]);
+            let t_in = pi.derivative(1.0).normalize_or_zero();
+            let t_out = po.derivative(0.0).normalize_or_zero();
+            let bisector = t_out - t_in;
+            // The line through the joint along the corner's bisector, or square to the
+            // tangent where the joint is smooth (the bisector vanishes).
+            let along = if bisector.length() > 1e-6 {
+                bisector.normalize()
+            } else {
+                t_out.perp()
+            };
+            let n = along.perp();
+            // Each piece on one side: its far end decides which.
+            let side = |p: Uv| n.dot(p - at);
+            let (far_in, far_out) = (side(pi.p[0]), side(po.p[2]));
+            if far_in * far_out < 0.0 && self.piece_side(pi, n, at) && self.piece_side(po, n, at) {
+                let (positive, negative) = if far_out > 0.0 {
+                    (outgoing, incoming)
+                } else {
+                    (incoming, outgoing)
+                };
+                return Some(Leaf::Two {
+                    line: (n, n.dot(at)),
+                    pieces: [positive, negative],
+                });
+            }
+            return None;
+        }
+        // Boxes parted along u or v inside the cell.
+        let (ba, bb) = (pa.bounds(), pb.bounds());
+        for axis in 0..2 {
+            let (first, second, gap) = if ba.1[axis] < bb.0[axis] {
+                (a, b, 0.5 * (ba.1[axis] + bb.0[axis]))
+            } else if bb.1[axis] < ba.0[axis] {
+                (b, a, 0.5 * (bb.1[axis] + ba.0[axis]))
+            } else {
+                continue;
+            };
+            if gap <= cell.0[axis] || gap >= cell.1[axis] {
+                continue;
+            }
+            let n = if axis == 0 { Uv::X } else { Uv::Y };
+            return Some(Leaf::Two {
+                line: (n, gap),
+                pieces: [second, first],
+            });
+        }
+        None
+    }
+
+    /// Whether all of `piece` (its control polygon, which holds it) lies on one side of the
+    /// line through `at` with normal `n`, touching it only at `at`.
+    fn piece_side(&self, piece: &QuadPiece, n: Uv, at: Uv) -> bool {
+        let s: Vec<f64> = piece.p.iter().map(|p| n.dot(*p - at)).collect();
+        let scale = piece
+            .p
+            .iter()
+            .map(|p| (*p - at).length())
+            .fold(0.0, f64::max);
+        let eps = 1e-12 * scale.max(1e-300);
+        s.iter().all(|&x| x >= -eps) || s.iter().all(|&x| x <= eps)
+    }
+
+    /// Whether `p` is on the face by the even-odd rule: the parity of the pieces crossed by
+    /// the ray from `p` towards +u (each monotone piece crossed at most once; a piece counts
+    /// where the ray's v lies in [its lower end's v, its upper end's v), so a joint counts
+    /// once and a horizontal piece never).
+    pub fn parity(&self, p: Uv) -> bool {
+        let mut inside = false;
+        for piece in &self.pieces {
+            let (v0, v2) = (piece.p[0].y, piece.p[2].y);
+            let (lo, hi) = if v0 <= v2 { (v0, v2) } else { (v2, v0) };
+            if !(lo <= p.y && p.y < hi) {
+                continue;
+            }
+            if piece.p.iter().all(|q| q.x <= p.x) {
+                continue;
+            }
+            // The one t where v(t) = p.v (monotone in v), by bisection.
+            let (mut a, mut b) = (0.0, 1.0);
+            let rising = v2 > v0;
+            for _ in 0..52 {
+                let m = 0.5 * (a + b);
+                if (piece.eval(m).y < p.y) == rising {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            if piece.eval(0.5 * (a + b)).x > p.x {
+                inside = !inside;
+            }
+        }
+        inside
+    }
+
+    /// Whether `p` is on the face, read from the tree.
+    pub fn classify(&self, p: Uv) -> bool {
+        let (mut lo, mut hi) = self.bounds;
+        if p.x < lo.x || p.y < lo.y || p.x > hi.x || p.y > hi.y {
+            return false;
+        }
+        let mut index = 0usize;
+        loop {
+            match self.nodes[index] {
+                Node::Split { first, .. } => {
+                    let mid = 0.5 * (lo + hi);
+                    let right = p.x >= mid.x;
+                    let up = p.y >= mid.y;
+                    index = first as usize + usize::from(right) + 2 * usize::from(up);
+                    (lo, hi) = quarters((lo, hi), mid)[usize::from(right) + 2 * usize::from(up)];
+                }
+                Node::Leaf { leaf, .. } => return self.leaf_classify(leaf, p),
+            }
+        }
+    }
+
+    /// Whether `p`, in `leaf`'s cell, is on the face.
+    fn leaf_classify(&self, leaf: Leaf, p: Uv) -> bool {
+        match leaf {
+            Leaf::Constant(on) => on,
+            Leaf::One(k) => self.forms[k as usize].value(p) >= 0.0,
+            Leaf::Two { line, pieces } => {
+                let k = if line.0.dot(p) >= line.1 {
+                    pieces[0]
+                } else {
+                    pieces[1]
+                };
+                self.forms[k as usize].value(p) >= 0.0
+            }
+            Leaf::Fallback => self.parity(p),
+        }
+    }
+
+    /// How many leaves fell back to the crossing parity.
+    pub fn fallback_leaves(&self) -> usize {
+        self.nodes
+            .iter()
+            .filter(|n| {
+                matches!(
+                    n,
+                    Node::Leaf {
+                        leaf: Leaf::Fallback,
+                        ..
+                    }
+                )
+            })
+            .count()
+    }
+}
+
+/// Whether the monotone `piece` meets `cell` (closed, grown by a hair so that touching
+/// counts): the parameters where its u lies in the cell's u range and those where its v lies
+/// in the v range overlap. Boxes alone would not do: the boxes of a triangle's two slanted
+/// sides both hold the middle of its third side, and every cell there would count three
+/// pieces down to the depth cap.
+fn crosses(piece: &QuadPiece, cell: (Uv, Uv)) -> bool {
+    let hair = 1e-9 * (cell.1 - cell.0).max_element();
+    let (lo, hi) = (cell.0 - hair, cell.1 + hair);
+    let (Some(a), Some(b)) = (
+        param_range(piece, 0, lo.x, hi.x),
+        param_range(piece, 1, lo.y, hi.y),
+    ) else {
+        return false;
+    };
+    a.0.max(b.0) <= a.1.min(b.1)
+}
+
+/// The parameters where the monotone `piece`'s coordinate `axis` lies in [lo, hi]: an
+/// interval of [0, 1], or none.
+fn param_range(piece: &QuadPiece, axis: usize, lo: f64, hi: f64) -> Option<(f64, f64)> {
+    let (start, end) = (piece.p[0][axis], piece.p[2][axis]);
+    if start.max(end) < lo || start.min(end) > hi {
+        return None;
+    }
+    // The parameter where the coordinate reaches x (clamped to the piece), by bisection.
+    let at = |x: f64| -> f64 {
+        let rising = end >= start;
+        if (x <= start) == rising {
+            return 0.0;
+        }
+        if (x >= end) == rising {
+            return 1.0;
+        }
+        let (mut a, mut b) = (0.0, 1.0);
+        for _ in 0..52 {
+            let m = 0.5 * (a + b);
+            if (piece.eval(m)[axis] < x) == rising {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        0.5 * (a + b)
+    };
+    let (t0, t1) = (at(lo), at(hi));
+    Some((t0.min(t1), t0.max(t1)))
+}
+
+/// The four quarters of `cell` about `mid`, in child order.
+fn quarters(cell: (Uv, Uv), mid: Uv) -> [(Uv, Uv); 4] {
+    let (lo, hi) = cell;
+    [
+        (lo, mid),
+        (Uv::new(mid.x, lo.y), Uv::new(hi.x, mid.y)),
+        (Uv::new(lo.x, mid.y), Uv::new(mid.x, hi.y)),
+        (mid, hi),
+    ]
+}

@@ -1,0 +1,149 @@
+//! The trim quadtree classifies (u, v) points as the exact loops do: random star polygons
+//! (corners, concave and convex) with round holes, stretched anisotropically, fitted under
+//! anisotropic tolerances, queried at random points farther than a few tolerances from the
+//! exact boundary; the oracle is the even-odd rule on a dense polygon of the exact curves.
+//! Negative control: the tree of the same face without its first hole is caught disagreeing
+//! at that hole's centre.
+
+use cadre_trim::{QuadPiece, TrimTree, Uv, UvTolerance, fit_points};
+use proptest::prelude::*;
+use std::f64::consts::TAU;
+
+/// A face: its exact boundary as dense closed polylines (outer counter-clockwise, holes
+/// clockwise) and, per loop, its smooth runs (a polygon's sides, a circle's quarters).
+struct Face {
+    loops: Vec<Vec<Uv>>,
+    runs: Vec<Vec<Uv>>,
+    holes: Vec<Uv>,
+}
+
+fn face(radii: &[f64], (angle, holes): (f64, &[f64]), stretch: Uv) -> Face {
+    let n = radii.len();
+    let corner = |k: usize| {
+        let a = TAU * (k % n) as f64 / n as f64;
+        stretch * (radii[k % n] * Uv::new(a.cos(), a.sin()))
+    };
+    let mut runs = Vec::new();
+    let mut outer = Vec::new();
+    for k in 0..n {
+        let (a, b) = (corner(k), corner(k + 1));
+        let side: Vec<Uv> = (0..=64).map(|i| a.lerp(b, f64::from(i) / 64.0)).collect();
+        outer.extend_from_slice(&side[..64]);
+        runs.push(side);
+    }
+    let mut loops = vec![outer];
+    let mut centres = Vec::new();
+    for (k, &radius) in holes.iter().enumerate() {
+        // Holes on a ring, 120° apart (they do not meet), clockwise.
+        let a = angle + TAU * k as f64 / 3.0;
+        let centre = 0.12 * Uv::new(a.cos(), a.sin());
+        let point = |t: f64| stretch * (centre + radius * Uv::new(t.cos(), -t.sin()));
+        let mut hole = Vec::new();
+        for q in 0..4 {
+            let run: Vec<Uv> = (0..=200)
+                .map(|i| point(TAU * (f64::from(q) + f64::from(i) / 200.0) / 4.0))
+                .collect();
+            hole.extend_from_slice(&run[..200]);
+            runs.push(run);
+        }
+        loops.push(hole);
+        centres.push(stretch * centre);
+    }
+    Face {
+        loops,
+        runs,
+        holes: centres,
+    }
+}
+
+/// Even-odd over the dense polylines.
+fn even_odd(loops: &[Vec<Uv>], p: Uv) -> bool {
+    let mut inside = false;
+    for l in loops {
+        for k in 0..l.len() {
+            let (a, b) = (l[k], l[(k + 1) % l.len()]);
+            if (a.y <= p.y) != (b.y <= p.y) {
+                let u = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+                if u > p.x {
+                    inside = !inside;
+                }
+            }
+        }
+    }
+    inside
+}
+
+/// Distance in tolerances from `p` to the dense polylines.
+fn to_boundary(loops: &[Vec<Uv>], p: Uv, tol: UvTolerance) -> f64 {
+    let scale = |d: Uv| Uv::new(d.x / tol.u, d.y / tol.v);
+    let q = scale(p);
+    let mut best = f64::INFINITY;
+    for l in loops {
+        for k in 0..l.len() {
+            let (a, b) = (scale(l[k]), scale(l[(k + 1) % l.len()]));
+            let ab = b - a;
+            let t = ((q - a).dot(ab) / ab.length_squared().max(1e-300)).clamp(0.0, 1.0);
+            best = best.min((a + t * ab - q).length());
+        }
+    }
+    best
+}
+
+fn pieces(face: &Face, tol: UvTolerance) -> Vec<QuadPiece> {
+    face.runs.iter().flat_map(|r| fit_points(r, tol)).collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn the_tree_classifies_as_the_exact_loops(
+        radii in prop::collection::vec(0.35..1.0f64, 3..12),
+        angle in 0.0..TAU,
+        holes in prop::collection::vec(0.02..0.06f64, 0..3),
+        stretch in (0.3..8.0f64, 0.1..3.0f64),
+        tol_exp in (-5.0..-3.0f64, -5.0..-3.0f64),
+        queries in prop::collection::vec((0.0..1.0f64, 0.0..1.0f64), 300),
+    ) {
+        let stretch = Uv::new(stretch.0, stretch.1);
+        let tol = UvTolerance {
+            u: stretch.x * 10f64.powf(tol_exp.0),
+            v: stretch.y * 10f64.powf(tol_exp.1),
+        };
+        let f = face(&radii, (angle, &holes), stretch);
+        let tree = TrimTree::build(&pieces(&f, tol));
+        let (lo, hi) = tree.bounds;
+        let mut checked = 0;
+        for (x, y) in queries {
+            let p = lo + Uv::new(x, y) * (hi - lo) * 1.1 - 0.05 * (hi - lo);
+            if to_boundary(&f.loops, p, tol) < 4.0 {
+                continue;
+            }
+            checked += 1;
+            prop_assert_eq!(tree.classify(p), even_odd(&f.loops, p), "at {}", p);
+        }
+        prop_assert!(checked > 100, "only {} points away from the boundary", checked);
+        for centre in &f.holes {
+            prop_assert!(!tree.classify(*centre), "a hole's centre is on the face");
+        }
+        // Negative control: without its first hole, the tree puts that hole's centre on
+        // the face.
+        if !f.holes.is_empty() {
+            let without = Face {
+                loops: vec![f.loops[0].clone()],
+                runs: f.runs[..radii.len()].to_vec(),
+                holes: Vec::new(),
+            };
+            let wrong = TrimTree::build(&pieces(&without, tol));
+            prop_assert!(wrong.classify(f.holes[0]) != even_odd(&f.loops, f.holes[0]));
+        }
+        // The exact fallback stays rare (where a tiny monotone part meets its neighbours in a
+        // cell at the depth cap); the thesis gave up on 0.12–0.5 % of its patches.
+        prop_assert!(
+            tree.fallback_leaves() * 20 <= tree.nodes.len(),
+            "{} fallback leaves of {} nodes",
+            tree.fallback_leaves(),
+            tree.nodes.len()
+        );
+    }
+}
