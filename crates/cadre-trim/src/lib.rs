@@ -17,14 +17,23 @@
 //!   most two pieces (parted by a line), with a coverage bit per node and an exact fallback
 //!   (crossing parity) where more pieces meet at the depth cap; its CPU classifier.
 //!
-//! Still to come (issue 16): the tree's GPU layout and the classifier on the same bytes,
-//! tolerances from each face's surface, statistics over the corpus.
+//! - [`layout`]: many faces' trees packed in the words a GPU reads, face-local in `f32`, and
+//!   the classifier on those words (the oracle of the GPU's test).
+//!
+//! - [`model`]: every face of a model, in parallel: its trim loops, its (u, v) tolerances
+//!   from an object-space tolerance and the surface's speeds, its tree, packed; counts.
+//!
+//! Still to come (issue 16): the GPU back-end that reads the words.
 
 pub mod fit;
+pub mod layout;
+pub mod model;
 pub mod quad;
 pub mod quadtree;
 
 pub use fit::{UvTolerance, fit_points};
+pub use layout::{FaceRecord, LayoutError, TrimBuffers};
+pub use model::{ModelTrees, TrimStats, model_trees};
 pub use quad::{Implicit, QuadPiece};
 pub use quadtree::{Leaf, Node, TrimTree};
 

@@ -6,15 +6,25 @@
 //! Every node carries whether most of its cell lies on the face, for the fragments whose
 //! pixel covers the cell (the stop rule that keeps distant perforated faces free of moiré).
 //!
-//! Where three or more pieces still meet in a cell at the depth cap, the cell is a fallback
-//! leaf: the crossing parity of a ray to +u over all the face's monotone pieces, exact and
-//! slower; [`TrimTree::fallback_leaves`] counts them (the thesis gave up there instead).
+//! Where three or more pieces still meet in a cell deep enough (or two that no line parts),
+//! the cell is a fallback leaf, exact and slower: it keeps its pieces and whether its
+//! top-right corner is on the face, and a point's answer is the corner's, turned over at each
+//! of the cell's pieces crossed on the way from the point right to the cell's edge, then up
+//! the edge to the corner (the even-odd rule, counted within the cell).
+//! [`TrimTree::fallback_leaves`] counts them (the thesis gave up there instead). Without them
+//! a sliver face, two trim curves a micron apart, split every cell along its length down to
+//! the depth cap (97,861 nodes for 16 pieces in trj6_b1-ec-214).
 
 use crate::Uv;
 use crate::quad::{Implicit, QuadPiece};
 
 /// Depth of the deepest cells (the thesis' cap): 4¹³ cells across a face's box.
 pub const MAX_DEPTH: u32 = 13;
+/// Depth from which a cell that one or two implicit forms cannot decide becomes a fallback
+/// leaf when it holds at most [`FALLBACK_PIECES`] pieces, rather than being split further.
+pub const FALLBACK_DEPTH: u32 = 8;
+/// Most pieces a fallback leaf takes before the depth cap.
+pub const FALLBACK_PIECES: usize = 8;
 
 /// How a leaf classifies its points.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,8 +41,15 @@ pub enum Leaf {
         /// The pieces on the line's positive and negative sides.
         pieces: [u32; 2],
     },
-    /// Too many pieces at the depth cap: the crossing parity over all pieces.
-    Fallback,
+    /// Pieces no line parts: the corner's answer and the crossings within the cell.
+    Fallback {
+        /// Whether the cell's top-right corner is on the face.
+        corner: bool,
+        /// The cell's pieces: `count` entries of [`TrimTree::lists`] from `first`.
+        first: u32,
+        /// How many.
+        count: u32,
+    },
 }
 
 /// A node: a leaf or four children (index of the first; the others follow, in the order
@@ -66,6 +83,8 @@ pub struct TrimTree {
     pub bounds: (Uv, Uv),
     /// Nodes, the root first.
     pub nodes: Vec<Node>,
+    /// The fallback leaves' pieces.
+    pub lists: Vec<u32>,
 }
 
 impl TrimTree {
@@ -94,6 +113,7 @@ impl TrimTree {
                 leaf: Leaf::Constant(false),
                 coverage: false,
             }],
+            lists: Vec::new(),
         };
         let all: Vec<u32> = (0..tree.pieces.len() as u32).collect();
         tree.build_node(0, tree.bounds, &all, 0);
@@ -114,9 +134,18 @@ impl TrimTree {
             2 => self.separating_line(inside[0], inside[1], cell),
             _ => None,
         };
+        let few = depth >= FALLBACK_DEPTH && inside.len() <= FALLBACK_PIECES;
         let leaf = match leaf {
             Some(leaf) => leaf,
-            None if depth >= MAX_DEPTH => Leaf::Fallback,
+            None if few || depth >= MAX_DEPTH => {
+                let first = self.lists.len() as u32;
+                self.lists.extend_from_slice(&inside);
+                Leaf::Fallback {
+                    corner: self.parity(cell.1),
+                    first,
+                    count: inside.len() as u32,
+                }
+            }
             None => {
                 let first = self.nodes.len() as u32;
                 self.nodes.extend([self.nodes[index]; 4]);
@@ -137,7 +166,7 @@ impl TrimTree {
         for i in 0..4 {
             for j in 0..4 {
                 let f = Uv::new((f64::from(i) + 0.5) / 4.0, (f64::from(j) + 0.5) / 4.0);
-                if self.leaf_classify(leaf, cell.0 + f * (cell.1 - cell.0)) {
+                if self.leaf_classify(leaf, cell, cell.0 + f * (cell.1 - cell.0)) {
                     on += 1;
                 }
             }
@@ -240,30 +269,29 @@ impl TrimTree {
     pub fn parity(&self, p: Uv) -> bool {
         let mut inside = false;
         for piece in &self.pieces {
-            let (v0, v2) = (piece.p[0].y, piece.p[2].y);
-            let (lo, hi) = if v0 <= v2 { (v0, v2) } else { (v2, v0) };
-            if !(lo <= p.y && p.y < hi) {
-                continue;
-            }
-            if piece.p.iter().all(|q| q.x <= p.x) {
-                continue;
-            }
-            // The one t where v(t) = p.v (monotone in v), by bisection.
-            let (mut a, mut b) = (0.0, 1.0);
-            let rising = v2 > v0;
-            for _ in 0..52 {
-                let m = 0.5 * (a + b);
-                if (piece.eval(m).y < p.y) == rising {
-                    a = m;
-                } else {
-                    b = m;
-                }
-            }
-            if piece.eval(0.5 * (a + b)).x > p.x {
+            if crossing(piece, 1, p.y).is_some_and(|u| u > p.x) {
                 inside = !inside;
             }
         }
         inside
+    }
+
+    /// The parity of the crossings of `pieces` on the way from `p` right to the edge of the
+    /// cell whose top-right corner is `corner`, then up that edge to the corner: what turns
+    /// the corner's answer into `p`'s (the pieces that do not meet the cell cannot cross a
+    /// path inside it).
+    fn crossings_to_corner(&self, pieces: &[u32], p: Uv, corner: Uv) -> bool {
+        let mut odd = false;
+        for &k in pieces {
+            let piece = &self.pieces[k as usize];
+            if crossing(piece, 1, p.y).is_some_and(|u| u > p.x && u <= corner.x) {
+                odd = !odd;
+            }
+            if crossing(piece, 0, corner.x).is_some_and(|v| v >= p.y && v < corner.y) {
+                odd = !odd;
+            }
+        }
+        odd
     }
 
     /// Whether `p` is on the face, read from the tree.
@@ -282,13 +310,13 @@ impl TrimTree {
                     index = first as usize + usize::from(right) + 2 * usize::from(up);
                     (lo, hi) = quarters((lo, hi), mid)[usize::from(right) + 2 * usize::from(up)];
                 }
-                Node::Leaf { leaf, .. } => return self.leaf_classify(leaf, p),
+                Node::Leaf { leaf, .. } => return self.leaf_classify(leaf, (lo, hi), p),
             }
         }
     }
 
-    /// Whether `p`, in `leaf`'s cell, is on the face.
-    fn leaf_classify(&self, leaf: Leaf, p: Uv) -> bool {
+    /// Whether `p`, in `leaf`'s `cell`, is on the face.
+    fn leaf_classify(&self, leaf: Leaf, cell: (Uv, Uv), p: Uv) -> bool {
         match leaf {
             Leaf::Constant(on) => on,
             Leaf::One(k) => self.forms[k as usize].value(p) >= 0.0,
@@ -300,7 +328,14 @@ impl TrimTree {
                 };
                 self.forms[k as usize].value(p) >= 0.0
             }
-            Leaf::Fallback => self.parity(p),
+            Leaf::Fallback {
+                corner,
+                first,
+                count,
+            } => {
+                let pieces = &self.lists[first as usize..(first + count) as usize];
+                corner ^ self.crossings_to_corner(pieces, p, cell.1)
+            }
         }
     }
 
@@ -312,13 +347,34 @@ impl TrimTree {
                 matches!(
                     n,
                     Node::Leaf {
-                        leaf: Leaf::Fallback,
+                        leaf: Leaf::Fallback { .. },
                         ..
                     }
                 )
             })
             .count()
     }
+}
+
+/// Where the monotone `piece` reaches `value` along `axis` (0: u, 1: v): the other
+/// coordinate there, if `value` lies in [its lower end's, its upper end's) along that axis.
+fn crossing(piece: &QuadPiece, axis: usize, value: f64) -> Option<f64> {
+    let (a, b) = (piece.p[0][axis], piece.p[2][axis]);
+    let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+    if !(lo <= value && value < hi) {
+        return None;
+    }
+    let rising = b > a;
+    let (mut s, mut t) = (0.0, 1.0);
+    for _ in 0..52 {
+        let m = 0.5 * (s + t);
+        if (piece.eval(m)[axis] < value) == rising {
+            s = m;
+        } else {
+            t = m;
+        }
+    }
+    Some(piece.eval(0.5 * (s + t))[1 - axis])
 }
 
 /// Whether the monotone `piece` meets `cell` (closed, grown by a hair so that touching

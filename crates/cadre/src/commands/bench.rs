@@ -25,6 +25,16 @@ enum BenchWhat {
         #[arg(long, default_value_t = 3)]
         repeat: u32,
     },
+    /// Trim trees (cadre-trim) of every STEP file of a folder against its static meshes:
+    /// prints one JSON line per file with the trees' counts, bytes and build time, and the
+    /// time and bytes of meshing the same model at the same tolerance and at a tenth of it.
+    Trim {
+        /// Folder of STEP files (or a single file).
+        path: PathBuf,
+        /// Object-space tolerance of the trims, model units (mm).
+        #[arg(long, default_value_t = 0.1)]
+        tolerance: f64,
+    },
     /// Frame time of a heavy scene: FILE meshed once (0.001 × diagonal) and placed GRID × GRID
     /// times; prints one JSON object. Each frame uploads the scene, draws and reads the image
     /// back (headless, no supersampling).
@@ -99,6 +109,12 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             frames,
             mode,
         } => bench_view(file, *grid, *size, *frames, *mode),
+        BenchWhat::Trim { path, tolerance } => {
+            for file in step_files(path)? {
+                println!("{}", bench_trim(&file, *tolerance));
+            }
+            Ok(())
+        }
         BenchWhat::Import { path, repeat } => {
             for file in step_files(path)? {
                 let bytes = std::fs::metadata(&file).map(|m| m.len()).unwrap_or(0);
@@ -129,6 +145,64 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             Ok(())
         }
     }
+}
+
+/// One file's line of `cadre bench trim`.
+fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
+    let name = file.file_name().map(|n| n.to_string_lossy().to_string());
+    let model = match cadre_step::syntax::StepFile::read(file) {
+        Ok(f) => cadre_step::map_file(&f),
+        Err(e) => return json!({"file": name, "error": e.to_string()}),
+    };
+    let t = Instant::now();
+    let trees = cadre_trim::model_trees(&model, tolerance);
+    let trim_s = t.elapsed().as_secs_f64();
+    let s = &trees.stats;
+    // The static meshes the trees replace: at the same tolerance, and at a tenth of it.
+    let mesh = |deflection: f64| {
+        let params = cadre_mesh::MeshParams {
+            deflection,
+            ..cadre_mesh::MeshParams::default()
+        };
+        let t = Instant::now();
+        let mesh = cadre_mesh::mesh_model(&model, &params, None);
+        let seconds = t.elapsed().as_secs_f64();
+        // f32 position and normal a vertex, three u32 indices a triangle.
+        let bytes: usize = mesh
+            .faces
+            .iter()
+            .flatten()
+            .map(|f| 24 * f.points.len() + 12 * f.triangles.len())
+            .sum();
+        (seconds, bytes)
+    };
+    let (mesh_s, mesh_bytes) = mesh(tolerance);
+    let (_, fine_bytes) = mesh(0.1 * tolerance);
+    let per = |n: usize| {
+        if n == 0 {
+            0.0
+        } else {
+            s.bytes as f64 / n as f64
+        }
+    };
+    json!({
+        "file": name,
+        "faces": s.faces,
+        "built": s.built,
+        "failed": trees.failures.len(),
+        "curves": s.curves,
+        "pieces": s.pieces,
+        "nodes": s.nodes,
+        "fallback_faces": s.fallback_faces,
+        "fallback_leaves": s.fallback_leaves,
+        "bytes": s.bytes,
+        "bytes_per_curve": per(s.curves),
+        "bytes_per_face": per(s.built),
+        "trim_seconds": trim_s,
+        "mesh_seconds": mesh_s,
+        "mesh_bytes": mesh_bytes,
+        "mesh_bytes_tenth": fine_bytes,
+    })
 }
 
 /// `cadre bench render`: see [`BenchWhat::Render`].

@@ -1,0 +1,276 @@
+//! The trim trees of many faces in the compact words a GPU reads (a `u32` per node, `f32`
+//! records per piece and per two-piece leaf), and the CPU classifier on the same words: the
+//! oracle the GPU's per-fragment test will be checked against.
+//!
+//! Coordinates are face-local: each face's (u, v) minus its tree's lower corner, in `f32`, so
+//! that a face far from the parameter origin (a B-spline's v in millimetres, say) keeps its
+//! precision.
+//!
+//! A node is one word: kind in bits 29–31 ([`KIND_SPLIT`] …), the coverage bit in bit 28,
+//! a payload in bits 0–27 (a split's first child, relative to the face's first node; a
+//! constant's value; a piece, relative to the face's first piece; a two-piece record's offset
+//! in `floats`). A piece is [`PIECE_FLOATS`] floats: the implicit form's two rows, its sign
+//! (0 for a straight piece), its three control points (for the fallback's crossing counts).
+//! A two-piece record is the line (nx, ny, d) and the two pieces' indices as `f32` bits. A
+//! fallback leaf's payload is its record's offset in `lists`: its piece count, its corner's
+//! answer (0 or 1), then its pieces.
+
+use crate::Uv;
+use crate::quadtree::{Leaf, Node, TrimTree};
+
+/// Node kinds (bits 29–31).
+pub const KIND_SPLIT: u32 = 0;
+/// A cell wholly on (payload 1) or off (0) the face.
+pub const KIND_CONSTANT: u32 = 1;
+/// One piece decides.
+pub const KIND_ONE: u32 = 2;
+/// Two pieces and a line.
+pub const KIND_TWO: u32 = 3;
+/// The crossing parity over the face's pieces.
+pub const KIND_FALLBACK: u32 = 4;
+/// The coverage bit.
+pub const COVERAGE: u32 = 1 << 28;
+/// The payload's mask.
+pub const PAYLOAD: u32 = (1 << 28) - 1;
+/// Floats per piece: form rows (6), sign (1), control points (6).
+pub const PIECE_FLOATS: usize = 13;
+/// Floats per two-piece record.
+pub const TWO_FLOATS: usize = 5;
+
+/// Where one face's tree lies in the buffers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceRecord {
+    /// The tree's lower corner, subtracted from (u, v) before anything else (kept in `f64`
+    /// on the CPU; the GPU gets it split into a high and a low `f32`).
+    pub origin: Uv,
+    /// The root cell's size.
+    pub size: [f32; 2],
+    /// First node, first piece (its index in pieces, not floats), piece count.
+    pub nodes: u32,
+    /// First piece.
+    pub pieces: u32,
+    /// Number of pieces.
+    pub piece_count: u32,
+}
+
+/// The trees of a set of faces, packed.
+#[derive(Clone, Debug, Default)]
+pub struct TrimBuffers {
+    /// One record per face, in the order added.
+    pub faces: Vec<FaceRecord>,
+    /// Nodes, a word each.
+    pub nodes: Vec<u32>,
+    /// Pieces ([`PIECE_FLOATS`] each, from 0) and two-piece records, interleaved as added.
+    pub floats: Vec<f32>,
+    /// Offset of each piece's record in `floats`, by piece index.
+    pub piece_offsets: Vec<u32>,
+    /// The fallback leaves' records.
+    pub lists: Vec<u32>,
+}
+
+/// Why a tree does not fit the layout.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum LayoutError {
+    /// An index past the 28 bits of a payload.
+    #[error("a trim tree's index {0} exceeds the layout's 28-bit payload")]
+    TooLarge(usize),
+}
+
+impl TrimBuffers {
+    /// Appends `tree`; returns its face's index.
+    pub fn push(&mut self, tree: &TrimTree) -> Result<usize, LayoutError> {
+        let origin = tree.bounds.0;
+        let size = tree.bounds.1 - origin;
+        let record = FaceRecord {
+            origin,
+            size: [size.x as f32, size.y as f32],
+            nodes: self.nodes.len() as u32,
+            pieces: self.piece_offsets.len() as u32,
+            piece_count: tree.pieces.len() as u32,
+        };
+        let fits = |x: usize| {
+            if x as u64 > u64::from(PAYLOAD) {
+                Err(LayoutError::TooLarge(x))
+            } else {
+                Ok(x as u32)
+            }
+        };
+        fits(self.floats.len() + tree.pieces.len() * PIECE_FLOATS + tree.nodes.len() * 5)?;
+        for (piece, form) in tree.pieces.iter().zip(&tree.forms) {
+            self.piece_offsets.push(self.floats.len() as u32);
+            // The form of the piece moved to the face-local frame: x = a u + b v + c with
+            // (u, v) = local + origin, so c' = c + a u0 + b v0.
+            for row in form.rows {
+                self.floats.push(row[0] as f32);
+                self.floats.push(row[1] as f32);
+                self.floats
+                    .push((row[2] + row[0] * origin.x + row[1] * origin.y) as f32);
+            }
+            self.floats
+                .push(if form.line { 0.0 } else { form.sign as f32 });
+            for p in piece.p {
+                let local = p - origin;
+                self.floats.push(local.x as f32);
+                self.floats.push(local.y as f32);
+            }
+        }
+        for node in &tree.nodes {
+            let word = match *node {
+                Node::Split { first, coverage } => {
+                    KIND_SPLIT << 29 | u32::from(coverage) << 28 | fits(first as usize)?
+                }
+                Node::Leaf { leaf, coverage } => {
+                    let (kind, payload) = match leaf {
+                        Leaf::Constant(on) => (KIND_CONSTANT, u32::from(on)),
+                        Leaf::One(k) => (KIND_ONE, fits(k as usize)?),
+                        Leaf::Two { line, pieces } => {
+                            let at = fits(self.floats.len())?;
+                            let d = line.1 - line.0.dot(origin);
+                            self.floats.extend([
+                                line.0.x as f32,
+                                line.0.y as f32,
+                                d as f32,
+                                f32::from_bits(pieces[0]),
+                                f32::from_bits(pieces[1]),
+                            ]);
+                            (KIND_TWO, at)
+                        }
+                        Leaf::Fallback {
+                            corner,
+                            first,
+                            count,
+                        } => {
+                            let at = fits(self.lists.len())?;
+                            self.lists.push(count);
+                            self.lists.push(u32::from(corner));
+                            self.lists.extend_from_slice(
+                                &tree.lists[first as usize..(first + count) as usize],
+                            );
+                            (KIND_FALLBACK, at)
+                        }
+                    };
+                    kind << 29 | u32::from(coverage) << 28 | payload
+                }
+            };
+            self.nodes.push(word);
+        }
+        self.faces.push(record);
+        Ok(self.faces.len() - 1)
+    }
+
+    /// Bytes of the trees: nodes, floats, fallback records and the face records (32 bytes
+    /// each on the GPU).
+    pub fn bytes(&self) -> usize {
+        4 * (self.nodes.len() + self.floats.len() + self.lists.len()) + 32 * self.faces.len()
+    }
+
+    /// Whether `p` is on face `face`, read from the words as the GPU reads them (`f32`).
+    pub fn classify(&self, face: usize, p: Uv) -> bool {
+        let f = self.faces[face];
+        let local = p - f.origin;
+        let q = [local.x as f32, local.y as f32];
+        if q[0] < 0.0 || q[1] < 0.0 || q[0] > f.size[0] || q[1] > f.size[1] {
+            return false;
+        }
+        let (mut lo, mut hi) = ([0.0f32; 2], f.size);
+        let mut index = f.nodes as usize;
+        loop {
+            let word = self.nodes[index];
+            let payload = word & PAYLOAD;
+            match word >> 29 {
+                KIND_SPLIT => {
+                    let mid = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+                    let right = q[0] >= mid[0];
+                    let up = q[1] >= mid[1];
+                    index = f.nodes as usize
+                        + payload as usize
+                        + usize::from(right)
+                        + 2 * usize::from(up);
+                    if right {
+                        lo[0] = mid[0]
+                    } else {
+                        hi[0] = mid[0]
+                    }
+                    if up { lo[1] = mid[1] } else { hi[1] = mid[1] }
+                }
+                KIND_CONSTANT => return payload != 0,
+                KIND_ONE => return self.value(f, payload, q) >= 0.0,
+                KIND_TWO => {
+                    let r = &self.floats[payload as usize..payload as usize + TWO_FLOATS];
+                    let positive = r[0] * q[0] + r[1] * q[1] >= r[2];
+                    let k = if positive { r[3] } else { r[4] }.to_bits();
+                    return self.value(f, k, q) >= 0.0;
+                }
+                _ => {
+                    let at = payload as usize;
+                    let (count, corner) = (self.lists[at] as usize, self.lists[at + 1] != 0);
+                    let pieces = &self.lists[at + 2..at + 2 + count];
+                    return corner ^ self.crossings_to_corner(f, pieces, q, hi);
+                }
+            }
+        }
+    }
+
+    /// Piece `k` of face `f`'s implicit value at the face-local point `q`.
+    fn value(&self, f: FaceRecord, k: u32, q: [f32; 2]) -> f32 {
+        let at = self.piece_offsets[(f.pieces + k) as usize] as usize;
+        let r = &self.floats[at..at + PIECE_FLOATS];
+        let x = r[0] * q[0] + r[1] * q[1] + r[2];
+        let y = r[3] * q[0] + r[4] * q[1] + r[5];
+        let sign = r[6];
+        if sign == 0.0 {
+            y
+        } else {
+            sign * (x * x - y).min(x - y)
+        }
+    }
+
+    /// The parity of `pieces`' crossings from `q` right to the cell's edge, then up the edge
+    /// to its corner `hi`, as [`TrimTree`]'s fallback leaves count them.
+    fn crossings_to_corner(
+        &self,
+        f: FaceRecord,
+        pieces: &[u32],
+        q: [f32; 2],
+        hi: [f32; 2],
+    ) -> bool {
+        let mut odd = false;
+        for &k in pieces {
+            let at = self.piece_offsets[(f.pieces + k) as usize] as usize + 7;
+            let c = &self.floats[at..at + 6];
+            let points = [[c[0], c[1]], [c[2], c[3]], [c[4], c[5]]];
+            if crossing(points, 1, q[1]).is_some_and(|u| u > q[0] && u <= hi[0]) {
+                odd = !odd;
+            }
+            if crossing(points, 0, hi[0]).is_some_and(|v| v >= q[1] && v < hi[1]) {
+                odd = !odd;
+            }
+        }
+        odd
+    }
+}
+
+/// Where the monotone piece with control points `c` reaches `value` along `axis`: the other
+/// coordinate there, if `value` lies in [its lower end's, its upper end's) (`f32`, as the GPU).
+fn crossing(c: [[f32; 2]; 3], axis: usize, value: f32) -> Option<f32> {
+    let (a, b) = (c[0][axis], c[2][axis]);
+    let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+    if !(lo <= value && value < hi) {
+        return None;
+    }
+    let eval = |t: f32, i: usize| {
+        let s = 1.0 - t;
+        s * s * c[0][i] + 2.0 * s * t * c[1][i] + t * t * c[2][i]
+    };
+    let rising = b > a;
+    let (mut s, mut t) = (0.0f32, 1.0f32);
+    for _ in 0..24 {
+        let m = 0.5 * (s + t);
+        if (eval(m, axis) < value) == rising {
+            s = m;
+        } else {
+            t = m;
+        }
+    }
+    Some(eval(0.5 * (s + t), 1 - axis))
+}

@@ -1,0 +1,143 @@
+//! The trim trees of a model's faces, built in parallel from the trim loops the model already
+//! has (`cadre_brep::trim::face_trim` over one shared edge discretisation), each face's
+//! (u, v) tolerances derived from an object-space tolerance and its surface's speeds.
+
+use cadre_brep::trim::{TrimTolerance, face_surface, face_trim};
+use cadre_brep::{FaceId, Model};
+use cadre_geom::{Accuracy, Surface};
+use cadre_mesh::MeshParams;
+use cadre_mesh::edges::EdgeDiscretisation;
+use rayon::prelude::*;
+
+use crate::Uv;
+use crate::fit::{UvTolerance, fit_points};
+use crate::layout::{LayoutError, TrimBuffers};
+use crate::quad::QuadPiece;
+use crate::quadtree::TrimTree;
+
+/// What building a model's trees gave.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TrimStats {
+    /// Faces of the model.
+    pub faces: usize,
+    /// Faces with a tree.
+    pub built: usize,
+    /// Trim curves (one edge's trace in one face's loops, seam and pole lines included).
+    pub curves: usize,
+    /// Monotone quadratic pieces.
+    pub pieces: usize,
+    /// Tree nodes.
+    pub nodes: usize,
+    /// Faces whose tree has a fallback leaf.
+    pub fallback_faces: usize,
+    /// Fallback leaves in all.
+    pub fallback_leaves: usize,
+    /// Bytes of the packed trees.
+    pub bytes: usize,
+}
+
+/// A model's trees, packed, with where each face's lies.
+#[derive(Clone, Debug, Default)]
+pub struct ModelTrees {
+    /// The packed trees.
+    pub buffers: TrimBuffers,
+    /// Per model face, its index in `buffers.faces`, or `None`.
+    pub face_index: Vec<Option<u32>>,
+    /// The faces without a tree: STEP id and why (their meshes stand in for them).
+    pub failures: Vec<(u64, String)>,
+    /// Counts.
+    pub stats: TrimStats,
+}
+
+/// The trees of every face of `model`, within `eps` model units of the exact trims: the
+/// edges are sampled to `eps / 2` and the loops fitted within `eps / 2` on the surface.
+pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
+    let half = 0.5 * eps;
+    let params = MeshParams {
+        deflection: half,
+        angle: 0.2,
+        ..MeshParams::default()
+    };
+    let acc = Accuracy::default();
+    let edges = EdgeDiscretisation::new(model, &params, acc);
+    let tol = TrimTolerance {
+        deflection: half,
+        angle: 0.2,
+        accuracy: acc,
+        keep_exact: false,
+    };
+    let built: Vec<Result<(TrimTree, usize), String>> = (0..model.faces.len())
+        .into_par_iter()
+        .map(|i| {
+            let face = FaceId(i as u32);
+            let trim = face_trim(model, face, &edges, &tol).map_err(|e| e.to_string())?;
+            let surface = face_surface(model, face);
+            let runs: Vec<Vec<Uv>> = trim
+                .loops
+                .iter()
+                .flat_map(|l| l.segments.iter())
+                .map(|s| s.points.iter().map(|p| p.uv).collect())
+                .filter(|r: &Vec<Uv>| r.len() >= 2)
+                .collect();
+            if runs.is_empty() {
+                return Err("no trim loop".to_string());
+            }
+            let uv_tol = uv_tolerance(surface, &runs, half);
+            let pieces: Vec<QuadPiece> = runs.iter().flat_map(|r| fit_points(r, uv_tol)).collect();
+            Ok((TrimTree::build(&pieces), runs.len()))
+        })
+        .collect();
+    let mut out = ModelTrees {
+        face_index: vec![None; model.faces.len()],
+        ..ModelTrees::default()
+    };
+    out.stats.faces = model.faces.len();
+    for (i, result) in built.into_iter().enumerate() {
+        let step_id = model.faces[i].step_id;
+        match result {
+            Ok((tree, curves)) => match out.buffers.push(&tree) {
+                Ok(index) => {
+                    out.face_index[i] = Some(index as u32);
+                    let s = &mut out.stats;
+                    s.built += 1;
+                    s.curves += curves;
+                    s.pieces += tree.pieces.len();
+                    s.nodes += tree.nodes.len();
+                    let fallback = tree.fallback_leaves();
+                    s.fallback_leaves += fallback;
+                    s.fallback_faces += usize::from(fallback > 0);
+                }
+                Err(e @ LayoutError::TooLarge(_)) => out.failures.push((step_id, e.to_string())),
+            },
+            Err(why) => out.failures.push((step_id, why)),
+        }
+    }
+    out.stats.bytes = out.buffers.bytes();
+    out
+}
+
+/// The (u, v) tolerances of a face: `eps` over the largest speeds `|∂S/∂u|`, `|∂S/∂v|` met at
+/// its trim points and on a 5 × 5 grid over their box.
+fn uv_tolerance(surface: &Surface, runs: &[Vec<Uv>], eps: f64) -> UvTolerance {
+    let (mut lo, mut hi) = (Uv::splat(f64::INFINITY), Uv::splat(f64::NEG_INFINITY));
+    let mut speed = (0.0f64, 0.0f64);
+    let mut at = |p: Uv| {
+        let d = surface.derivs(p.x, p.y);
+        let (su, sv) = (d.du.length(), d.dv.length());
+        if su.is_finite() && sv.is_finite() {
+            speed = (speed.0.max(su), speed.1.max(sv));
+        }
+    };
+    for p in runs.iter().flatten() {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+        at(*p);
+    }
+    for i in 0..5 {
+        for j in 0..5 {
+            let f = Uv::new(f64::from(i) / 4.0, f64::from(j) / 4.0);
+            at(lo + f * (hi - lo));
+        }
+    }
+    UvTolerance::from_speeds(eps, speed.0, speed.1)
+}
