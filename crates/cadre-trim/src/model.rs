@@ -43,6 +43,8 @@ pub struct ModelTrees {
     pub buffers: TrimBuffers,
     /// Per model face, its index in `buffers.faces`, or `None`.
     pub face_index: Vec<Option<u32>>,
+    /// Per tree (as `buffers.faces`), the (u, v) tolerances it was fitted within.
+    pub tolerances: Vec<UvTolerance>,
     /// The faces without a tree: STEP id and why (their meshes stand in for them).
     pub failures: Vec<(u64, String)>,
     /// Counts.
@@ -66,25 +68,25 @@ pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
         accuracy: acc,
         keep_exact: false,
     };
-    let built: Vec<Result<(TrimTree, usize), String>> = (0..model.faces.len())
+    let built: Vec<Result<(TrimTree, usize, UvTolerance), String>> = (0..model.faces.len())
         .into_par_iter()
         .map(|i| {
             let face = FaceId(i as u32);
             let trim = face_trim(model, face, &edges, &tol).map_err(|e| e.to_string())?;
             let surface = face_surface(model, face);
-            let runs: Vec<Vec<Uv>> = trim
-                .loops
-                .iter()
-                .flat_map(|l| l.segments.iter())
-                .map(|s| s.points.iter().map(|p| p.uv).collect())
-                .filter(|r: &Vec<Uv>| r.len() >= 2)
-                .collect();
+            let (mut runs, gaps) = loop_runs(&trim);
             if runs.is_empty() {
                 return Err("no trim loop".to_string());
             }
             let uv_tol = uv_tolerance(surface, &runs, half);
+            let curves = runs.len();
+            runs.extend(
+                gaps.into_iter()
+                    .filter(|(a, b)| uv_tol.scaled(*b - *a) > 1e-3)
+                    .map(|(a, b)| vec![a, b]),
+            );
             let pieces: Vec<QuadPiece> = runs.iter().flat_map(|r| fit_points(r, uv_tol)).collect();
-            Ok((TrimTree::build(&pieces), runs.len()))
+            Ok((TrimTree::build(&pieces), curves, uv_tol))
         })
         .collect();
     let mut out = ModelTrees {
@@ -95,9 +97,10 @@ pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
     for (i, result) in built.into_iter().enumerate() {
         let step_id = model.faces[i].step_id;
         match result {
-            Ok((tree, curves)) => match out.buffers.push(&tree) {
+            Ok((tree, curves, uv_tol)) => match out.buffers.push(&tree) {
                 Ok(index) => {
                     out.face_index[i] = Some(index as u32);
+                    out.tolerances.push(uv_tol);
                     let s = &mut out.stats;
                     s.built += 1;
                     s.curves += curves;
@@ -114,6 +117,35 @@ pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
     }
     out.stats.bytes = out.buffers.bytes();
     out
+}
+
+/// A face's trim as runs of (u, v) points to fit: each segment's points (one edge's trace,
+/// smooth; the trim curves), then a straight run across each gap between a segment's end and
+/// the next one's start wider than a thousandth of `tol` (a loop closes as its polygon does;
+/// a narrower gap would only add a sliver piece meeting two others in every cell down the
+/// tree), so that every loop of pieces is closed.
+fn loop_runs(trim: &cadre_brep::trim::FaceTrim) -> (Vec<Vec<Uv>>, Vec<(Uv, Uv)>) {
+    let mut runs = Vec::new();
+    let mut gaps = Vec::new();
+    for l in &trim.loops {
+        let segments: Vec<Vec<Uv>> = l
+            .segments
+            .iter()
+            .map(|s| s.points.iter().map(|p| p.uv).collect::<Vec<Uv>>())
+            .filter(|r| !r.is_empty())
+            .collect();
+        for (k, run) in segments.iter().enumerate() {
+            if run.len() >= 2 {
+                runs.push(run.clone());
+            }
+            let next = &segments[(k + 1) % segments.len()];
+            let (end, start) = (run[run.len() - 1], next[0]);
+            if end != start {
+                gaps.push((end, start));
+            }
+        }
+    }
+    (runs, gaps)
 }
 
 /// The (u, v) tolerances of a face: `eps` over the largest speeds `|∂S/∂u|`, `|∂S/∂v|` met at
