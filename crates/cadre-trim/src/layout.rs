@@ -158,6 +158,26 @@ impl TrimBuffers {
         Ok(self.faces.len() - 1)
     }
 
+    /// The face records as the GPU reads them (`TrimFace` in trim.wgsl: size as `f32` bits,
+    /// first node, first piece, piece count, padding).
+    pub fn face_words(&self) -> Vec<[u32; 8]> {
+        self.faces
+            .iter()
+            .map(|f| {
+                [
+                    f.size[0].to_bits(),
+                    f.size[1].to_bits(),
+                    f.nodes,
+                    f.pieces,
+                    f.piece_count,
+                    0,
+                    0,
+                    0,
+                ]
+            })
+            .collect()
+    }
+
     /// Bytes of the trees: nodes, floats, fallback records and the face records (32 bytes
     /// each on the GPU).
     pub fn bytes(&self) -> usize {

@@ -37,5 +37,9 @@ pub use model::{ModelTrees, TrimStats, model_trees};
 pub use quad::{Implicit, QuadPiece};
 pub use quadtree::{Leaf, Node, TrimTree};
 
+/// The GPU's trim test (`trim_classify`), the twin of [`TrimBuffers::classify`]: the including
+/// shader declares the buffers it reads (see the file's header).
+pub const TRIM_WGSL: &str = include_str!("trim.wgsl");
+
 /// A point of the (u, v) domain.
 pub type Uv = glam::DVec2;

@@ -1,0 +1,214 @@
+//! The GPU's trim test (`cadre_trim::TRIM_WGSL`) answers as its CPU oracle
+//! (`TrimBuffers::classify`) on the same packed words: random face-local points of every face
+//! of the bundled assembly and of a sliver face (two curves a hair apart, whose tree holds
+//! fallback leaves), classified in a compute shader on the adapter the tests draw on.
+//! Negative control: the same points asked of the next face's tree disagree often.
+
+mod common;
+
+use cadre_render::wgpu;
+use cadre_trim::{QuadPiece, TrimBuffers, TrimTree, Uv, model_trees};
+use wgpu::util::DeviceExt;
+
+/// The shader: the five trim buffers, the queries (face, q as f32 bits), the answers.
+fn shader() -> String {
+    format!(
+        "@group(0) @binding(0) var<storage, read> trim_faces: array<TrimFace>;
+         @group(0) @binding(1) var<storage, read> trim_nodes: array<u32>;
+         @group(0) @binding(2) var<storage, read> trim_floats: array<f32>;
+         @group(0) @binding(3) var<storage, read> trim_piece_offsets: array<u32>;
+         @group(0) @binding(4) var<storage, read> trim_lists: array<u32>;
+         @group(0) @binding(5) var<storage, read> queries: array<vec4<u32>>;
+         @group(0) @binding(6) var<storage, read_write> answers: array<u32>;
+         {}
+         @compute @workgroup_size(64)
+         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+             if id.x >= arrayLength(&queries) {{ return; }}
+             let query = queries[id.x];
+             let q = vec2<f32>(bitcast<f32>(query.y), bitcast<f32>(query.z));
+             answers[id.x] = select(0u, 1u, trim_classify(query.x, q));
+         }}",
+        cadre_trim::TRIM_WGSL
+    )
+}
+
+/// The GPU's answers for `queries` (face, face-local point).
+fn gpu_answers(
+    gpu: &cadre_render::Gpu,
+    buffers: &TrimBuffers,
+    queries: &[(u32, [f32; 2])],
+) -> Vec<u32> {
+    let device = &gpu.device;
+    let storage = |label: &str, bytes: &[u8]| {
+        // Storage bindings may not be empty.
+        let bytes = if bytes.is_empty() {
+            &[0u8; 4][..]
+        } else {
+            bytes
+        };
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+        })
+    };
+    let words: Vec<u32> = queries
+        .iter()
+        .flat_map(|(f, q)| [*f, q[0].to_bits(), q[1].to_bits(), 0])
+        .collect();
+    let inputs = [
+        storage("faces", bytemuck::cast_slice(&buffers.face_words())),
+        storage("nodes", bytemuck::cast_slice(&buffers.nodes)),
+        storage("floats", bytemuck::cast_slice(&buffers.floats)),
+        storage(
+            "piece offsets",
+            bytemuck::cast_slice(&buffers.piece_offsets),
+        ),
+        storage("lists", bytemuck::cast_slice(&buffers.lists)),
+        storage("queries", bytemuck::cast_slice(&words)),
+    ];
+    let size = 4 * queries.len() as u64;
+    let answers = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("answers"),
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("trim classify"),
+        source: wgpu::ShaderSource::Wgsl(shader().into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("trim classify"),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let mut entries: Vec<wgpu::BindGroupEntry> = inputs
+        .iter()
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect();
+    entries.push(wgpu::BindGroupEntry {
+        binding: 6,
+        resource: answers.as_entire_binding(),
+    });
+    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("trim classify"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &entries,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.dispatch_workgroups((queries.len() as u32).div_ceil(64), 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(&answers, 0, &readback, 0, size);
+    gpu.queue.submit([encoder.finish()]);
+    readback
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("poll");
+    let view = readback.slice(..).get_mapped_range().expect("mapped");
+    bytemuck::cast_slice(&view).to_vec()
+}
+
+/// A sliver face: a curve out and the same curve back a hair below it.
+fn sliver() -> TrimTree {
+    let curve = |k: usize, offset: f64| {
+        let t = k as f64 / 8.0;
+        Uv::new(2.0 * t, 0.4 * (2.0 * t - 1.0).powi(2) + offset)
+    };
+    let mut pieces = Vec::new();
+    for k in 0..8 {
+        pieces.push(QuadPiece::line(curve(k, 1e-6), curve(k + 1, 1e-6)));
+    }
+    pieces.push(QuadPiece::line(curve(8, 1e-6), curve(8, 0.0)));
+    for k in (0..8).rev() {
+        pieces.push(QuadPiece::line(curve(k + 1, 0.0), curve(k, 0.0)));
+    }
+    pieces.push(QuadPiece::line(curve(0, 0.0), curve(0, 1e-6)));
+    TrimTree::build(&pieces)
+}
+
+#[test]
+fn the_gpu_trim_test_answers_as_the_cpu_oracle() {
+    let gpu = common::gpu();
+    let (model, _) = common::model_and_scene("pin-assembly.step");
+    let trees = model_trees(&model, 0.01);
+    let mut buffers = trees.buffers.clone();
+    let sliver_face = buffers.push(&sliver()).expect("packs") as u32;
+    assert!(
+        sliver().fallback_leaves() > 0,
+        "the sliver has no fallback leaf"
+    );
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut random = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let mut queries = Vec::new();
+    for (face, record) in buffers.faces.iter().enumerate() {
+        for _ in 0..2000 {
+            // Past the box a little too.
+            let q = [
+                (random() * 1.1 - 0.05) * record.size[0],
+                (random() * 1.1 - 0.05) * record.size[1],
+            ];
+            queries.push((face as u32, q));
+        }
+    }
+    let cpu: Vec<u32> = queries
+        .iter()
+        .map(|(f, q)| {
+            let origin = buffers.faces[*f as usize].origin;
+            let p = origin + Uv::new(f64::from(q[0]), f64::from(q[1]));
+            u32::from(buffers.classify(*f as usize, p))
+        })
+        .collect();
+    let on = cpu.iter().filter(|&&a| a == 1).count();
+    assert!(
+        on > queries.len() / 10 && on < queries.len() * 9 / 10,
+        "{on} of {} on",
+        queries.len()
+    );
+    let gpu_out = gpu_answers(&gpu, &buffers, &queries);
+    let differ = cpu.iter().zip(&gpu_out).filter(|(a, b)| a != b).count();
+    // f32 arithmetic may be contracted differently there: a point on a boundary may go either
+    // way.
+    assert!(
+        differ * 10_000 <= queries.len(),
+        "{}: the GPU differs from the CPU oracle on {differ} of {} points",
+        gpu.info.name,
+        queries.len()
+    );
+    let sliver_queries = queries.iter().filter(|(f, _)| *f == sliver_face).count();
+    assert!(sliver_queries > 0);
+    // Negative control: the next face's tree for each point.
+    let faces = buffers.faces.len() as u32;
+    let shifted: Vec<(u32, [f32; 2])> =
+        queries.iter().map(|(f, q)| ((f + 1) % faces, *q)).collect();
+    let wrong = gpu_answers(&gpu, &buffers, &shifted);
+    let differ = cpu.iter().zip(&wrong).filter(|(a, b)| a != b).count();
+    assert!(
+        differ * 20 > queries.len(),
+        "the next face's tree differs on {differ} only"
+    );
+}

@@ -1,0 +1,118 @@
+// Trim test on the GPU: whether a face-local (u, v) lies on its face, read from the packed trim
+// trees (`cadre_trim::layout`: the words and their meaning are documented there, and
+// `TrimBuffers::classify` is this function's CPU twin and oracle). The including shader
+// declares the five buffers below at bindings of its choice by defining them before this file
+// is appended (WGSL has no includes with parameters): `trim_faces`, `trim_nodes`,
+// `trim_floats`, `trim_piece_offsets`, `trim_lists`.
+
+struct TrimFace {
+    // The root cell's size; (u, v) arrive face-local (minus the tree's lower corner).
+    size: vec2<f32>,
+    nodes: u32,
+    pieces: u32,
+    piece_count: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+}
+
+const TRIM_KIND_SPLIT: u32 = 0u;
+const TRIM_KIND_CONSTANT: u32 = 1u;
+const TRIM_KIND_ONE: u32 = 2u;
+const TRIM_KIND_TWO: u32 = 3u;
+const TRIM_PAYLOAD: u32 = 0x0fffffffu;
+// Depth cap (`quadtree::MAX_DEPTH`) plus the root.
+const TRIM_MAX_STEPS: u32 = 14u;
+
+// Piece `k` of `f`: its implicit value at `q`, positive on the face's side.
+fn trim_value(f: TrimFace, k: u32, q: vec2<f32>) -> f32 {
+    let at = trim_piece_offsets[f.pieces + k];
+    let x = trim_floats[at] * q.x + trim_floats[at + 1u] * q.y + trim_floats[at + 2u];
+    let y = trim_floats[at + 3u] * q.x + trim_floats[at + 4u] * q.y + trim_floats[at + 5u];
+    let sign = trim_floats[at + 6u];
+    return select(sign * min(x * x - y, x - y), y, sign == 0.0);
+}
+
+// Where the monotone piece `c` (three control points) reaches `value` along `axis`: the other
+// coordinate, or NaN-free -1e30 when `value` is outside [its lower end's, its upper end's).
+fn trim_crossing(c0: vec2<f32>, c1: vec2<f32>, c2: vec2<f32>, axis: u32, value: f32) -> vec2<f32> {
+    let a = c0[axis];
+    let b = c2[axis];
+    let lo = min(a, b);
+    let hi = max(a, b);
+    let rising = b > a;
+    var s = 0.0;
+    var t = 1.0;
+    for (var i = 0u; i < 24u; i++) {
+        let m = 0.5 * (s + t);
+        let w = 1.0 - m;
+        let v = w * w * c0[axis] + 2.0 * w * m * c1[axis] + m * m * c2[axis];
+        let below = (v < value) == rising;
+        s = select(s, m, below);
+        t = select(m, t, below);
+    }
+    let m = 0.5 * (s + t);
+    let w = 1.0 - m;
+    let other = w * w * c0[1u - axis] + 2.0 * w * m * c1[1u - axis] + m * m * c2[1u - axis];
+    // x: 1 where the piece reaches `value`, 0 where not; y: the other coordinate.
+    return vec2<f32>(select(0.0, 1.0, (lo <= value) & (value < hi)), other);
+}
+
+// The parity of the fallback leaf's pieces crossed from `q` right to the cell's edge, then up
+// to its corner `hi`.
+fn trim_crossings(f: TrimFace, record: u32, q: vec2<f32>, hi: vec2<f32>) -> bool {
+    let count = trim_lists[record];
+    var odd = false;
+    for (var i = 0u; i < min(count, arrayLength(&trim_lists)); i++) {
+        let k = trim_lists[record + 2u + i];
+        let at = trim_piece_offsets[f.pieces + k] + 7u;
+        let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
+        let c1 = vec2<f32>(trim_floats[at + 2u], trim_floats[at + 3u]);
+        let c2 = vec2<f32>(trim_floats[at + 4u], trim_floats[at + 5u]);
+        let h = trim_crossing(c0, c1, c2, 1u, q.y);
+        odd = odd != ((h.x > 0.5) & (h.y > q.x) & (h.y <= hi.x));
+        let v = trim_crossing(c0, c1, c2, 0u, hi.x);
+        odd = odd != ((v.x > 0.5) & (v.y >= q.y) & (v.y < hi.y));
+    }
+    return odd;
+}
+
+// Whether the face-local point `q` lies on face `face`.
+fn trim_classify(face: u32, q: vec2<f32>) -> bool {
+    let f = trim_faces[face];
+    if any(q < vec2<f32>(0.0)) || any(q > f.size) {
+        return false;
+    }
+    var lo = vec2<f32>(0.0);
+    var hi = f.size;
+    var index = f.nodes;
+    for (var step = 0u; step < TRIM_MAX_STEPS; step++) {
+        let word = trim_nodes[index];
+        let payload = word & TRIM_PAYLOAD;
+        let kind = word >> 29u;
+        if kind == TRIM_KIND_SPLIT {
+            let mid = 0.5 * (lo + hi);
+            let right = q.x >= mid.x;
+            let up = q.y >= mid.y;
+            index = f.nodes + payload + select(0u, 1u, right) + select(0u, 2u, up);
+            lo = select(lo, mid, vec2<bool>(right, up));
+            hi = select(mid, hi, vec2<bool>(right, up));
+            continue;
+        }
+        if kind == TRIM_KIND_CONSTANT {
+            return payload != 0u;
+        }
+        if kind == TRIM_KIND_ONE {
+            return trim_value(f, payload, q) >= 0.0;
+        }
+        if kind == TRIM_KIND_TWO {
+            let positive = trim_floats[payload] * q.x + trim_floats[payload + 1u] * q.y
+                >= trim_floats[payload + 2u];
+            let k = bitcast<u32>(select(trim_floats[payload + 4u], trim_floats[payload + 3u], positive));
+            return trim_value(f, k, q) >= 0.0;
+        }
+        // Fallback: the corner's answer and the crossings within the cell.
+        return (trim_lists[payload + 1u] != 0u) != trim_crossings(f, payload, q, hi);
+    }
+    return false;
+}
