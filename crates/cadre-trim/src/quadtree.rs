@@ -364,7 +364,13 @@ fn crossing(piece: &QuadPiece, axis: usize, value: f64) -> Option<f64> {
     if !(lo <= value && value < hi) {
         return None;
     }
-    let rising = b > a;
+    Some(piece.eval(param_at(piece, axis, value))[1 - axis])
+}
+
+/// The parameter where the monotone `piece`'s coordinate `axis` reaches `value`, by bisection
+/// (`value` between its ends' coordinates).
+fn param_at(piece: &QuadPiece, axis: usize, value: f64) -> f64 {
+    let rising = piece.p[2][axis] > piece.p[0][axis];
     let (mut s, mut t) = (0.0, 1.0);
     for _ in 0..52 {
         let m = 0.5 * (s + t);
@@ -374,7 +380,7 @@ fn crossing(piece: &QuadPiece, axis: usize, value: f64) -> Option<f64> {
             t = m;
         }
     }
-    Some(piece.eval(0.5 * (s + t))[1 - axis])
+    0.5 * (s + t)
 }
 
 /// Whether the monotone `piece` meets `cell` (closed, grown by a hair so that touching
@@ -401,25 +407,16 @@ fn param_range(piece: &QuadPiece, axis: usize, lo: f64, hi: f64) -> Option<(f64,
     if start.max(end) < lo || start.min(end) > hi {
         return None;
     }
-    // The parameter where the coordinate reaches x (clamped to the piece), by bisection.
+    // The parameter where the coordinate reaches x, clamped to the piece.
     let at = |x: f64| -> f64 {
         let rising = end >= start;
         if (x <= start) == rising {
-            return 0.0;
+            0.0
+        } else if (x >= end) == rising {
+            1.0
+        } else {
+            param_at(piece, axis, x)
         }
-        if (x >= end) == rising {
-            return 1.0;
-        }
-        let (mut a, mut b) = (0.0, 1.0);
-        for _ in 0..52 {
-            let m = 0.5 * (a + b);
-            if (piece.eval(m)[axis] < x) == rising {
-                a = m;
-            } else {
-                b = m;
-            }
-        }
-        0.5 * (a + b)
     };
     let (t0, t1) = (at(lo), at(hi));
     Some((t0.min(t1), t0.max(t1)))

@@ -5,8 +5,11 @@
 //! Negative control: the tree of the same face without its first hole is caught disagreeing
 //! at that hole's centre.
 
+mod common;
+
 use cadre_trim::layout::{KIND_CONSTANT, PAYLOAD};
 use cadre_trim::{QuadPiece, TrimBuffers, TrimTree, Uv, UvTolerance, fit_points};
+use common::{even_odd, to_boundary};
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 
@@ -57,39 +60,6 @@ fn face(radii: &[f64], (angle, holes): (f64, &[f64]), stretch: Uv) -> Face {
     }
 }
 
-/// Even-odd over the dense polylines.
-fn even_odd(loops: &[Vec<Uv>], p: Uv) -> bool {
-    let mut inside = false;
-    for l in loops {
-        for k in 0..l.len() {
-            let (a, b) = (l[k], l[(k + 1) % l.len()]);
-            if (a.y <= p.y) != (b.y <= p.y) {
-                let u = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-                if u > p.x {
-                    inside = !inside;
-                }
-            }
-        }
-    }
-    inside
-}
-
-/// Distance in tolerances from `p` to the dense polylines.
-fn to_boundary(loops: &[Vec<Uv>], p: Uv, tol: UvTolerance) -> f64 {
-    let scale = |d: Uv| Uv::new(d.x / tol.u, d.y / tol.v);
-    let q = scale(p);
-    let mut best = f64::INFINITY;
-    for l in loops {
-        for k in 0..l.len() {
-            let (a, b) = (scale(l[k]), scale(l[(k + 1) % l.len()]));
-            let ab = b - a;
-            let t = ((q - a).dot(ab) / ab.length_squared().max(1e-300)).clamp(0.0, 1.0);
-            best = best.min((a + t * ab - q).length());
-        }
-    }
-    best
-}
-
 fn pieces(face: &Face, tol: UvTolerance) -> Vec<QuadPiece> {
     face.runs.iter().flat_map(|r| fit_points(r, tol)).collect()
 }
@@ -122,7 +92,7 @@ proptest! {
         let mut points = Vec::new();
         for (x, y) in queries {
             let p = lo + Uv::new(x, y) * (hi - lo) * 1.1 - 0.05 * (hi - lo);
-            if to_boundary(&f.loops, p, tol) < 4.0 {
+            if to_boundary(&f.loops, p, Uv::new(tol.u, tol.v)) < 4.0 {
                 continue;
             }
             checked += 1;
