@@ -190,6 +190,8 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
         "faces": s.faces,
         "built": s.built,
         "failed": trees.failures.len(),
+        // Nothing dropped silently: each face without a tree, by STEP id, and why.
+        "failures": trees.failures,
         "curves": s.curves,
         "pieces": s.pieces,
         "nodes": s.nodes,
