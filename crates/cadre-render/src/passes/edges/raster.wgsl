@@ -19,9 +19,11 @@
 // No section planes here (`behind_its_solid` reads it).
 override SECTIONS: bool = false;
 
-// Fixed-point scale of the summed −ln(1 − a): one pixel may take about 4,700 fully covering
-// fragments before the sum would wrap (each at most −ln(10⁻⁶) ≈ 13.8).
+// Fixed-point scale of the summed −ln(1 − a): each fragment adds at most −ln(10⁻⁶) ≈ 13.8,
+// and a pixel stops taking them once opaque (`SATURATED`), far from the 2³² wrap.
 const COVER_SCALE: f32 = 65536.0;
+// The sum past which a pixel is opaque (20 in fixed point).
+const SATURATED: u32 = 1310720u;
 // Invocations per workgroup (`raster.rs` dispatches by it).
 const GROUP: u32 = 64u;
 
@@ -109,7 +111,13 @@ fn rasterize(e: ScreenSegment) {
                 continue;
             }
             let a = min(alpha * coverage, 1.0 - 1e-6);
-            atomicAdd(&cover[row * width + col], u32(-log(1.0 - a) * COVER_SCALE + 0.5));
+            // A pixel already opaque (a sum past 20, 1 − e⁻²⁰) takes no more: thousands of
+            // segments piled on one pixel (a huge assembly zoomed out to a few pixels) would
+            // otherwise wrap the sum around.
+            let at = row * width + col;
+            if atomicLoad(&cover[at]) < SATURATED {
+                atomicAdd(&cover[at], u32(-log(1.0 - a) * COVER_SCALE + 0.5));
+            }
         }
     }
 }
