@@ -9,8 +9,10 @@
 //! A node is one word: kind in bits 29–31 ([`KIND_SPLIT`] …), the coverage bit in bit 28,
 //! a payload in bits 0–27 (a split's first child, relative to the face's first node; a
 //! constant's value; a piece, relative to the face's first piece; a two-piece record's offset
-//! in `floats`). A piece is [`PIECE_FLOATS`] floats: the implicit form's two rows, its sign
-//! (0 for a straight piece), its three control points (for the fallback's crossing counts).
+//! in `floats`). A piece is its three control points, [`PIECE_FLOATS`] floats: its implicit
+//! form is worked out from them where it is read (a 2 × 2 solve), not stored, and its offset
+//! word in `piece_offsets` carries whether it is straight ([`PIECE_LINE`]) and whether its
+//! form's sign is turned over ([`PIECE_NEGATIVE`]).
 //! A two-piece record is the line (nx, ny, d) and the two pieces' indices as `f32` bits. A
 //! fallback leaf's payload is its record's offset in `lists`: its piece count, its corner's
 //! answer (0 or 1), then its pieces.
@@ -32,8 +34,16 @@ pub const KIND_FALLBACK: u32 = 4;
 pub const COVERAGE: u32 = 1 << 28;
 /// The payload's mask.
 pub const PAYLOAD: u32 = (1 << 28) - 1;
-/// Floats per piece: form rows (6), sign (1), control points (6).
-pub const PIECE_FLOATS: usize = 13;
+/// Floats per piece: its control points.
+pub const PIECE_FLOATS: usize = 6;
+/// A piece's offset word: straight (its form is the signed distance to its chord).
+pub const PIECE_LINE: u32 = 1 << 31;
+/// A piece's offset word: its form's sign is −1 ([`crate::Implicit::sign`]: the face lies on
+/// the side of the parabola away from the control point), decided once in `f64` rather than
+/// from the `f32` determinant where the form is read.
+pub const PIECE_NEGATIVE: u32 = 1 << 30;
+/// A piece's offset word: the offset itself.
+pub const PIECE_OFFSET: u32 = (1 << 30) - 1;
 /// Floats per two-piece record.
 pub const TWO_FLOATS: usize = 5;
 
@@ -97,17 +107,18 @@ impl TrimBuffers {
         };
         fits(self.floats.len() + tree.pieces.len() * PIECE_FLOATS + tree.nodes.len() * 5)?;
         for (piece, form) in tree.pieces.iter().zip(&tree.forms) {
-            self.piece_offsets.push(self.floats.len() as u32);
-            // The form of the piece moved to the face-local frame: x = a u + b v + c with
-            // (u, v) = local + origin, so c' = c + a u0 + b v0.
-            for row in form.rows {
-                self.floats.push(row[0] as f32);
-                self.floats.push(row[1] as f32);
-                self.floats
-                    .push((row[2] + row[0] * origin.x + row[1] * origin.y) as f32);
+            let at = self.floats.len();
+            if at as u64 > u64::from(PIECE_OFFSET) {
+                return Err(LayoutError::TooLarge(at));
             }
-            self.floats
-                .push(if form.line { 0.0 } else { form.sign as f32 });
+            let mut word = at as u32;
+            if form.line {
+                word |= PIECE_LINE;
+            }
+            if form.sign < 0.0 {
+                word |= PIECE_NEGATIVE;
+            }
+            self.piece_offsets.push(word);
             for p in piece.p {
                 let local = p - origin;
                 self.floats.push(local.x as f32);
@@ -231,17 +242,29 @@ impl TrimBuffers {
         }
     }
 
-    /// Piece `k` of face `f`'s implicit value at the face-local point `q`.
+    /// Piece `k` of face `f`'s implicit value at the face-local point `q`, from its control
+    /// points (`Implicit::of`'s map, in `f32`).
     fn value(&self, f: FaceRecord, k: u32, q: [f32; 2]) -> f32 {
-        let at = self.piece_offsets[(f.pieces + k) as usize] as usize;
-        let r = &self.floats[at..at + PIECE_FLOATS];
-        let x = r[0] * q[0] + r[1] * q[1] + r[2];
-        let y = r[3] * q[0] + r[4] * q[1] + r[5];
-        let sign = r[6];
-        if sign == 0.0 {
-            y
+        let word = self.piece_offsets[(f.pieces + k) as usize];
+        let at = (word & PIECE_OFFSET) as usize;
+        let c = &self.floats[at..at + PIECE_FLOATS];
+        let (e1, e2) = ([c[2] - c[0], c[3] - c[1]], [c[4] - c[0], c[5] - c[1]]);
+        let d = [q[0] - c[0], q[1] - c[1]];
+        let value = if word & PIECE_LINE != 0 {
+            // Signed distance to the chord, positive on its left.
+            (e2[0] * d[1] - e2[1] * d[0]) / (e2[0] * e2[0] + e2[1] * e2[1]).sqrt()
         } else {
-            sign * (x * x - y).min(x - y)
+            let det = e1[0] * e2[1] - e1[1] * e2[0];
+            let alpha = (d[0] * e2[1] - d[1] * e2[0]) / det;
+            let beta = (e1[0] * d[1] - e1[1] * d[0]) / det;
+            let (x, y) = (0.5 * alpha + beta, beta);
+            // x² − y > 0 on the control point's side.
+            (x * x - y).min(x - y)
+        };
+        if word & PIECE_NEGATIVE != 0 {
+            -value
+        } else {
+            value
         }
     }
 
@@ -256,8 +279,8 @@ impl TrimBuffers {
     ) -> bool {
         let mut odd = false;
         for &k in pieces {
-            let at = self.piece_offsets[(f.pieces + k) as usize] as usize + 7;
-            let c = &self.floats[at..at + 6];
+            let at = (self.piece_offsets[(f.pieces + k) as usize] & PIECE_OFFSET) as usize;
+            let c = &self.floats[at..at + PIECE_FLOATS];
             let points = [[c[0], c[1]], [c[2], c[3]], [c[4], c[5]]];
             if crossing(points, 1, q[1]).is_some_and(|u| u > q[0] && u <= hi[0]) {
                 odd = !odd;

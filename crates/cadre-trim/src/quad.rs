@@ -117,7 +117,9 @@ impl Implicit {
         let e2 = p2 - p0;
         let det = e1.perp_dot(e2);
         let scale = e1.length_squared().max(e2.length_squared());
-        if det.abs() <= 1e-10 * scale || scale == 0.0 {
+        // Nearly straight pieces (their control point within a millionth of their size of the
+        // chord) are lines: their map would divide by a determinant that `f32` cannot resolve.
+        if det.abs() <= 1e-6 * scale || scale == 0.0 {
             // y = signed distance from the chord, positive on its left.
             let len = e2.length().max(f64::MIN_POSITIVE);
             let n = e2.perp() / len;

@@ -24,13 +24,28 @@ const TRIM_PAYLOAD: u32 = 0x0fffffffu;
 // Depth cap (`quadtree::MAX_DEPTH`) plus the root.
 const TRIM_MAX_STEPS: u32 = 14u;
 
-// Piece `k` of `f`: its implicit value at `q`, positive on the face's side.
+// The offset word of a piece (`cadre_trim::layout`): straight, sign turned over, offset.
+const TRIM_PIECE_LINE: u32 = 0x80000000u;
+const TRIM_PIECE_NEGATIVE: u32 = 0x40000000u;
+const TRIM_PIECE_OFFSET: u32 = 0x3fffffffu;
+
+// Piece `k` of `f`: its implicit value at `q`, positive on the face's side, worked out from
+// its control points (the Loop–Blinn map: p0, p1, p2 to (0, 0), (1/2, 0), (1, 1)).
 fn trim_value(f: TrimFace, k: u32, q: vec2<f32>) -> f32 {
-    let at = trim_piece_offsets[f.pieces + k];
-    let x = trim_floats[at] * q.x + trim_floats[at + 1u] * q.y + trim_floats[at + 2u];
-    let y = trim_floats[at + 3u] * q.x + trim_floats[at + 4u] * q.y + trim_floats[at + 5u];
-    let sign = trim_floats[at + 6u];
-    return select(sign * min(x * x - y, x - y), y, sign == 0.0);
+    let word = trim_piece_offsets[f.pieces + k];
+    let at = word & TRIM_PIECE_OFFSET;
+    let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
+    let e1 = vec2<f32>(trim_floats[at + 2u], trim_floats[at + 3u]) - c0;
+    let e2 = vec2<f32>(trim_floats[at + 4u], trim_floats[at + 5u]) - c0;
+    let d = q - c0;
+    let chord = (e2.x * d.y - e2.y * d.x) / length(e2);
+    let det = e1.x * e2.y - e1.y * e2.x;
+    let alpha = (d.x * e2.y - d.y * e2.x) / det;
+    let beta = (e1.x * d.y - e1.y * d.x) / det;
+    let x = 0.5 * alpha + beta;
+    let curved = min(x * x - beta, x - beta);
+    let value = select(curved, chord, (word & TRIM_PIECE_LINE) != 0u);
+    return select(value, -value, (word & TRIM_PIECE_NEGATIVE) != 0u);
 }
 
 // Where the monotone piece `c` (three control points) reaches `value` along `axis`: the other
@@ -65,7 +80,7 @@ fn trim_crossings(f: TrimFace, record: u32, q: vec2<f32>, hi: vec2<f32>) -> bool
     var odd = false;
     for (var i = 0u; i < min(count, arrayLength(&trim_lists)); i++) {
         let k = trim_lists[record + 2u + i];
-        let at = trim_piece_offsets[f.pieces + k] + 7u;
+        let at = trim_piece_offsets[f.pieces + k] & TRIM_PIECE_OFFSET;
         let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
         let c1 = vec2<f32>(trim_floats[at + 2u], trim_floats[at + 3u]);
         let c2 = vec2<f32>(trim_floats[at + 4u], trim_floats[at + 5u]);

@@ -7,7 +7,7 @@
 
 mod common;
 
-use cadre_trim::layout::{KIND_CONSTANT, PAYLOAD};
+use cadre_trim::layout::{KIND_CONSTANT, PAYLOAD, PIECE_NEGATIVE};
 use cadre_trim::{QuadPiece, TrimBuffers, TrimTree, Uv, UvTolerance, fit_points};
 use common::{even_odd, to_boundary};
 use proptest::prelude::*;
@@ -117,14 +117,7 @@ proptest! {
         }
         let record = flipped.faces[at];
         for k in record.pieces..record.pieces + record.piece_count {
-            let o = flipped.piece_offsets[k as usize] as usize;
-            if flipped.floats[o + 6] == 0.0 {
-                for x in &mut flipped.floats[o + 3..o + 6] {
-                    *x = -*x;
-                }
-            } else {
-                flipped.floats[o + 6] = -flipped.floats[o + 6];
-            }
+            flipped.piece_offsets[k as usize] ^= PIECE_NEGATIVE;
         }
         let inside_box = |p: &&Uv| p.x > lo.x && p.y > lo.y && p.x < hi.x && p.y < hi.y;
         let fallback_free = tree.fallback_leaves() == 0;
