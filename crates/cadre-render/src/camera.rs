@@ -130,6 +130,67 @@ impl Camera {
         }
     }
 
+    /// This camera magnifying `point` `zoom` times: it looks at `point` from as far as it
+    /// looked at its target, along the same direction, through a field of view (or an
+    /// orthographic height) `zoom` times narrower, with near and far planes around the box
+    /// `lo`..`hi`. The eye stays where the fitted view put it, outside the model, so a
+    /// close-up of any detail at any magnification shows the outside of the parts.
+    pub fn zoomed_at(&self, point: DVec3, zoom: f64, (lo, hi): (DVec3, DVec3)) -> Camera {
+        let zoom = if zoom.is_finite() && zoom > 0.0 {
+            zoom
+        } else {
+            1.0
+        };
+        let projection = match self.projection {
+            Projection::Perspective { fov_y } => Projection::Perspective {
+                fov_y: 2.0 * ((0.5 * fov_y).tan() / zoom).atan(),
+            },
+            Projection::Orthographic { height } => Projection::Orthographic {
+                height: height / zoom,
+            },
+        };
+        Camera {
+            eye: point + (self.eye - self.target),
+            target: point,
+            up: self.up,
+            projection,
+            near: 0.0,
+            far: 0.0,
+        }
+        .with_planes_around(lo, hi)
+    }
+
+    /// A camera from `eye` to `target` with `up`, perspective with vertical field of view
+    /// `fov_y` (radians), its near and far planes around the box `lo`..`hi`.
+    pub fn looking(
+        (eye, target, up): (DVec3, DVec3, DVec3),
+        fov_y: f64,
+        (lo, hi): (DVec3, DVec3),
+    ) -> Camera {
+        Camera {
+            eye,
+            target,
+            up,
+            projection: Projection::Perspective { fov_y },
+            near: 0.0,
+            far: 0.0,
+        }
+        .with_planes_around(lo, hi)
+    }
+
+    /// This camera with its near and far planes holding the box `lo`..`hi` (along the view
+    /// direction), the near plane at least a thousandth of the far one.
+    fn with_planes_around(mut self, lo: DVec3, hi: DVec3) -> Camera {
+        let forward = (self.target - self.eye).normalize_or(DVec3::NEG_Z);
+        let centre = 0.5 * (lo + hi);
+        let radius = 0.5 * (hi - lo).length();
+        let along = (centre - self.eye).dot(forward);
+        let far = (along + radius * 1.1).max(1e-9);
+        self.far = far;
+        self.near = (along - radius * 1.1).max(far * 1e-3);
+        self
+    }
+
     /// Rotation-only view matrix (the eye at the origin): world directions → view space
     /// (x right, y up, looking down −z).
     pub fn view_rotation(&self) -> DMat4 {

@@ -15,9 +15,12 @@ use crate::edge_faces::EdgeFaces;
 use crate::error::RenderError;
 use crate::feature_edges::feature_edges;
 use crate::frame_buffers::{BindCache, FrameBuffers, GrowingBuffer};
-use crate::layout::{Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Segment, Vertex};
+use crate::layout::{
+    Call, DRAW_CLOSED, DRAW_INSIDE_OUT, Draw, Material, Segment, TrimTask, Vertex,
+};
 use crate::passes::instances::InstanceLayout;
 use crate::passes::visibility::analytic::FramePrimitives;
+use crate::passes::visibility::trim::{FACES_PER_DRAW, FrameTrim, TrimDraw, TrimGeometry};
 use crate::placements::{Placements, normal_columns, normal_matrix};
 use crate::solid::closed_orientation;
 use crate::vertex_cache;
@@ -46,10 +49,15 @@ pub const MAX_FRAME_TRIANGLES: u64 = 250_000_000;
 /// One instanced indexed draw: `count` indices from `first` of mesh `mesh`, `instances`
 /// times, each instance found through call `slot` of the frame's call buffer (its record
 /// and local placement, [`Call`]).
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct DrawCall {
     pub mesh: usize,
     pub first: u32,
     pub count: u32,
+    /// The first `untrimmed` of the `count` indices are the triangles of faces the trim
+    /// back-end does not draw: all the visibility phase draws of the mesh (`count` when the
+    /// scene has no trims).
+    pub untrimmed: u32,
     pub slot: u32,
     pub instances: u32,
     /// The triangles that can be culled: for a closed solid placed without a local list, the
@@ -214,11 +222,25 @@ fn instance_resources<'b>(
     ]
 }
 
+/// Where one primitive of a mesh lies in its index buffer, and its trimmed faces.
+#[derive(Clone, Copy, Debug, Default)]
+struct PrimitiveRange {
+    /// First index and index count.
+    first: u32,
+    count: u32,
+    /// Indices of the triangles the trim back-end does not draw, first in the range.
+    untrimmed: u32,
+    /// The scene's material.
+    material: Option<usize>,
+    /// The faces the trim back-end draws: first surface record and count.
+    surfaces: (u32, u32),
+}
+
 /// Where one mesh's pieces lie in the shared buffers.
 #[derive(Clone, Debug, Default)]
 struct MeshRanges {
-    /// Per primitive: first index, index count, material of the scene.
-    primitives: Vec<(u32, u32, Option<usize>)>,
+    /// Per primitive: its index range and trimmed faces.
+    primitives: Vec<PrimitiveRange>,
     /// Wire-body lines in the segment buffer (first, count), drawn in every mode.
     lines: (u32, u32),
     /// B-Rep (or feature) edges after the lines, drawn in the modes with edges.
@@ -254,24 +276,55 @@ pub struct PreparedScene {
     /// material at `primitive_materials + k`).
     primitives: Vec<AnalyticPrimitive>,
     primitive_materials: u32,
+    /// The trimmed faces' records and trees, when the trim back-end draws some.
+    pub(crate) trim: Option<TrimGeometry>,
+    /// Faces the trim back-end draws (0 without trims).
+    trimmed_faces: usize,
 }
 
 impl PreparedScene {
     /// Uploads `scene`'s geometry: its meshes' and its primitives'; past `flat_limit`
     /// instances its placements are factored ([`Placements`]).
+    /// `trims`: whether the renderer draws trimmed faces (the scene's [`crate::TrimScene`],
+    /// if any, is used; otherwise every face is its mesh's).
     pub(crate) fn new(
         device: &wgpu::Device,
         scene: &crate::RenderScene,
         flat_limit: usize,
+        trims: bool,
     ) -> PreparedScene {
         let primitives = &scene.primitives;
+        let trim_scene = scene.trim.as_deref().filter(|_| trims);
+        let face_records = &scene.faces;
+        // The exact face a dense face id is drawn from by the trim back-end, if any.
+        let trimmed = |id: u32| -> Option<&crate::trim_surfaces::TrimFaceSurface> {
+            let trim = trim_scene?;
+            match face_records.get((id as usize).checked_sub(1)?)? {
+                crate::RenderFace::Brep { face, .. } => trim.faces.get(face.index())?.as_ref(),
+                crate::RenderFace::Tessellated { .. } => None,
+            }
+        };
+        let mut surfaces: Vec<crate::layout::TrimSurface> = Vec::new();
         let scene = &scene.assembly;
         let mut segments: Vec<Segment> = Vec::new();
         let mut meshes = Vec::with_capacity(scene.meshes.len());
         let mut vertices = Vec::with_capacity(scene.meshes.len());
         let mut indices = Vec::with_capacity(scene.meshes.len());
         for mesh in &scene.meshes {
-            let (verts, all, primitives) = mesh_buffers(mesh);
+            let (verts, all, mut primitives, faces) =
+                mesh_buffers(mesh, &|id| trimmed(id).is_some());
+            for (range, ids) in primitives.iter_mut().zip(&faces) {
+                let first = surfaces.len() as u32;
+                surfaces.extend(ids.iter().filter_map(|&id| {
+                    let exact = trimmed(id)?;
+                    Some(crate::trim_surfaces::surface_record(
+                        exact,
+                        id,
+                        face_points(&verts, &all, range, id),
+                    ))
+                }));
+                range.surfaces = (first, surfaces.len() as u32 - first);
+            }
             vertices.push(buffer(
                 device,
                 "vertices",
@@ -388,7 +441,17 @@ impl PreparedScene {
             placements,
             primitives: primitives.clone(),
             primitive_materials,
+            trimmed_faces: surfaces.len(),
+            trim: trim_scene
+                .filter(|_| !surfaces.is_empty())
+                .map(|t| TrimGeometry::new(device, &surfaces, &t.trees.buffers)),
         }
+    }
+
+    /// How many face records the trim back-end draws (a face placed in several meshes
+    /// counts once per mesh); 0 when every face is drawn from its mesh.
+    pub fn trimmed_faces(&self) -> usize {
+        self.trimmed_faces
     }
 
     /// The instance number of analytic primitive `k` (after every mesh instance), as the
@@ -464,14 +527,18 @@ impl PreparedScene {
     }
 }
 
-/// One mesh's vertex records, its index list and where each primitive lies in it.
-type MeshBuffers = (Vec<Vertex>, Vec<u32>, Vec<(u32, u32, Option<usize>)>);
+/// One mesh's vertex records, its index list, where each primitive lies in it, and each
+/// primitive's trimmed face ids (in order of first appearance).
+type MeshBuffers = (Vec<Vertex>, Vec<u32>, Vec<PrimitiveRange>, Vec<Vec<u32>>);
 
-/// The vertex records (each with its face id), the indices and the primitive ranges of `mesh`.
-fn mesh_buffers(mesh: &SceneMesh) -> MeshBuffers {
+/// The vertex records (each with its face id), the indices and the primitive ranges of
+/// `mesh`; in each primitive the triangles of faces `trimmed` says the trim back-end draws
+/// come after the others (each part in the vertex cache's order).
+fn mesh_buffers(mesh: &SceneMesh, trimmed: &dyn Fn(u32) -> bool) -> MeshBuffers {
     let mut face_of_vertex = vec![0u32; mesh.positions.len()];
     let mut all = Vec::new();
     let mut prims = Vec::new();
+    let mut faces = Vec::new();
     for prim in &mesh.primitives {
         for (t, tri) in prim.indices.chunks_exact(3).enumerate() {
             let id = prim.face_ids.get(t).copied().unwrap_or(0);
@@ -482,13 +549,35 @@ fn mesh_buffers(mesh: &SceneMesh) -> MeshBuffers {
             }
         }
         let first = all.len();
-        prims.push((first as u32, prim.indices.len() as u32, prim.material));
-        all.extend(
-            prim.indices
-                .iter()
-                .map(|&i| i.min(mesh.positions.len().saturating_sub(1) as u32)),
-        );
-        vertex_cache::optimize(&mut all[first..]);
+        let last = mesh.positions.len().saturating_sub(1) as u32;
+        let mut face_ids: Vec<u32> = Vec::new();
+        let mut seen = rustc_hash::FxHashSet::default();
+        let mut kept: Vec<u32> = Vec::with_capacity(prim.indices.len());
+        let mut cut: Vec<u32> = Vec::new();
+        for (t, tri) in prim.indices.chunks_exact(3).enumerate() {
+            let id = prim.face_ids.get(t).copied().unwrap_or(0);
+            let tri = tri.iter().map(|&i| i.min(last));
+            if trimmed(id) {
+                if seen.insert(id) {
+                    face_ids.push(id);
+                }
+                cut.extend(tri);
+            } else {
+                kept.extend(tri);
+            }
+        }
+        vertex_cache::optimize(&mut kept);
+        vertex_cache::optimize(&mut cut);
+        prims.push(PrimitiveRange {
+            first: first as u32,
+            count: (kept.len() + cut.len()) as u32,
+            untrimmed: kept.len() as u32,
+            material: prim.material,
+            surfaces: (0, 0),
+        });
+        faces.push(face_ids);
+        all.extend(kept);
+        all.extend(cut);
     }
     let verts = mesh
         .positions
@@ -501,7 +590,22 @@ fn mesh_buffers(mesh: &SceneMesh) -> MeshBuffers {
             uv: mesh.surface_uv.get(i).copied().unwrap_or([0.0; 2]),
         })
         .collect();
-    (verts, all, prims)
+    (verts, all, prims, faces)
+}
+
+/// The (position, normal, (u, v)) of the vertices of face `id`'s triangles in `range` of a
+/// mesh's indices.
+fn face_points<'m>(
+    verts: &'m [Vertex],
+    all: &'m [u32],
+    range: &PrimitiveRange,
+    id: u32,
+) -> impl Iterator<Item = ([f32; 3], [f32; 3], [f32; 2])> + 'm {
+    let span = &all[(range.first + range.untrimmed) as usize..(range.first + range.count) as usize];
+    span.iter()
+        .filter_map(move |&i| verts.get(i as usize))
+        .filter(move |v| v.face_id == id)
+        .map(|v| (v.position, v.normal, v.uv))
 }
 
 /// Appends segments `(a, b, id, kind, faces)` and returns their (first, count).
@@ -536,6 +640,8 @@ pub(crate) struct FrameScene<'a> {
     pub pick_runs: Vec<PickRun>,
     /// Visible analytic primitives, for the analytic back-end.
     pub primitives: FramePrimitives,
+    /// The trimmed faces' tessellation tasks and draws, if the frame has any.
+    pub trim: Option<FrameTrim>,
 }
 
 /// A visible run's base draw record, the material of its view colour, if any, and its
@@ -553,6 +659,9 @@ struct FrameCalls {
     pick_runs: Vec<PickRun>,
     /// Triangles the calls draw, all instances counted.
     triangles: u64,
+    /// The trim back-end's tessellation tasks and indirect draws.
+    trim_tasks: Vec<TrimTask>,
+    trim_draws: Vec<TrimDraw>,
 }
 
 impl FrameCalls {
@@ -569,10 +678,47 @@ impl FrameCalls {
             locals_first,
             locals_count,
             instances,
-            segments,
+            range: segments,
             pad: [0; 2],
         });
         self.headers.len() as u32 - 1
+    }
+
+    /// The trim back-end's draws of surfaces `(first, count)` over a mesh call's instances
+    /// (`records`: first record and instances; `locals`: its local list), nearest `near`
+    /// from the eye: a call slot and a task per face, in draws of at most
+    /// [`FACES_PER_DRAW`] faces.
+    fn trim_calls(
+        &mut self,
+        (first, count): (u32, u32),
+        (record, instances): (u32, u32),
+        (locals_first, locals_count): (u32, u32),
+        near: f32,
+    ) {
+        for chunk in (0..count).step_by(FACES_PER_DRAW as usize) {
+            let faces = (count - chunk).min(FACES_PER_DRAW);
+            let task_first = self.trim_tasks.len() as u32;
+            let slot = self.slot(
+                (record, instances),
+                (locals_first, locals_count),
+                [first + chunk, task_first],
+            );
+            self.trim_tasks.extend((0..faces).map(|k| TrimTask {
+                surface: first + chunk + k,
+                record,
+                locals_first,
+                locals_count,
+                instances,
+                slot: k,
+                near,
+                pad: 0,
+            }));
+            self.trim_draws.push(TrimDraw {
+                slot,
+                faces,
+                task_first,
+            });
+        }
     }
 }
 
@@ -705,7 +851,13 @@ impl<'a> FrameScene<'a> {
                         points: ranges.points,
                     }));
             }
-            for &(first, count, material) in &ranges.primitives {
+            // The run's nearest distance from the eye (camera-relative spheres).
+            let near = group
+                .iter()
+                .map(|(_, _, (c, r))| c.length() - r)
+                .fold(f64::INFINITY, f64::min);
+            for range in &ranges.primitives {
+                let (first, count, material) = (range.first, range.count, range.material);
                 if count == 0 {
                     continue;
                 }
@@ -737,10 +889,20 @@ impl<'a> FrameScene<'a> {
                     if records == 0 {
                         continue;
                     }
+                    let trimmed = !see_through && range.surfaces.1 > 0;
+                    if trimmed {
+                        out.trim_calls(
+                            range.surfaces,
+                            (start, records * list.count),
+                            locals,
+                            near as f32,
+                        );
+                    }
                     let call = DrawCall {
                         mesh,
                         first,
                         count,
+                        untrimmed: if trimmed { range.untrimmed } else { count },
                         slot: out.slot((start, records * list.count), locals, [0; 2]),
                         instances: records * list.count,
                         direct: direct(start),
@@ -792,6 +954,7 @@ impl<'a> FrameScene<'a> {
             edge_calls: out.edge_calls,
             pick_runs: out.pick_runs,
             primitives,
+            trim: FrameTrim::new(&gpu.device, &out.trim_tasks, out.trim_draws),
         })
     }
 }

@@ -22,6 +22,9 @@ pub enum Binding {
     /// A read-write storage buffer of `atomic<u32>` (the edges' coverage, summed by the
     /// compute rasterizer).
     AtomicStorage,
+    /// A read-write storage buffer: an array of this element (what a compute pass writes
+    /// for a later pass, such as the trim back-end's indirect draws).
+    StorageWrite(&'static str),
 }
 
 /// A shader the renderer compiles: its name, its whole WGSL as compiled, and its bind group.
@@ -58,6 +61,18 @@ pub fn pass_shaders() -> Vec<PassShader> {
             visibility::analytic::source(),
             visibility::analytic::BINDINGS,
             false,
+        ),
+        shader(
+            "visibility/trim",
+            visibility::trim::source(),
+            visibility::trim::BINDINGS,
+            true,
+        ),
+        shader(
+            "visibility/trim tessellation",
+            visibility::trim::tessellate_source(),
+            visibility::trim::TESSELLATE_BINDINGS,
+            true,
         ),
         shader("shade", shade::source(), shade::BINDINGS, false),
         shader("edges", edges::source(), edges::BINDINGS, true),
@@ -345,11 +360,65 @@ pub struct Call {
     pub locals_count: u32,
     /// Instances the call draws.
     pub instances: u32,
-    /// A segment call's segments (first, count) in the segment buffer, each drawn once per
-    /// instance: what the edges' compute rasterizer dispatches over (0 for a mesh call).
-    pub segments: [u32; 2],
+    /// What the call draws besides its instances: a segment call's segments (first, count)
+    /// in the segment buffer, each drawn once per instance (what the edges' compute
+    /// rasterizer dispatches over); a trim call's first surface and first tessellation task
+    /// ([`TrimTask`]); 0 for a mesh call.
+    pub range: [u32; 2],
     /// Padding to the WGSL struct's 16-byte alignment.
     pub pad: [u32; 2],
+}
+
+/// One face drawn by the trim back-end (`passes/visibility/trim`): its support surface in
+/// closed form (`crate::trim_surfaces`), the (u, v) box its trim tree covers (the domain
+/// tessellated), and what the tessellation's error and culling need.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct TrimSurface {
+    /// The surface frame's origin (mesh-local) and the kind's first number (radius, or the
+    /// torus' major radius).
+    pub origin: [f32; 4],
+    /// The frame's x axis and the kind's second number (the cone's tan α, the torus' minor
+    /// radius).
+    pub axis_x: [f32; 4],
+    /// The frame's y axis and the sign that turns the surface's normal S_u × S_v into the
+    /// face's outward one (±1).
+    pub axis_y: [f32; 4],
+    /// The frame's z axis, w unused.
+    pub axis_z: [f32; 4],
+    /// The trim tree's box: lower corner (u₀, v₀) and size.
+    pub uv: [f32; 4],
+    /// Bounding sphere of the face, mesh-local: centre and radius.
+    pub sphere: [f32; 4],
+    /// Bounds of |S_uu|, |S_uv|, |S_vv| over the box (model units), w unused.
+    pub curvature: [f32; 4],
+    /// Kind (`trim_surfaces::SURFACE_*`), face id (dense), the tree's index, unused.
+    pub ids: [u32; 4],
+}
+
+/// One tessellation task of a frame: a trimmed face of one mesh call, whose tessellation the
+/// trim back-end's compute pass chooses from the nearest of the call's instances (its error
+/// at most the tolerance in pixels there) and writes as an indirect draw.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct TrimTask {
+    /// The face's [`TrimSurface`].
+    pub surface: u32,
+    /// The call's first draw record.
+    pub record: u32,
+    /// The call's local placements: first and count per record.
+    pub locals_first: u32,
+    /// Local placements per record (at least 1).
+    pub locals_count: u32,
+    /// Instances the call draws.
+    pub instances: u32,
+    /// The face's place in its draw (its vertices start at `slot × TRIM_VERTICES`).
+    pub slot: u32,
+    /// Nearest distance from the eye to the call's instances (camera-relative bounding
+    /// spheres), for calls with more instances than the pass walks one by one.
+    pub near: f32,
+    /// Padding to the WGSL struct's alignment.
+    pub pad: u32,
 }
 
 /// Bind group 1 of every pass that draws the scene's instances: the call (uniform at a
@@ -443,7 +512,26 @@ gpu_struct!(Local, "Local", [model, normal, offset, flags, pad]);
 gpu_struct!(
     Call,
     "Call",
-    [record, locals_first, locals_count, instances, segments, pad]
+    [record, locals_first, locals_count, instances, range, pad]
+);
+gpu_struct!(
+    TrimSurface,
+    "TrimSurface",
+    [origin, axis_x, axis_y, axis_z, uv, sphere, curvature, ids]
+);
+gpu_struct!(
+    TrimTask,
+    "TrimTask",
+    [
+        surface,
+        record,
+        locals_first,
+        locals_count,
+        instances,
+        slot,
+        near,
+        pad
+    ]
 );
 gpu_struct!(PickRegion, "PickRegion", [origin, pad]);
 gpu_struct!(

@@ -63,6 +63,7 @@ mod render_scene;
 mod renderer;
 mod smooth;
 mod solid;
+pub mod trim_surfaces;
 mod vertex_cache;
 mod view;
 mod viewport;
@@ -80,6 +81,7 @@ pub use placements::{FLAT_LIMIT, MAX_LOCALS_PER_NODE};
 pub use render_scene::{RenderFace, RenderScene};
 pub use renderer::{DisplayMode, FrameOptions, Renderer};
 pub use smooth::smooth_edges;
+pub use trim_surfaces::TrimScene;
 pub use view::{
     InstanceStyle, MAX_HIGHLIGHTED, MAX_SECTIONS, Pick, SECTION_CAP, SectionPlane, ViewState,
     section_cap,

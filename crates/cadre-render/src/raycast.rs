@@ -162,14 +162,58 @@ impl RayCaster {
 
     /// The face (STEP id) and world point seen at the centre of every pixel, row by row.
     pub fn hits(&self, camera: &Camera, width: u32, height: u32) -> Vec<Option<(u64, DVec3)>> {
+        self.hits_at(camera, width, height, DVec2::ZERO)
+    }
+
+    /// Per pixel, whether a true boundary (between two faces, or a face and the background)
+    /// passes within `radius` pixels of its centre: whether the face seen at any of eight
+    /// points on the circle of that radius about the centre differs from the one seen at the
+    /// centre (a boundary crossing the disc between two of them unseen: a detail thinner than
+    /// the sampling, is missed).
+    pub fn near_boundary(
+        &self,
+        camera: &Camera,
+        width: u32,
+        height: u32,
+        radius: f64,
+    ) -> Vec<bool> {
+        let centre = self.face_ids_at(camera, width, height, DVec2::ZERO);
+        let mut near = vec![false; centre.len()];
+        for k in 0..8 {
+            let angle = f64::from(k) * std::f64::consts::FRAC_PI_4;
+            let offset = DVec2::new(angle.cos(), angle.sin()) * radius;
+            let ids = self.face_ids_at(camera, width, height, offset);
+            for ((n, a), b) in near.iter_mut().zip(&centre).zip(&ids) {
+                *n |= a != b;
+            }
+        }
+        near
+    }
+
+    /// [`RayCaster::face_ids`] at `offset` pixels from each pixel's centre.
+    fn face_ids_at(&self, camera: &Camera, width: u32, height: u32, offset: DVec2) -> Vec<u64> {
+        self.hits_at(camera, width, height, offset)
+            .into_iter()
+            .map(|h| h.map_or(0, |(id, _)| id))
+            .collect()
+    }
+
+    /// [`RayCaster::hits`] at `offset` pixels from each pixel's centre (x right, y down).
+    fn hits_at(
+        &self,
+        camera: &Camera,
+        width: u32,
+        height: u32,
+        offset: DVec2,
+    ) -> Vec<Option<(u64, DVec3)>> {
         let aspect = f64::from(width) / f64::from(height);
         let unproject = (camera.projection_matrix(aspect) * camera.view_rotation()).inverse();
         let mut out = Vec::with_capacity((width * height) as usize);
         for y in 0..height {
             for x in 0..width {
                 let ndc = DVec2::new(
-                    (f64::from(x) + 0.5) / f64::from(width) * 2.0 - 1.0,
-                    1.0 - (f64::from(y) + 0.5) / f64::from(height) * 2.0,
+                    (f64::from(x) + 0.5 + offset.x) / f64::from(width) * 2.0 - 1.0,
+                    1.0 - (f64::from(y) + 0.5 + offset.y) / f64::from(height) * 2.0,
                 );
                 // Reverse Z: depth 1 is the near plane, 0 the far one.
                 let near = unproject * DVec4::new(ndc.x, ndc.y, 1.0, 1.0);

@@ -28,6 +28,9 @@ pub struct RenderScene {
     /// meshes; each is an instance of its own, after the meshes'
     /// ([`crate::PreparedScene::primitive_instance`]).
     pub primitives: Vec<AnalyticPrimitive>,
+    /// The faces drawn from their exact surfaces and trim trees (`--method trim`), when the
+    /// scene was built with them ([`RenderScene::with_trims`]); their meshes draw the rest.
+    pub trim: Option<std::sync::Arc<crate::TrimScene>>,
 }
 
 /// What one face id stands for.
@@ -84,7 +87,19 @@ impl RenderScene {
             assembly: cadre_mesh::assemble::build_scene(model, mesh),
             faces,
             primitives: Vec::new(),
+            trim: None,
         }
+    }
+
+    /// This scene with `model`'s faces drawn from their exact surfaces, trimmed per pixel by
+    /// trees fitted within `tolerance` model units of the exact trims, where the renderer can
+    /// ([`crate::TrimScene`] says which faces keep their meshes, and why). `model` must be
+    /// the one the scene was made from.
+    pub fn with_trims(mut self, model: &Model, tolerance: f64) -> RenderScene {
+        self.trim = Some(std::sync::Arc::new(crate::TrimScene::build(
+            model, tolerance,
+        )));
+        self
     }
 
     /// The scene of meshes without a model (read from a mesh file, made by hand): no face

@@ -130,7 +130,7 @@ impl Renderer {
         let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let instances = InstanceLayout::new(&gpu.device, gpu.compute);
         let renderer = Renderer {
-            visibility: VisibilityPass::new(&gpu.device, format, &instances),
+            visibility: VisibilityPass::new(&gpu.device, format, &instances, gpu.compute),
             shade: ShadePass::new(&gpu.device, format, gpu.read_only_depth),
             edges: EdgesPass::new(gpu, format, &instances),
             pick: PickPass::new(&gpu.device, &instances),
@@ -148,7 +148,12 @@ impl Renderer {
     /// Uploads `scene`'s geometry (meshes and analytic primitives) once, for any number of
     /// frames ([`Renderer::draw`], [`Renderer::render`], [`Renderer::render_ids`]).
     pub fn prepare(&self, gpu: &Gpu, scene: &RenderScene) -> PreparedScene {
-        PreparedScene::new(&gpu.device, scene, crate::FLAT_LIMIT)
+        PreparedScene::new(
+            &gpu.device,
+            scene,
+            crate::FLAT_LIMIT,
+            self.visibility.draws_trims(),
+        )
     }
 
     /// This renderer with its analytic back-end writing each proxy's depth instead of the
@@ -168,6 +173,23 @@ impl Renderer {
     pub fn with_edge_culling_margin(mut self, margin: Option<f32>) -> Renderer {
         self.edges.set_behind_margin(margin);
         self
+    }
+
+    /// This renderer with the trim back-end's faces drawn over their whole (u, v) boxes,
+    /// untrimmed: wrong wherever a face's box holds more than the face. Only for the tests'
+    /// negative control, which must see it disagree with the CPU ray caster.
+    #[doc(hidden)]
+    pub fn without_trim_test(mut self, gpu: &Gpu) -> Renderer {
+        self.visibility
+            .set_trim_test(&gpu.device, &self.instances, false);
+        self
+    }
+
+    /// Whether faces of scenes with trims ([`RenderScene::with_trims`]) are drawn from
+    /// their exact surfaces here: the adapter runs compute shaders (otherwise their meshes
+    /// draw them).
+    pub fn draws_trims(&self) -> bool {
+        self.visibility.draws_trims()
     }
 
     /// This renderer with every edge drawn as a quad (`None`), or with the visible-edges
@@ -195,7 +217,12 @@ impl Renderer {
         scene: &RenderScene,
         flat_limit: usize,
     ) -> PreparedScene {
-        PreparedScene::new(&gpu.device, scene, flat_limit)
+        PreparedScene::new(
+            &gpu.device,
+            scene,
+            flat_limit,
+            self.visibility.draws_trims(),
+        )
     }
 
     /// Renders a prepared scene seen by `camera` in a view's state (colours, hidden parts,

@@ -8,7 +8,7 @@ use cadre_render::layout::{
     Call, DRAW_ATTRIBUTES, DRAW_CLOSED, DRAW_FIRST_LOCATION, DRAW_INSIDE_OUT, Draw, EDGES_ALL,
     EDGES_HIDDEN_DASHED, EDGES_VISIBLE, FILL_BACKGROUND, FILL_NONE, FILL_SHADED, FrameUniform,
     GpuStruct, LightGpu, Local, Material, Member, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE,
-    PickRegion, Primitive, Segment,
+    PickRegion, Primitive, Segment, TrimSurface, TrimTask,
 };
 
 /// The renderer's shader named `name`, as it compiles it.
@@ -151,6 +151,8 @@ fn shaders_validate_and_share_the_rust_layouts() {
             ("Call", check::<Call>(pass, &m)),
             ("PickRegion", check::<PickRegion>(pass, &m)),
             ("Primitive", check::<Primitive>(pass, &m)),
+            ("TrimSurface", check::<TrimSurface>(pass, &m)),
+            ("TrimTask", check::<TrimTask>(pass, &m)),
         ] {
             if hit.unwrap_or_else(|e| panic!("{e}")) {
                 *found.entry(name).or_default() += 1;
@@ -158,7 +160,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         }
     }
     // Every layout was really compared somewhere (naga drops nothing we rely on).
-    assert_eq!(found.len(), 9, "{found:?}");
+    assert_eq!(found.len(), 11, "{found:?}");
 }
 
 #[test]
@@ -238,6 +240,7 @@ fn naga_bindings(module: &naga::Module, group: u32) -> Result<Vec<(u32, Binding)
                 scalar: naga::Scalar::U32,
             } => Ok("vec4<u32>"),
             naga::TypeInner::Scalar(naga::Scalar::U32) => Ok("u32"),
+            naga::TypeInner::Scalar(naga::Scalar::F32) => Ok("f32"),
             ref other => Err(format!("unnamed binding type {other:?}")),
         }
     };
@@ -264,6 +267,11 @@ fn naga_bindings(module: &naga::Module, group: u32) -> Result<Vec<(u32, Binding)
                 ) && access.contains(naga::StorageAccess::STORE) =>
             {
                 Binding::AtomicStorage
+            }
+            (naga::AddressSpace::Storage { access }, naga::TypeInner::Array { base, .. })
+                if access.contains(naga::StorageAccess::STORE) =>
+            {
+                Binding::StorageWrite(type_name(*base)?)
             }
             (
                 naga::AddressSpace::Handle,

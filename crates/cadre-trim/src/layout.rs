@@ -197,6 +197,13 @@ impl TrimBuffers {
 
     /// Whether `p` is on face `face`, read from the words as the GPU reads them (`f32`).
     pub fn classify(&self, face: usize, p: Uv) -> bool {
+        self.classify_within(face, p, [0.0; 2])
+    }
+
+    /// [`TrimBuffers::classify`] for a pixel whose (u, v) footprint is `footprint`: the walk
+    /// stops at the first cell no larger than it in both directions and answers by that
+    /// cell's coverage bit (`trim_classify_within` in trim.wgsl, its GPU twin).
+    pub fn classify_within(&self, face: usize, p: Uv, footprint: [f32; 2]) -> bool {
         let f = self.faces[face];
         let local = p - f.origin;
         let q = [local.x as f32, local.y as f32];
@@ -209,6 +216,9 @@ impl TrimBuffers {
             let word = self.nodes[index];
             let payload = word & PAYLOAD;
             match word >> 29 {
+                KIND_SPLIT if hi[0] - lo[0] <= footprint[0] && hi[1] - lo[1] <= footprint[1] => {
+                    return word & COVERAGE != 0;
+                }
                 KIND_SPLIT => {
                     let mid = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
                     let right = q[0] >= mid[0];

@@ -21,6 +21,8 @@ const TRIM_KIND_CONSTANT: u32 = 1u;
 const TRIM_KIND_ONE: u32 = 2u;
 const TRIM_KIND_TWO: u32 = 3u;
 const TRIM_PAYLOAD: u32 = 0x0fffffffu;
+// A node's coverage bit: most of its cell lies on the face.
+const TRIM_COVERAGE: u32 = 0x10000000u;
 // Depth cap (`quadtree::MAX_DEPTH`) plus the root.
 const TRIM_MAX_STEPS: u32 = 14u;
 
@@ -94,6 +96,15 @@ fn trim_crossings(f: TrimFace, record: u32, q: vec2<f32>, hi: vec2<f32>) -> bool
 
 // Whether the face-local point `q` lies on face `face`.
 fn trim_classify(face: u32, q: vec2<f32>) -> bool {
+    return trim_classify_within(face, q, vec2<f32>(0.0));
+}
+
+// `trim_classify` for a pixel whose footprint in (u, v) is `footprint`: the walk stops at the
+// first cell no larger than it in both directions and answers by the cell's coverage bit
+// (most of it on the face or not), so that a pixel covering many cells (a distant perforated
+// face) takes their majority, not whichever one its centre falls in (moiré).
+// `TrimBuffers::classify_within` is its CPU twin.
+fn trim_classify_within(face: u32, q: vec2<f32>, footprint: vec2<f32>) -> bool {
     let f = trim_faces[face];
     if any(q < vec2<f32>(0.0)) || any(q > f.size) {
         return false;
@@ -105,6 +116,9 @@ fn trim_classify(face: u32, q: vec2<f32>) -> bool {
         let word = trim_nodes[index];
         let payload = word & TRIM_PAYLOAD;
         let kind = word >> 29u;
+        if (kind == TRIM_KIND_SPLIT) & all(hi - lo <= footprint) {
+            return (word & TRIM_COVERAGE) != 0u;
+        }
         if kind == TRIM_KIND_SPLIT {
             let mid = 0.5 * (lo + hi);
             let right = q.x >= mid.x;

@@ -50,6 +50,11 @@ pub(crate) fn entries(
                     wgpu::BufferBindingType::Storage { read_only: false },
                     stages,
                 ),
+                Binding::StorageWrite(_) => buffer_entry(
+                    i,
+                    wgpu::BufferBindingType::Storage { read_only: false },
+                    stages,
+                ),
                 Binding::FloatTexture => texture_entry(
                     i,
                     wgpu::TextureSampleType::Float { filterable: false },

@@ -44,8 +44,9 @@ struct Call {
     locals_first: u32,
     locals_count: u32,
     instances: u32,
-    // A segment call's segments (first, count), each drawn once per instance.
-    segments: vec2<u32>,
+    // A segment call's segments (first, count), each drawn once per instance; a trim call's
+    // first surface and first tessellation task.
+    range: vec2<u32>,
     pad: vec2<u32>,
 }
 

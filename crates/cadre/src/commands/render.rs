@@ -78,10 +78,79 @@ pub struct RenderArgs {
     /// Tessellation deflection relative to the model's bounding-box diagonal.
     #[arg(long, default_value_t = 0.0005, allow_negative_numbers = true)]
     deflection_rel: f64,
+    /// How faces are drawn: `mesh` (the static tessellation) or `trim` (from their exact
+    /// surfaces, tessellated on the GPU each frame and trimmed per pixel; faces it cannot draw
+    /// keep their mesh, and are counted).
+    #[arg(long, default_value = "mesh", value_enum)]
+    method: Method,
+    /// Tolerance of the trims of `--method trim`, relative to the bounding-box diagonal.
+    #[arg(long, default_value_t = 1e-5)]
+    trim_tolerance_rel: f64,
+    /// Magnification about the model point seen at the image's centre (or nearest it): 10
+    /// shows a tenth of the fitted view.
+    #[arg(long, default_value_t = 1.0)]
+    zoom: f64,
+    /// The camera: EYE,TARGET,UP[,FOV] as 9 or 10 comma-separated numbers (model units;
+    /// FOV in degrees, 30 by default), instead of `--view`.
+    #[arg(long, value_parser = parse_camera, allow_hyphen_values = true)]
+    camera: Option<CameraArg>,
     /// With a folder: also write every image into one contact sheet (a grid of tiles, row by
     /// row in file-name order; SHEET.txt lists which file each tile is).
     #[arg(long, value_name = "SHEET.png")]
     sheet: Option<PathBuf>,
+}
+
+/// How `cadre render` draws faces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Method {
+    /// The static tessellation (every viewer's way).
+    Mesh,
+    /// The exact faces: surfaces tessellated on the GPU to the screen, trimmed per pixel.
+    Trim,
+}
+
+/// `--camera`: eye, target, up and the vertical field of view in radians.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraArg {
+    eye: glam::DVec3,
+    target: glam::DVec3,
+    up: glam::DVec3,
+    fov_y: f64,
+}
+
+/// Parses EYE,TARGET,UP[,FOV].
+pub(crate) fn parse_camera(s: &str) -> Result<CameraArg, String> {
+    let numbers: Vec<f64> = s
+        .split(',')
+        .map(|t| {
+            t.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("expected a number, got {t:?}"))
+        })
+        .collect::<Result<_, _>>()?;
+    if numbers.len() != 9 && numbers.len() != 10 {
+        return Err(format!(
+            "expected EYE,TARGET,UP[,FOV]: 9 or 10 numbers, got {}",
+            numbers.len()
+        ));
+    }
+    let v = |i: usize| glam::DVec3::new(numbers[i], numbers[i + 1], numbers[i + 2]);
+    let (eye, target, up) = (v(0), v(3), v(6));
+    let fov = numbers.get(9).copied().unwrap_or(30.0);
+    if (target - eye).length() <= 0.0 || up.cross(target - eye).length() <= 0.0 {
+        return Err("the eye must differ from the target, and up from the view direction".into());
+    }
+    if !(0.01..179.0).contains(&fov) {
+        return Err(format!("field of view {fov}° out of (0.01, 179)"));
+    }
+    Ok(CameraArg {
+        eye,
+        target,
+        up,
+        fov_y: fov.to_radians(),
+    })
 }
 
 /// Parses WIDTHxHEIGHT.
@@ -357,7 +426,20 @@ fn draw_file(
             model.warnings.len()
         );
     };
-    let camera = Camera::fit(lo, hi, args.view, args.ortho, f64::from(w) / f64::from(h));
+    let scene = match args.method {
+        Method::Mesh => scene,
+        Method::Trim => with_trims(renderer, scene, model, args.trim_tolerance_rel, input),
+    };
+    let fitted = match args.camera {
+        Some(c) => Camera::looking((c.eye, c.target, c.up), c.fov_y, (lo, hi)),
+        None => Camera::fit(lo, hi, args.view, args.ortho, f64::from(w) / f64::from(h)),
+    };
+    let camera = if args.zoom == 1.0 {
+        fitted
+    } else {
+        let point = centre_point(model, &fitted, (lo, hi));
+        fitted.zoomed_at(point, args.zoom, (lo, hi))
+    };
     let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
     let options = FrameOptions {
         width: w,
@@ -373,4 +455,63 @@ fn draw_file(
     renderer
         .render(gpu, &prepared, &camera, &options, &ViewState::default())
         .with_context(|| format!("{}: nothing was drawn", input.display()))
+}
+
+/// `scene` with `model`'s faces drawn from their exact surfaces (trims within `relative` of
+/// the diagonal), printing how many keep their meshes and why.
+pub(crate) fn with_trims(
+    renderer: &Renderer,
+    scene: RenderScene,
+    model: &cadre_brep::Model,
+    relative: f64,
+    input: &Path,
+) -> RenderScene {
+    if !renderer.draws_trims() {
+        eprintln!(
+            "warning: {}: this adapter runs no compute shaders; every face is drawn from its mesh",
+            input.display()
+        );
+        return scene;
+    }
+    let tolerance = relative * deflection_diagonal(model);
+    let scene = scene.with_trims(model, tolerance);
+    if let Some(trim) = &scene.trim {
+        let faces = trim.faces.len();
+        eprintln!(
+            "{}: {} of {faces} faces drawn from their exact surfaces, {} from their meshes",
+            input.display(),
+            trim.drawn(),
+            trim.fallback.len()
+        );
+        for (id, why) in trim.fallback.iter().take(MAX_PRINTED_WARNINGS) {
+            eprintln!("  face #{id}: {why}");
+        }
+        if trim.fallback.len() > MAX_PRINTED_WARNINGS {
+            eprintln!(
+                "  … and {} more",
+                trim.fallback.len() - MAX_PRINTED_WARNINGS
+            );
+        }
+    }
+    scene
+}
+
+/// The model's point seen at the centre of `camera`'s image, or the visible one nearest the
+/// centre (the box's centre when nothing is seen): where `--zoom` magnifies.
+pub(crate) fn centre_point(
+    model: &cadre_brep::Model,
+    camera: &Camera,
+    (lo, hi): (glam::DVec3, glam::DVec3),
+) -> glam::DVec3 {
+    let (w, h) = (33u32, 33u32);
+    let deflection = 1e-4 * (hi - lo).length();
+    let hits = cadre_render::raycast::RayCaster::new(model, deflection).hits(camera, w, h);
+    hits.iter()
+        .enumerate()
+        .filter_map(|(i, hit)| {
+            let (x, y) = ((i as u32 % w) as f64 - 16.0, (i as u32 / w) as f64 - 16.0);
+            hit.map(|(_, p)| (x * x + y * y, p))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map_or(0.5 * (lo + hi), |(_, p)| p)
 }

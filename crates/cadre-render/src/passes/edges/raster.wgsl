@@ -33,12 +33,12 @@ fn cs_main(
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     let i = gid.x + gid.y * groups.x * GROUP;
-    let count = call.segments.y;
+    let count = call.range.y;
     if i >= count * call.instances {
         return;
     }
     let d = instance_draw(i / count);
-    let seg = segments[call.segments.x + i % count];
+    let seg = segments[call.range.x + i % count];
     if behind_its_solid(seg, d) | (highlight_of(seg, d.instance).w > 0.0) {
         return;
     }

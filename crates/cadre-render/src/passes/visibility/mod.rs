@@ -3,7 +3,9 @@
 //! back-end draws into it in turn; each back-end's fragments go through the one texel writer
 //! of `texel.wgsl` (section caps, id packing), so shading, edges, picking and sections read
 //! the same buffer whatever drew it. Back-ends: [`mesh`] (the scene's triangles), then
-//! [`analytic`] (spheres and rectangles ray cast per pixel).
+//! [`trim`] (B-Rep faces from their exact surfaces and trim trees, where the scene has them
+//! and the adapter runs compute shaders), then [`analytic`] (spheres and rectangles ray cast
+//! per pixel).
 //!
 //! The later phases that draw surfaces ([`Phase::Transparent`], [`Phase::XRay`]) are opened
 //! here too, and every back-end answers each: its see-through surfaces blended over the
@@ -13,6 +15,7 @@
 
 pub(crate) mod analytic;
 pub(crate) mod mesh;
+pub(crate) mod trim;
 
 use crate::gpu_scene::FrameScene;
 
@@ -63,6 +66,8 @@ pub(crate) const UV: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// The surface back-ends, drawn in this order into each pass opened for a phase.
 pub(crate) struct VisibilityPass {
     mesh: mesh::MeshBackend,
+    /// `None` on adapters without compute shaders (their scenes keep every face's mesh).
+    trim: Option<trim::TrimBackend>,
     analytic: analytic::AnalyticBackend,
 }
 
@@ -162,14 +167,36 @@ impl VisibilityTargets {
 impl VisibilityPass {
     /// Builds every back-end's pipelines (the see-through ones for a `colour` target of that
     /// format).
+    /// The trim back-end is built only where `compute` (`Gpu::compute`, which `instances`
+    /// was made for).
     pub fn new(
         device: &wgpu::Device,
         colour: wgpu::TextureFormat,
         instances: &crate::passes::instances::InstanceLayout,
+        compute: bool,
     ) -> VisibilityPass {
         VisibilityPass {
             mesh: mesh::MeshBackend::new(device, colour, instances),
+            trim: compute.then(|| trim::TrimBackend::new(device, instances, true)),
             analytic: analytic::AnalyticBackend::new(device, colour),
+        }
+    }
+
+    /// Whether the trim back-end can draw (the adapter runs compute shaders).
+    pub fn draws_trims(&self) -> bool {
+        self.trim.is_some()
+    }
+
+    /// This pass with the trim back-end's fragments trimmed or not (the tests' negative
+    /// control: every face drawn over its whole (u, v) box).
+    pub fn set_trim_test(
+        &mut self,
+        device: &wgpu::Device,
+        instances: &crate::passes::instances::InstanceLayout,
+        on: bool,
+    ) {
+        if self.trim.is_some() {
+            self.trim = Some(trim::TrimBackend::new(device, instances, on));
         }
     }
 
@@ -182,6 +209,9 @@ impl VisibilityPass {
         phase: Phase,
     ) {
         self.mesh.draw(recorder, pass, inputs, phase);
+        if let Some(trim) = &self.trim {
+            trim.draw(recorder, pass, inputs, phase);
+        }
         self.analytic.draw(recorder, pass, inputs, phase);
     }
 
@@ -197,7 +227,6 @@ impl VisibilityPass {
         (frame, sections, proxy_depth): (&wgpu::Buffer, bool, bool),
         scene: &FrameScene<'_>,
     ) {
-        let mut pass = open(encoder, targets);
         let inputs = PhaseInputs {
             frame,
             scene,
@@ -205,6 +234,10 @@ impl VisibilityPass {
             with_uv: targets.uv.is_some(),
             proxy_depth,
         };
+        if let Some(trim) = &self.trim {
+            trim.tessellate(recorder, encoder, &inputs);
+        }
+        let mut pass = open(encoder, targets);
         self.draw(recorder, &mut pass, &inputs, Phase::Visibility);
     }
 

@@ -5,7 +5,7 @@ use super::{
     Phase, PhaseInputs, SEE_THROUGH_WGSL, TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state,
     tested_not_written,
 };
-use crate::gpu_scene::FrameScene;
+use crate::gpu_scene::{DrawCall, FrameScene};
 use crate::layout::{Binding, FrameUniform, GpuStruct, Material};
 use crate::passes::common::{
     PipelineSpec, blended, draw_mesh_call, draw_mesh_call_direct, draw_meshes, entries, layouts,
@@ -252,6 +252,14 @@ impl MeshBackend {
         // changes between calls.
         let mut current: Option<PipelineKey> = None;
         for call in &scene.calls {
+            // Faces the trim back-end draws are not drawn twice.
+            if call.untrimmed == 0 {
+                continue;
+            }
+            let call = &DrawCall {
+                count: call.untrimmed,
+                ..*call
+            };
             let key = PipelineKey::new(variant, call.cull, call.direct.is_some());
             if current != Some(key) {
                 let pipeline =

@@ -1,0 +1,331 @@
+//! The trim back-end (seed 000, Part III): B-Rep faces drawn from their exact definition.
+//! Each frame, a compute pass (`tessellate.wgsl`) chooses for every face of every mesh call
+//! the grid its support surface is drawn with (its error within a tolerance in pixels at the
+//! face's nearest instance; none when it is out of view) and writes it as an indirect draw;
+//! the visibility pass then draws each call's faces with one `multi_draw_indirect`, the
+//! vertex shader evaluating the surface in closed form at the grid's corners (`trim.wgsl`),
+//! and every fragment tested against the face's trim tree (`cadre_trim`'s `trim.wgsl`) with
+//! the pixel-footprint stop rule before `visibility_texel` writes it, as the mesh back-end's
+//! are. What it does not draw (faces without a tree or on surfaces it cannot evaluate, the
+//! see-through and x-ray phases) the meshes draw.
+
+use std::sync::OnceLock;
+
+use super::{Phase, PhaseInputs, TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state};
+use crate::layout::{Binding, FrameUniform, GpuStruct, TrimSurface, TrimTask};
+use crate::passes::common::{PipelineSpec, entries, layouts, pipeline, shader, wgsl};
+use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
+use wgpu::util::DeviceExt;
+
+/// The render shader's bind group 0: frame, surfaces, the tessellation's levels, the five
+/// trim buffers (`cadre_trim::TrimBuffers`); group 1: the instances.
+pub(crate) const BINDINGS: &[Binding] = &[
+    Binding::Uniform(FrameUniform::WGSL_NAME),
+    Binding::Storage(TrimSurface::WGSL_NAME),
+    Binding::Storage("u32"),
+    Binding::Storage("TrimFace"),
+    Binding::Storage("u32"),
+    Binding::Storage("f32"),
+    Binding::Storage("u32"),
+    Binding::Storage("u32"),
+];
+
+/// The tessellation pass's bind group 0: frame, surfaces, tasks, and what it writes: the
+/// indirect draws and the levels; group 1: the instances.
+pub(crate) const TESSELLATE_BINDINGS: &[Binding] = &[
+    Binding::Uniform(FrameUniform::WGSL_NAME),
+    Binding::Storage(TrimSurface::WGSL_NAME),
+    Binding::Storage(TrimTask::WGSL_NAME),
+    Binding::StorageWrite("u32"),
+    Binding::StorageWrite("u32"),
+];
+
+/// Vertices reserved for each face of a draw: 6 a cell of the largest grid, 256 × 256 cells
+/// (`TRIM_VERTICES` in surface.wgsl).
+pub(crate) const TRIM_VERTICES: u32 = 6 * 256 * 256;
+
+/// Faces one indirect draw can hold: their vertex numbers stay within `u32`.
+pub(crate) const FACES_PER_DRAW: u32 = u32::MAX / TRIM_VERTICES;
+
+/// The tessellation's tolerance in pixels (`TOLERANCE_PX` in tessellate.wgsl).
+pub const TOLERANCE_PX: f64 = 0.5;
+
+/// The shared declarations: the face record and the surfaces' closed forms.
+const SURFACE_WGSL: &str = include_str!("surface.wgsl");
+
+/// The render shader's whole WGSL.
+pub(crate) fn source() -> String {
+    wgsl(&[
+        INSTANCES_WGSL,
+        TEXEL_WGSL,
+        SURFACE_WGSL,
+        include_str!("trim.wgsl"),
+        cadre_trim::TRIM_WGSL,
+    ])
+}
+
+/// The tessellation pass's whole WGSL.
+pub(crate) fn tessellate_source() -> String {
+    wgsl(&[
+        INSTANCES_WGSL,
+        SURFACE_WGSL,
+        include_str!("tessellate.wgsl"),
+    ])
+}
+
+/// A prepared scene's trimmed faces on the GPU: their records and their trees.
+pub(crate) struct TrimGeometry {
+    surfaces: wgpu::Buffer,
+    faces: wgpu::Buffer,
+    nodes: wgpu::Buffer,
+    floats: wgpu::Buffer,
+    piece_offsets: wgpu::Buffer,
+    lists: wgpu::Buffer,
+}
+
+/// A storage buffer of `bytes` (one word when empty: storage bindings may not be).
+fn storage(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+    let bytes = if bytes.is_empty() {
+        &[0u8; 4][..]
+    } else {
+        bytes
+    };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytes,
+        usage: wgpu::BufferUsages::STORAGE,
+    })
+}
+
+impl TrimGeometry {
+    /// Uploads the face records `surfaces` and the packed `trees` they point into.
+    pub fn new(
+        device: &wgpu::Device,
+        surfaces: &[TrimSurface],
+        trees: &cadre_trim::TrimBuffers,
+    ) -> TrimGeometry {
+        TrimGeometry {
+            surfaces: storage(device, "trim surfaces", bytemuck::cast_slice(surfaces)),
+            faces: storage(
+                device,
+                "trim faces",
+                bytemuck::cast_slice(&trees.face_words()),
+            ),
+            nodes: storage(device, "trim nodes", bytemuck::cast_slice(&trees.nodes)),
+            floats: storage(device, "trim floats", bytemuck::cast_slice(&trees.floats)),
+            piece_offsets: storage(
+                device,
+                "trim piece offsets",
+                bytemuck::cast_slice(&trees.piece_offsets),
+            ),
+            lists: storage(device, "trim lists", bytemuck::cast_slice(&trees.lists)),
+        }
+    }
+}
+
+/// One indirect draw of a frame: `faces` faces of a mesh call through call `slot` (whose
+/// `range` holds the first surface and the first task), their draws at task `task_first`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TrimDraw {
+    pub slot: u32,
+    pub faces: u32,
+    pub task_first: u32,
+}
+
+/// A frame's tessellation tasks and the indirect draws they become.
+pub(crate) struct FrameTrim {
+    tasks: wgpu::Buffer,
+    args: wgpu::Buffer,
+    levels: wgpu::Buffer,
+    count: u32,
+    pub draws: Vec<TrimDraw>,
+}
+
+impl FrameTrim {
+    /// The buffers of `tasks` and of what the tessellation pass writes for them; `None` when
+    /// there is nothing to draw.
+    pub fn new(device: &wgpu::Device, tasks: &[TrimTask], draws: Vec<TrimDraw>) -> Option<Self> {
+        if tasks.is_empty() {
+            return None;
+        }
+        let count = tasks.len() as u32;
+        let written = |label, size: u64, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | usage,
+                mapped_at_creation: false,
+            })
+        };
+        Some(FrameTrim {
+            tasks: storage(device, "trim tasks", bytemuck::cast_slice(tasks)),
+            args: written(
+                "trim draws",
+                16 * u64::from(count),
+                wgpu::BufferUsages::INDIRECT,
+            ),
+            levels: written(
+                "trim levels",
+                4 * u64::from(count),
+                wgpu::BufferUsages::empty(),
+            ),
+            count,
+            draws,
+        })
+    }
+}
+
+/// The back-end's pipelines: the tessellation pass, and the render pipelines per variant
+/// (sections, (u, v) target), built on first use.
+pub(crate) struct TrimBackend {
+    module: wgpu::ShaderModule,
+    pipeline_layout: wgpu::PipelineLayout,
+    layout: wgpu::BindGroupLayout,
+    tessellate: wgpu::ComputePipeline,
+    tessellate_layout: wgpu::BindGroupLayout,
+    /// Indexed by `sections + 2 × with_uv`.
+    pipelines: [OnceLock<wgpu::RenderPipeline>; 4],
+    /// Whether fragments are trimmed (off only for the tests' negative control).
+    trim_test: bool,
+}
+
+impl TrimBackend {
+    /// Compiles both shaders and the tessellation pipeline (`instances` must be visible to
+    /// compute shaders).
+    pub fn new(device: &wgpu::Device, instances: &InstanceLayout, trim_test: bool) -> Self {
+        let module = shader(device, "visibility trim", &source());
+        // Each buffer is visible to the stage that reads it: the levels to the vertex stage,
+        // the trees to the fragment stage (a stage may bind 8 storage buffers, the instances'
+        // two included).
+        let mut group = entries(BINDINGS, wgpu::ShaderStages::VERTEX_FRAGMENT);
+        group[2].visibility = wgpu::ShaderStages::VERTEX;
+        for entry in &mut group[3..] {
+            entry.visibility = wgpu::ShaderStages::FRAGMENT;
+        }
+        let (layout, pipeline_layout) = layouts(device, "visibility trim", &group, Some(instances));
+        let compute = shader(device, "trim tessellation", &tessellate_source());
+        let (tessellate_layout, tessellate_pipeline_layout) = layouts(
+            device,
+            "trim tessellation",
+            &entries(TESSELLATE_BINDINGS, wgpu::ShaderStages::COMPUTE),
+            Some(instances),
+        );
+        let tessellate = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("trim tessellation"),
+            layout: Some(&tessellate_pipeline_layout),
+            module: &compute,
+            entry_point: Some("cs_main"),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &[("TOLERANCE_PX", TOLERANCE_PX)],
+                ..Default::default()
+            },
+            cache: None,
+        });
+        TrimBackend {
+            module,
+            pipeline_layout,
+            layout,
+            tessellate,
+            tessellate_layout,
+            pipelines: Default::default(),
+            trim_test,
+        }
+    }
+
+    /// Records the tessellation pass of a frame with trimmed faces.
+    pub fn tessellate(
+        &self,
+        (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &PhaseInputs<'_>,
+    ) {
+        let (Some(trim), Some(geometry)) = (&inputs.scene.trim, &inputs.scene.geometry.trim) else {
+            return;
+        };
+        let bind = binds.get(
+            device,
+            "trim tessellation",
+            &self.tessellate_layout,
+            &[
+                inputs.frame.as_entire_binding(),
+                geometry.surfaces.as_entire_binding(),
+                trim.tasks.as_entire_binding(),
+                trim.args.as_entire_binding(),
+                trim.levels.as_entire_binding(),
+            ],
+        );
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("trim tessellation"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.tessellate);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.set_bind_group(1, &inputs.scene.instances.bind, &[0]);
+        pass.dispatch_workgroups(trim.count.div_ceil(64), 1, 1);
+    }
+
+    /// Draws its part of `phase`: the trimmed faces into the visibility buffer (the
+    /// see-through phases are the meshes').
+    pub fn draw(
+        &self,
+        (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
+        pass: &mut wgpu::RenderPass<'_>,
+        inputs: &PhaseInputs<'_>,
+        phase: Phase,
+    ) {
+        let (Some(trim), Some(geometry)) = (&inputs.scene.trim, &inputs.scene.geometry.trim) else {
+            return;
+        };
+        if phase != Phase::Visibility {
+            return;
+        }
+        let k = usize::from(inputs.sections) + 2 * usize::from(inputs.with_uv);
+        let pipeline = self.pipelines[k].get_or_init(|| {
+            pipeline(
+                device,
+                PipelineSpec {
+                    label: "visibility trim",
+                    layout: &self.pipeline_layout,
+                    module: &self.module,
+                    vertex: "vs_main",
+                    // Both sides: the face's side is decided from its normal.
+                    cull: None,
+                    fragment: "fs_main",
+                    buffers: &[],
+                    depth: Some(depth_state()),
+                    targets: if inputs.with_uv {
+                        &TARGETS
+                    } else {
+                        &TARGETS_NO_UV
+                    },
+                    constants: &[
+                        ("SECTIONS", if inputs.sections { 1.0 } else { 0.0 }),
+                        ("TRIM_TEST", if self.trim_test { 1.0 } else { 0.0 }),
+                    ],
+                },
+            )
+        });
+        let bind = binds.get(
+            device,
+            "visibility trim",
+            &self.layout,
+            &[
+                inputs.frame.as_entire_binding(),
+                geometry.surfaces.as_entire_binding(),
+                trim.levels.as_entire_binding(),
+                geometry.faces.as_entire_binding(),
+                geometry.nodes.as_entire_binding(),
+                geometry.floats.as_entire_binding(),
+                geometry.piece_offsets.as_entire_binding(),
+                geometry.lists.as_entire_binding(),
+            ],
+        );
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        let instances = &inputs.scene.instances;
+        for draw in &trim.draws {
+            pass.set_bind_group(1, &instances.bind, &[instances.offset(draw.slot)]);
+            pass.multi_draw_indirect(&trim.args, 16 * u64::from(draw.task_first), draw.faces);
+        }
+    }
+}

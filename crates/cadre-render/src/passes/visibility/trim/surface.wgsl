@@ -1,0 +1,84 @@
+// Trim back-end, shared by its compute and render shaders: a face's record (`TrimSurface`,
+// `layout.rs`) and its support surface evaluated in closed form (`trim_surfaces.rs`'s
+// `closed_form_point` is the CPU twin).
+
+struct TrimSurface {
+    origin: vec4<f32>,
+    axis_x: vec4<f32>,
+    axis_y: vec4<f32>,
+    axis_z: vec4<f32>,
+    uv: vec4<f32>,
+    sphere: vec4<f32>,
+    curvature: vec4<f32>,
+    ids: vec4<u32>,
+}
+
+struct TrimTask {
+    surface: u32,
+    record: u32,
+    locals_first: u32,
+    locals_count: u32,
+    instances: u32,
+    slot: u32,
+    near: f32,
+    pad: u32,
+}
+
+// `trim_surfaces::SURFACE_*`.
+const SURFACE_PLANE: u32 = 0u;
+const SURFACE_CYLINDER: u32 = 1u;
+const SURFACE_CONE: u32 = 2u;
+const SURFACE_SPHERE: u32 = 3u;
+
+// Vertices reserved for each face of a draw (`trim::TRIM_VERTICES`): 6 per cell of the
+// largest grid, `TRIM_MAX_LEVEL`² cells.
+const TRIM_VERTICES: u32 = 393216u;
+const TRIM_MAX_LEVEL: f32 = 256.0;
+
+// A point of a surface and the direction of its normal S_u × S_v (any length; the poles of
+// spheres and tori and the cone's apex, where S_u × S_v vanishes, get the limit direction).
+struct SurfacePoint {
+    position: vec3<f32>,
+    normal: vec3<f32>,
+}
+
+fn surface_point(s: TrimSurface, uv: vec2<f32>) -> SurfacePoint {
+    let x = s.axis_x.xyz;
+    let y = s.axis_y.xyz;
+    let z = s.axis_z.xyz;
+    let a = s.origin.w;
+    let b = s.axis_x.w;
+    let cu = cos(uv.x);
+    let su = sin(uv.x);
+    let cv = cos(uv.y);
+    let sv = sin(uv.y);
+    // The unit radial direction at u, and its derivative (radial × tangent = z).
+    let radial = cu * x + su * y;
+    var out: SurfacePoint;
+    switch s.ids.x {
+        case SURFACE_PLANE: {
+            out.position = uv.x * x + uv.y * y;
+            out.normal = z;
+        }
+        case SURFACE_CYLINDER: {
+            out.position = a * radial + uv.y * z;
+            out.normal = a * radial;
+        }
+        case SURFACE_CONE: {
+            let rho = a + uv.y * b;
+            out.position = rho * radial + uv.y * z;
+            out.normal = select(1.0, -1.0, rho < 0.0) * (radial - b * z);
+        }
+        case SURFACE_SPHERE: {
+            out.position = a * (cv * radial + sv * z);
+            out.normal = select(1.0, -1.0, a < 0.0) * (cv * radial + sv * z);
+        }
+        default: {
+            // Torus: S_u × S_v = (R + r cos v) r (cos v radial + sin v z).
+            out.position = (a + b * cv) * radial + b * sv * z;
+            out.normal = select(1.0, -1.0, (a + b * cv) * b < 0.0) * (cv * radial + sv * z);
+        }
+    }
+    out.position += s.origin.xyz;
+    return out;
+}

@@ -1,0 +1,87 @@
+// Trim back-end, tessellation (compute, before the visibility pass): for each face of each
+// mesh call (a `TrimTask`), the grid its surface is drawn with this frame, written as an
+// indirect draw (`args`, four words a task) and its levels (`levels`: cells along u in the
+// low 16 bits, along v in the high ones).
+//
+// The grid's error: a cell of size (h_u, h_v) departs from the surface by at most
+// (h_u² |S_uu| + 2 h_u h_v |S_uv| + h_v² |S_vv|) / 8 (the interpolation error of a function of
+// bounded second derivatives), which must stay within `TOLERANCE_PX` pixels at the face's
+// nearest point: a pixel's world size there is its distance times the projection's slope
+// (perspective), or the view's constant one (orthographic). Faces outside the view frustum
+// in all the call's instances get no cells.
+
+@group(0) @binding(1) var<storage, read> surfaces: array<TrimSurface>;
+@group(0) @binding(2) var<storage, read> tasks: array<TrimTask>;
+@group(0) @binding(3) var<storage, read_write> args: array<u32>;
+@group(0) @binding(4) var<storage, read_write> levels: array<u32>;
+
+// The tessellation's tolerance, in pixels.
+override TOLERANCE_PX: f32 = 0.5;
+// Calls with more instances than this are not walked one by one: their nearest distance is
+// the task's `near` (from the runs' bounding spheres), and they are not culled here.
+const WALK: u32 = 64u;
+
+// Whether the sphere (camera-relative centre `c`, radius `r`) meets the view frustum's four
+// side planes (which also put it in front of a perspective eye).
+fn in_frustum(c: vec3<f32>, r: f32) -> bool {
+    let m = frame.view_proj;
+    let row0 = vec4<f32>(m[0].x, m[1].x, m[2].x, m[3].x);
+    let row1 = vec4<f32>(m[0].y, m[1].y, m[2].y, m[3].y);
+    let row3 = vec4<f32>(m[0].w, m[1].w, m[2].w, m[3].w);
+    let p = vec4<f32>(c, 1.0);
+    var inside = true;
+    for (var k = 0u; k < 4u; k++) {
+        let side = select(1.0, -1.0, (k & 1u) != 0u);
+        let plane = row3 + side * select(row0, row1, k >= 2u);
+        inside = inside & (dot(plane, p) >= -r * length(plane.xyz));
+    }
+    return inside;
+}
+
+@compute @workgroup_size(64)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let t = id.x;
+    if t >= arrayLength(&tasks) {
+        return;
+    }
+    let task = tasks[t];
+    let s = surfaces[task.surface];
+    let walk = task.instances <= WALK;
+    var near = select(3.4e38, task.near, !walk);
+    var scale = select(0.0, 1.0, !walk);
+    var visible = !walk;
+    let count = max(task.locals_count, 1u);
+    for (var i = 0u; i < min(task.instances, WALK); i++) {
+        let d = draws[task.record + i / count];
+        let l = locals[task.locals_first + i % count];
+        let m = d.model * l.model;
+        let c = (m * vec4<f32>(s.sphere.xyz, 1.0)).xyz;
+        let k = max(length(m[0].xyz), max(length(m[1].xyz), length(m[2].xyz)));
+        let r = s.sphere.w * k;
+        visible = visible | in_frustum(c, r);
+        near = min(near, length(c) - r);
+        scale = max(scale, k);
+    }
+    // The near plane's distance (reverse Z: depth 1), below which nothing is drawn.
+    let near_h = frame.inv_proj * vec4<f32>(0.0, 0.0, 1.0, 1.0);
+    let z_near = abs(near_h.z / near_h.w);
+    let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
+    let distance = select(max(near, z_near), 1.0, ortho);
+    let pixel = distance * 2.0 * frame.inv_proj[1][1] / frame.viewport.y;
+    let eps = max(TOLERANCE_PX * pixel, 1e-30);
+    let m = s.curvature.xyz * scale;
+    let size = s.uv.zw;
+    // A quarter of the error for each pure term, then both levels raised together until the
+    // mixed one fits too.
+    var n = max(ceil(size * sqrt(m.xz / (2.0 * eps))), vec2<f32>(1.0));
+    n = min(n, vec2<f32>(TRIM_MAX_LEVEL));
+    let h = size / n;
+    let e = (h.x * h.x * m.x + 2.0 * h.x * h.y * m.y + h.y * h.y * m.z) / 8.0;
+    n = clamp(ceil(n * sqrt(max(e / eps, 1.0))), vec2<f32>(1.0), vec2<f32>(TRIM_MAX_LEVEL));
+    let cells = select(0u, u32(n.x) * u32(n.y), visible);
+    args[4u * t] = 6u * cells;
+    args[4u * t + 1u] = task.instances;
+    args[4u * t + 2u] = task.slot * TRIM_VERTICES;
+    args[4u * t + 3u] = 0u;
+    levels[t] = u32(n.x) | (u32(n.y) << 16u);
+}

@@ -1,0 +1,78 @@
+// Trim back-end of the visibility pass: each face's support surface evaluated over its trim
+// tree's (u, v) box on the grid the tessellation pass chose (tessellate.wgsl), placed by its
+// call's instances (instances.wgsl), and trimmed per fragment by its tree (cadre_trim's
+// trim.wgsl, after this file); each kept fragment is written by `visibility_texel`
+// (texel.wgsl), as the mesh back-end's are.
+
+@group(0) @binding(1) var<storage, read> surfaces: array<TrimSurface>;
+@group(0) @binding(2) var<storage, read> levels: array<u32>;
+@group(0) @binding(3) var<storage, read> trim_faces: array<TrimFace>;
+@group(0) @binding(4) var<storage, read> trim_nodes: array<u32>;
+@group(0) @binding(5) var<storage, read> trim_floats: array<f32>;
+@group(0) @binding(6) var<storage, read> trim_piece_offsets: array<u32>;
+@group(0) @binding(7) var<storage, read> trim_lists: array<u32>;
+
+// The trim test, off only for the tests' negative control (the surfaces' whole boxes).
+override TRIM_TEST: bool = true;
+
+struct TrimOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    // (u, v) from the tree's lower corner: what the trim test reads.
+    @location(1) local: vec2<f32>,
+    @location(2) @interpolate(flat) surface: u32,
+    @location(3) @interpolate(flat) instance: vec3<u32>,
+    // Camera-relative world position, for the section planes.
+    @location(4) world: vec3<f32>,
+    // The face's outward normal against the view ray: negative where it faces the eye.
+    @location(5) facing: f32,
+}
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> TrimOut {
+    // The face is the draw's `vertex / TRIM_VERTICES`-th (its first vertex, set by the
+    // tessellation pass), the cell and corner its `vertex % TRIM_VERTICES`-th.
+    let k = vertex / TRIM_VERTICES;
+    let local_vertex = vertex % TRIM_VERTICES;
+    let index = call.range.x + k;
+    let s = surfaces[index];
+    let level = levels[call.range.y + k];
+    let n = vec2<u32>(max(level & 0xffffu, 1u), max(level >> 16u, 1u));
+    let cell = local_vertex / 6u;
+    // Corners (0, 0), (1, 0), (1, 1), (0, 0), (1, 1), (0, 1) of the cell, as bit masks.
+    let corner = local_vertex % 6u;
+    let step = vec2<u32>((22u >> corner) & 1u, (52u >> corner) & 1u);
+    let grid = vec2<u32>(cell % n.x, cell / n.x) + step;
+    let local = vec2<f32>(grid) / vec2<f32>(n) * s.uv.zw;
+    let point = surface_point(s, s.uv.xy + local);
+    let d = instance_draw(instance);
+    let normal = point.normal * s.axis_y.w;
+    let placed = place_vertex(d, point.position, normal);
+    var out: TrimOut;
+    out.clip = placed.clip;
+    out.normal = placed.normal;
+    out.local = local;
+    out.surface = index;
+    out.instance = pack_instance(d);
+    out.world = placed.world;
+    let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
+    let world_normal = (d.model * vec4<f32>(normal, 0.0)).xyz;
+    out.facing = dot(world_normal, select(placed.world, frame.forward.xyz, ortho));
+    return out;
+}
+
+@fragment
+fn fs_main(in: TrimOut) -> VisibilityOut {
+    // The pixel's footprint in (u, v), before any discard (derivatives need every lane).
+    let footprint = fwidth(in.local);
+    let s = surfaces[in.surface];
+    if TRIM_TEST && !trim_classify_within(s.ids.z, in.local, footprint) {
+        discard;
+    }
+    if SECTIONS && section_cut(in.world) {
+        discard;
+    }
+    let ids = unpack_instance(in.instance);
+    let uv = s.uv.xy + in.local;
+    return visibility_texel(in.world, in.normal, s.ids.y, ids, in.clip.z, uv, in.facing < 0.0);
+}

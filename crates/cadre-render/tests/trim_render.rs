@@ -1,0 +1,187 @@
+//! The trim back-end (faces drawn from their exact surfaces, trimmed per pixel) against the
+//! CPU ray caster of the exact B-Rep, pixel by pixel, on the adapter the tests draw on: at
+//! the fitted views and at close-ups where the mesh's facets show. Negative control: the
+//! faces drawn over their whole (u, v) boxes, untrimmed, disagree.
+
+mod common;
+
+use cadre_render::{Camera, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset};
+use common::{OneShot, gpu};
+
+/// Object-space tolerance of the trims (mm).
+const TRIM_TOLERANCE: f64 = 0.001;
+
+fn options(width: u32, height: u32) -> FrameOptions {
+    FrameOptions {
+        width,
+        height,
+        supersample: 1,
+        background: [1.0, 1.0, 1.0, 1.0],
+        ..FrameOptions::default()
+    }
+}
+
+/// `camera` moved `zoom` times nearer the model's surface point seen at the image's
+/// centre (or nearest it), looking at it.
+fn zoomed(
+    model: &cadre_brep::Model,
+    camera: Camera,
+    zoom: f64,
+    bounds: (glam::DVec3, glam::DVec3),
+) -> Camera {
+    let (w, h) = (64, 48);
+    let hits = cadre_render::raycast::RayCaster::new(model, 0.001).hits(&camera, w, h);
+    let centre = |i: usize| {
+        let (x, y) = (
+            (i % w as usize) as f64 - 32.0,
+            (i / w as usize) as f64 - 24.0,
+        );
+        x * x + y * y
+    };
+    let (_, point) = hits
+        .iter()
+        .enumerate()
+        .filter_map(|(i, hit)| hit.map(|(_, p)| (centre(i), p)))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .expect("the view sees the model");
+    camera.zoomed_at(point, zoom, bounds)
+}
+
+/// Pixels of the test's image where the ray caster sees a face.
+fn covered(model: &cadre_brep::Model, camera: &Camera) -> usize {
+    let caster = cadre_render::raycast::RayCaster::new(model, 0.001);
+    caster
+        .face_ids(camera, 128, 96)
+        .iter()
+        .filter(|&&id| id != 0)
+        .count()
+}
+
+/// The share of the pixels either image covers, farther than half a pixel from a true
+/// boundary, where the GPU's face id is the ray caster's (NaN when fewer than 100 are).
+fn agreement(
+    gpu: &Gpu,
+    renderer: &Renderer,
+    (model, scene): (&cadre_brep::Model, &RenderScene),
+    camera: &Camera,
+) -> f64 {
+    let (w, h) = (128, 96);
+    let ids = renderer
+        .ids_of(gpu, scene, camera, &options(w, h))
+        .expect("ids");
+    let caster = cadre_render::raycast::RayCaster::new(model, 0.001);
+    assert!(caster.skipped.is_empty(), "{:?}", caster.skipped);
+    let exact = caster.face_ids(camera, w, h);
+    // Pixels within half a pixel of a true boundary may go either way (the measure).
+    let near = caster.near_boundary(camera, w, h, 0.5);
+    let either: Vec<bool> = ids
+        .iter()
+        .zip(&exact)
+        .zip(&near)
+        .filter(|((g, e), near)| (g[0] != 0 || **e != 0) && !**near)
+        .map(|((g, e), _)| scene.face_step_id(g[0]) == *e)
+        .collect();
+    if either.len() < 100 {
+        // A view of slivers and edges alone: nothing to compare away from boundaries.
+        return f64::NAN;
+    }
+    if std::env::var("TRIM_DEBUG").is_ok() {
+        let mut text = String::new();
+        for y in 0..h as usize {
+            for x in 0..w as usize {
+                let i = y * w as usize + x;
+                let g = scene.face_step_id(ids[i][0]);
+                let e = exact[i];
+                text.push(match (g == e, g != 0, e != 0) {
+                    (true, false, _) => '.',
+                    (true, true, _) => 'o',
+                    (false, true, false) => 'G',
+                    (false, false, true) => 'E',
+                    _ => 'X',
+                });
+            }
+            text.push('\n');
+        }
+        eprintln!("{text}");
+        let faces: std::collections::BTreeSet<(u64, u64)> = ids
+            .iter()
+            .zip(&exact)
+            .map(|(g, e)| (scene.face_step_id(g[0]), *e))
+            .filter(|(g, e)| g != e)
+            .collect();
+        eprintln!("disagreeing (gpu, exact): {faces:?}");
+    }
+    either.iter().filter(|&&b| b).count() as f64 / either.len() as f64
+}
+
+#[test]
+fn trimmed_faces_agree_with_the_exact_ray_caster() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    if !renderer.draws_trims() {
+        eprintln!("skipped: the adapter runs no compute shaders, its scenes keep their meshes");
+        return;
+    }
+    // The untrimmed control's largest loss against the trimmed faces, over every view.
+    let mut worst_untrimmed: f64 = 0.0;
+    let mut compared = 0;
+    let untrimmed = Renderer::new(&gpu)
+        .expect("pipelines")
+        .without_trim_test(&gpu);
+    for name in [
+        "examples/pin-assembly.step",
+        "crates/cadre-render/tests/data/dome-and-cone.step",
+        "crates/cadre-mesh/tests/data/cylinder_hole_across_seam.step",
+        "crates/cadre-mesh/tests/data/cone_patch_clockwise.step",
+        "crates/cadre-mesh/tests/data/half_cones_wrong_sense.step",
+        "crates/cadre-mesh/tests/data/unit_cube.step",
+    ] {
+        let bytes = std::fs::read(common::root().join(name)).expect("fixture reads");
+        let (model, mesh_scene) = common::model_and_scene_of(bytes, 0.01);
+        let trim_scene = mesh_scene.clone().with_trims(&model, TRIM_TOLERANCE);
+        let trims = trim_scene.trim.as_ref().expect("trims");
+        assert!(trims.fallback.is_empty(), "{name}: {:?}", trims.fallback);
+        let prepared = renderer.prepare(&gpu, &trim_scene);
+        assert_eq!(prepared.trimmed_faces(), model.faces.len(), "{name}");
+        let (lo, hi) = trim_scene.bounds().expect("geometry");
+        for view in [ViewPreset::Iso, ViewPreset::Top, ViewPreset::Front] {
+            let fitted = Camera::fit(lo, hi, view, false, 4.0 / 3.0);
+            for zoom in [1.0, 30.0] {
+                let camera = zoomed(&model, fitted, zoom, (lo, hi));
+                if zoom > 1.0 && covered(&model, &camera) < 1000 {
+                    eprintln!("{name} {view:?} ×{zoom}: the close-up shows little; skipped");
+                    continue;
+                }
+                let trim = agreement(&gpu, &renderer, (&model, &trim_scene), &camera);
+                let mesh = agreement(&gpu, &renderer, (&model, &mesh_scene), &camera);
+                if trim.is_nan() {
+                    eprintln!("{name} {view:?} ×{zoom}: all boundaries; skipped");
+                    continue;
+                }
+                compared += 1;
+                eprintln!(
+                    "{name} {view:?} ×{zoom}: trim {:.2} %, mesh {:.2} %",
+                    100.0 * trim,
+                    100.0 * mesh
+                );
+                assert!(trim >= 0.99, "{name} {view:?} ×{zoom}: {trim}");
+                // Up close the mesh's facets show where the exact faces do not.
+                if zoom > 1.0 {
+                    assert!(
+                        trim >= mesh - 0.002,
+                        "{name} {view:?} ×{zoom}: {trim} < {mesh}"
+                    );
+                }
+                // Negative control: untrimmed, the boxes cover what is not the face.
+                let wrong = agreement(&gpu, &untrimmed, (&model, &trim_scene), &camera);
+                eprintln!("  untrimmed {:.2} %", 100.0 * wrong);
+                worst_untrimmed = worst_untrimmed.min(wrong - trim);
+            }
+        }
+    }
+    assert!(compared >= 30, "{compared} views compared");
+    assert!(
+        worst_untrimmed < -0.05,
+        "untrimmed faces lost at most {worst_untrimmed} of the pixels"
+    );
+}
