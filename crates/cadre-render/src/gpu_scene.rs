@@ -319,6 +319,7 @@ impl PreparedScene {
                     let exact = trimmed(id)?;
                     Some(crate::trim_surfaces::surface_record(
                         exact,
+                        &trim_scene?.bspline_data,
                         id,
                         face_points(&verts, &all, range, id),
                     ))
@@ -444,7 +445,7 @@ impl PreparedScene {
             trimmed_faces: surfaces.len(),
             trim: trim_scene
                 .filter(|_| !surfaces.is_empty())
-                .map(|t| TrimGeometry::new(device, &surfaces, &t.trees.buffers)),
+                .map(|t| TrimGeometry::new(device, &surfaces, (&t.trees.buffers, &t.bspline_data))),
         }
     }
 

@@ -390,7 +390,8 @@ pub struct TrimSurface {
     pub uv: [f32; 4],
     /// Bounding sphere of the face, mesh-local: centre and radius.
     pub sphere: [f32; 4],
-    /// Bounds of |S_uu|, |S_uv|, |S_vv| over the box (model units), w unused.
+    /// Bounds of |S_uu|, |S_uv|, |S_vv| over the box (model units), and the offset of the
+    /// face's grid breakpoints (`trim_surfaces::TrimFaceSurface::breaks`, as `u32` bits).
     pub curvature: [f32; 4],
     /// Kind (`trim_surfaces::SURFACE_*`), face id (dense), the tree's index, unused.
     pub ids: [u32; 4],

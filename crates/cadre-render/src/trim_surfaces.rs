@@ -19,6 +19,13 @@ pub const SURFACE_CONE: u32 = 2;
 pub const SURFACE_SPHERE: u32 = 3;
 /// [`TrimFaceSurface::kind`]: `o + (R + r cos v)(cos u x + sin u y) + r sin v z`.
 pub const SURFACE_TORUS: u32 = 4;
+/// [`TrimFaceSurface::kind`]: a (rational) B-spline, evaluated from its packed knots and
+/// homogeneous control points ([`TrimScene::bspline_data`] at [`TrimFaceSurface::data`]).
+pub const SURFACE_BSPLINE: u32 = 5;
+
+/// The highest B-spline degree the trim back-end draws (its WGSL's basis tables hold 16
+/// functions); higher-degree faces keep their meshes.
+pub const MAX_BSPLINE_DEGREE: usize = 15;
 
 /// One face the trim back-end draws: its surface in closed form and where its trim tree is.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,7 +46,22 @@ pub struct TrimFaceSurface {
     /// Bounds of the surface's second derivatives over the box: |S_uu|, |S_uv|, |S_vv| (model
     /// units per parameter unit²), from which a tessellation's chord error follows.
     pub curvature: [f64; 3],
+    /// A B-spline's packed record in [`TrimScene::bspline_data`] (0 for the other kinds).
+    pub data: u32,
+    /// Where the face's grid lines must fall ([`NO_BREAKS`] for one span each way): its
+    /// record in [`TrimScene::bspline_data`], the number of spans along u and v (as `u32`
+    /// bits), then the u and v breakpoints from the box's lower corner (both ends included).
+    /// A B-spline's are its knots within the box: across them it may bend sharply (a
+    /// degree-1 surface folds there), so every knot line is a grid line.
+    pub breaks: u32,
 }
+
+/// [`TrimFaceSurface::breaks`] of a face tessellated as one span each way.
+pub const NO_BREAKS: u32 = u32::MAX;
+
+/// Spans a face's grid holds per direction at most (`TRIM_MAX_LEVEL` in surface.wgsl): past
+/// it, knot lines are dropped evenly.
+pub const MAX_SPANS: usize = 256;
 
 /// Which faces of a model the trim back-end draws, and the trees it reads.
 #[derive(Clone, Debug, Default)]
@@ -52,6 +74,10 @@ pub struct TrimScene {
     pub fallback: Vec<(u64, String)>,
     /// The object-space tolerance the trims were fitted within (model units).
     pub tolerance: f64,
+    /// The B-spline faces' surfaces, packed as the GPU reads them: per surface its degrees
+    /// and control-net size (as `u32` bits), its u and v knots, then its control points
+    /// row by row (along u) as homogeneous (x w, y w, z w, w), all `f32`.
+    pub bspline_data: Vec<f32>,
 }
 
 impl TrimScene {
@@ -62,6 +88,7 @@ impl TrimScene {
     pub fn build(model: &Model, tolerance: f64) -> TrimScene {
         let trees = model_trees(model, tolerance);
         let mut fallback: Vec<(u64, String)> = trees.failures.clone();
+        let mut bspline_data = Vec::new();
         let faces = (0..model.faces.len())
             .map(|i| {
                 let tree = trees.face_index[i]?;
@@ -70,8 +97,21 @@ impl TrimScene {
                 let record = &trees.buffers.faces[tree as usize];
                 let origin = [record.origin.x, record.origin.y];
                 let size = [f64::from(record.size[0]), f64::from(record.size[1])];
-                match closed_form(surface, origin, size) {
-                    Some((kind, frame, params, curvature)) => Some(TrimFaceSurface {
+                let mut breaks = NO_BREAKS;
+                let exact = match basis(surface) {
+                    Surface::BSpline(b) => packed_bspline(b, origin, size, &mut bspline_data)
+                        .inspect(|_| {
+                            breaks = pack_breaks(b, origin, size, &mut bspline_data);
+                        }),
+                    other => closed_form(other, origin, size).ok_or_else(|| {
+                        format!(
+                            "{} surface: no GPU evaluator yet",
+                            surface_name(model, FaceId(i as u32))
+                        )
+                    }),
+                };
+                match exact {
+                    Ok((kind, frame, params, curvature, data)) => Some(TrimFaceSurface {
                         kind,
                         frame,
                         params,
@@ -79,15 +119,11 @@ impl TrimScene {
                         uv_origin: origin,
                         uv_size: size,
                         curvature,
+                        data,
+                        breaks,
                     }),
-                    None => {
-                        fallback.push((
-                            face.step_id,
-                            format!(
-                                "{} surface: no GPU evaluator yet",
-                                surface_name(model, FaceId(i as u32))
-                            ),
-                        ));
+                    Err(why) => {
+                        fallback.push((face.step_id, why));
                         None
                     }
                 }
@@ -99,6 +135,7 @@ impl TrimScene {
             faces,
             fallback,
             tolerance,
+            bspline_data,
         }
     }
 
@@ -108,6 +145,259 @@ impl TrimScene {
     }
 }
 
+/// A surface without its rectangular trims (their (u, v) are the basis').
+fn basis(surface: &Surface) -> &Surface {
+    match surface {
+        Surface::Trimmed { basis, .. } => self::basis(basis),
+        other => other,
+    }
+}
+
+/// What [`TrimScene::build`] makes of one face's surface: kind, frame, numbers, curvature
+/// bounds and packed data offset.
+type Exact = (u32, [DVec3; 4], [f64; 2], [f64; 3], u32);
+
+/// The WGSL of the trim back-end's surface evaluators (`surface.wgsl` and `bspline.wgsl`):
+/// `face_point` of a `TrimSurface`, `bspline_point` of a packed B-spline, reading the
+/// includer's `trim_bspline: array<f32>` (for the tests that run them in compute).
+pub fn surface_wgsl() -> String {
+    [
+        include_str!("passes/visibility/trim/surface.wgsl"),
+        include_str!("passes/visibility/trim/bspline.wgsl"),
+    ]
+    .join("\n")
+}
+
+/// Packs `b` at the end of `data` as [`TrimScene::bspline_data`] holds it; returns its
+/// offset, or why the GPU cannot evaluate it.
+pub fn pack_bspline(
+    b: &cadre_geom::bspline::BSplineSurface,
+    data: &mut Vec<f32>,
+) -> Result<u32, String> {
+    let (p, q) = (b.u_degree, b.v_degree);
+    if p > MAX_BSPLINE_DEGREE || q > MAX_BSPLINE_DEGREE {
+        return Err(format!(
+            "B-spline surface of degree ({p}, {q}): the GPU evaluates degrees up to {MAX_BSPLINE_DEGREE}"
+        ));
+    }
+    if !b.is_well_formed() {
+        return Err("B-spline surface not well formed".to_string());
+    }
+    let (nu, nv) = (b.control_points.len(), b.control_points[0].len());
+    let at = data.len();
+    if at + 4 + b.u_knots.len() + b.v_knots.len() + 4 * nu * nv >= u32::MAX as usize {
+        return Err("B-spline data past 2³² floats".to_string());
+    }
+    data.extend([p, q, nu, nv].map(|n| f32::from_bits(n as u32)));
+    data.extend(b.u_knots.iter().map(|&k| k as f32));
+    data.extend(b.v_knots.iter().map(|&k| k as f32));
+    for (i, row) in b.control_points.iter().enumerate() {
+        for (j, c) in row.iter().enumerate() {
+            let w = b.weights.as_ref().map_or(1.0, |w| w[i][j]);
+            data.extend([c.x * w, c.y * w, c.z * w, w].map(|x| x as f32));
+        }
+    }
+    Ok(at as u32)
+}
+
+/// The knot lines of `b` within the box `origin + [0, size]` packed at the end of `data` as
+/// [`TrimFaceSurface::breaks`] reads them; returns their offset.
+fn pack_breaks(
+    b: &cadre_geom::bspline::BSplineSurface,
+    origin: [f64; 2],
+    size: [f64; 2],
+    data: &mut Vec<f32>,
+) -> u32 {
+    let breaks = |knots: &[f64], lo: f64, size: f64| -> Vec<f64> {
+        // Knots closer than a millionth of the box to a kept one add nothing.
+        let gap = 1e-6 * size;
+        let mut out = vec![0.0];
+        for &k in knots {
+            let t = k - lo;
+            if t > gap && t < size - gap && t - out[out.len() - 1] > gap {
+                out.push(t);
+            }
+        }
+        out.push(size);
+        if out.len() > MAX_SPANS + 1 {
+            let n = out.len() - 1;
+            out = (0..=MAX_SPANS).map(|i| out[i * n / MAX_SPANS]).collect();
+        }
+        out
+    };
+    let u = breaks(&b.u_knots, origin[0], size[0]);
+    let v = breaks(&b.v_knots, origin[1], size[1]);
+    let at = data.len() as u32;
+    data.extend([u.len() - 1, v.len() - 1].map(|n| f32::from_bits(n as u32)));
+    data.extend(u.iter().chain(&v).map(|&t| t as f32));
+    at
+}
+
+/// A B-spline surface packed at the end of `data` (see [`TrimScene::bspline_data`]), with
+/// bounds of its second derivatives over the box `origin + [0, size]`.
+fn packed_bspline(
+    b: &cadre_geom::bspline::BSplineSurface,
+    origin: [f64; 2],
+    size: [f64; 2],
+    data: &mut Vec<f32>,
+) -> Result<Exact, String> {
+    let at = pack_bspline(b, data)?;
+    let curvature = bspline_curvature(b, origin, size);
+    Ok((
+        SURFACE_BSPLINE,
+        [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+        [0.0; 2],
+        curvature,
+        at,
+    ))
+}
+
+/// Bounds of |S_uu|, |S_uv|, |S_vv| of a B-spline. Polynomial: the largest control point of
+/// each second derivative (a B-spline lies in its control points' hull), exact, but for the
+/// derivative control points of knot spans narrower than a millionth of the domain: files
+/// hold such slivers (spans 4·10⁻⁸ wide, corpus trj4_pm2), whose derivatives are huge and
+/// whose whole extent is far below any pixel. Rational: the largest of the derivatives
+/// sampled over the box clamped to the domain (8 samples per knot span and direction,
+/// slivers skipped, at most 65), doubled, since the hull bound does not hold through the
+/// weights.
+fn bspline_curvature(
+    b: &cadre_geom::bspline::BSplineSurface,
+    origin: [f64; 2],
+    size: [f64; 2],
+) -> [f64; 3] {
+    if b.weights.is_none() {
+        return polynomial_curvature(b);
+    }
+    // Parameters sampled along one direction: 8 per knot span within the box, sliver spans
+    // (see above) skipped, the box's ends clamped to the domain.
+    let samples = |knots: &[f64], n: usize, p: usize, lo: f64, size: f64| -> Vec<f64> {
+        let (first, last) = (knots[p], knots[n]);
+        let sliver = 1e-6 * (last - first);
+        let (lo, hi) = (lo.max(first), (lo + size).min(last));
+        let mut out = Vec::new();
+        for w in knots[p..=n].windows(2) {
+            let (a, b) = (w[0].max(lo), w[1].min(hi));
+            if b - a > sliver {
+                out.extend((0..=8).map(|k| a + (b - a) * f64::from(k) / 8.0));
+            }
+        }
+        if out.is_empty() {
+            out.push(0.5 * (lo + hi));
+        }
+        out
+    };
+    let (nu, nv) = (b.control_points.len(), b.control_points[0].len());
+    let us = samples(&b.u_knots, nu, b.u_degree, origin[0], size[0]);
+    let vs = samples(&b.v_knots, nv, b.v_degree, origin[1], size[1]);
+    // At most 65 samples each way: every k-th.
+    let thin = |v: Vec<f64>| -> Vec<f64> {
+        let k = v.len().div_ceil(65).max(1);
+        v.into_iter().step_by(k).collect()
+    };
+    let (us, vs) = (thin(us), thin(vs));
+    let mut m = [0.0f64; 3];
+    for &u in &us {
+        for &v in &vs {
+            let d = b.derivatives(u, v, 2);
+            m[0] = m[0].max(d[2][0].length());
+            m[1] = m[1].max(d[1][1].length());
+            m[2] = m[2].max(d[0][2].length());
+        }
+    }
+    m.map(|x| 2.0 * x)
+}
+
+/// [`bspline_curvature`] of a polynomial B-spline: the control points of its second
+/// derivatives (*The NURBS Book* eq. 3.17, applied twice).
+fn polynomial_curvature(b: &cadre_geom::bspline::BSplineSurface) -> [f64; 3] {
+    let net = &b.control_points;
+    // Spans narrower than this (a millionth of the larger domain) are slivers.
+    let width = |k: &[f64]| k[k.len() - 1] - k[0];
+    let sliver = 1e-6 * width(&b.u_knots).max(width(&b.v_knots));
+    // The derivative of a row of control points along knots `k` of degree `p`.
+    let derive = |points: &[DVec3], k: &[f64], p: usize| -> Vec<DVec3> {
+        points
+            .windows(2)
+            .enumerate()
+            .map(|(i, w)| {
+                let span = k[i + p + 1] - k[i + 1];
+                if span > sliver {
+                    (w[1] - w[0]) * (p as f64 / span)
+                } else {
+                    DVec3::ZERO
+                }
+            })
+            .collect()
+    };
+    let (p, q) = (b.u_degree, b.v_degree);
+    let columns: Vec<Vec<DVec3>> = (0..net[0].len())
+        .map(|j| net.iter().map(|row| row[j]).collect())
+        .collect();
+    let max = |v: &[DVec3]| v.iter().map(|d| d.length()).fold(0.0, f64::max);
+    let mut m = [0.0f64; 3];
+    if p >= 2 {
+        for col in &columns {
+            let d1 = derive(col, &b.u_knots, p);
+            m[0] = m[0].max(max(&derive(&d1, &b.u_knots[1..], p - 1)));
+        }
+    }
+    if q >= 2 {
+        for row in net {
+            let d1 = derive(row, &b.v_knots, q);
+            m[2] = m[2].max(max(&derive(&d1, &b.v_knots[1..], q - 1)));
+        }
+    }
+    // Mixed: derive the columns in u, then the resulting rows in v.
+    let du: Vec<Vec<DVec3>> = columns
+        .iter()
+        .map(|col| derive(col, &b.u_knots, p))
+        .collect();
+    for i in 0..du.first().map_or(0, Vec::len) {
+        let row: Vec<DVec3> = du.iter().map(|col| col[i]).collect();
+        m[1] = m[1].max(max(&derive(&row, &b.v_knots, q)));
+    }
+    m
+}
+
+/// The point of a packed B-spline at (u, v), as `surface.wgsl` evaluates it (in `f64` from
+/// the same `f32` data): the CPU twin the tests check the packing with.
+pub fn packed_bspline_point(data: &[f32], at: u32, u: f64, v: f64) -> DVec3 {
+    let at = at as usize;
+    let [p, q, nu, nv] = [0, 1, 2, 3].map(|k| data[at + k].to_bits() as usize);
+    let ku: Vec<f64> = data[at + 4..at + 4 + nu + p + 1]
+        .iter()
+        .map(|&k| f64::from(k))
+        .collect();
+    let kv_at = at + 4 + nu + p + 1;
+    let kv: Vec<f64> = data[kv_at..kv_at + nv + q + 1]
+        .iter()
+        .map(|&k| f64::from(k))
+        .collect();
+    let cp = kv_at + nv + q + 1;
+    let basis = |knots: &[f64], n: usize, p: usize, t: f64| -> (usize, Vec<f64>) {
+        let span = cadre_geom::nurbs::basis::find_span(knots, n, p, t);
+        let funs = cadre_geom::nurbs::basis::basis_funs(span, t, p, knots)
+            .map_or_else(Vec::new, |f| f[..=p].to_vec());
+        (span, funs)
+    };
+    let (su, bu) = basis(&ku, nu, p, u);
+    let (sv, bv) = basis(&kv, nv, q, v);
+    let mut sum = glam::DVec4::ZERO;
+    for (r, a) in bu.iter().enumerate() {
+        for (t, b) in bv.iter().enumerate() {
+            let k = cp + 4 * ((su - p + r) * nv + sv - q + t);
+            let c = glam::DVec4::new(
+                f64::from(data[k]),
+                f64::from(data[k + 1]),
+                f64::from(data[k + 2]),
+                f64::from(data[k + 3]),
+            );
+            sum += c * (a * b);
+        }
+    }
+    sum.truncate() / sum.w
+}
+
 /// The STEP type name of a face's surface.
 fn surface_name(model: &Model, face: FaceId) -> &'static str {
     model.surfaces[model.faces[face.index()].surface.index()].type_name()
@@ -115,23 +405,19 @@ fn surface_name(model: &Model, face: FaceId) -> &'static str {
 
 /// A surface's kind, frame, numbers and second-derivative bounds over the (u, v) box
 /// `origin + [0, size]`, for the kinds the GPU evaluates in closed form.
-#[allow(clippy::type_complexity)]
-fn closed_form(
-    surface: &Surface,
-    origin: [f64; 2],
-    size: [f64; 2],
-) -> Option<(u32, [DVec3; 4], [f64; 2], [f64; 3])> {
+fn closed_form(surface: &Surface, origin: [f64; 2], size: [f64; 2]) -> Option<Exact> {
     let axes = |f: &cadre_geom::Frame| [f.origin, f.x, f.y, f.z];
     // The largest |cos v| over the box's v range (the sphere's parallels).
     let v_range = (origin[1], origin[1] + size[1]);
     Some(match surface {
         Surface::Trimmed { basis, .. } => return closed_form(basis, origin, size),
-        Surface::Plane { frame } => (SURFACE_PLANE, axes(frame), [0.0; 2], [0.0; 3]),
+        Surface::Plane { frame } => (SURFACE_PLANE, axes(frame), [0.0; 2], [0.0; 3], 0),
         Surface::Cylinder { frame, radius } => (
             SURFACE_CYLINDER,
             axes(frame),
             [*radius, 0.0],
             [radius.abs(), 0.0, 0.0],
+            0,
         ),
         Surface::Cone {
             frame,
@@ -148,11 +434,12 @@ fn closed_form(
                 axes(frame),
                 [*radius, tan],
                 [rho, tan.abs(), 0.0],
+                0,
             )
         }
         Surface::Sphere { frame, radius } => {
             let r = radius.abs();
-            (SURFACE_SPHERE, axes(frame), [*radius, 0.0], [r, r, r])
+            (SURFACE_SPHERE, axes(frame), [*radius, 0.0], [r, r, r], 0)
         }
         Surface::Torus {
             frame,
@@ -165,6 +452,7 @@ fn closed_form(
                 axes(frame),
                 [*major_radius, *minor_radius],
                 [big + small, small, small],
+                0,
             )
         }
         _ => return None,
@@ -203,6 +491,29 @@ pub fn closed_form_normal(s: &TrimFaceSurface, u: f64, v: f64) -> DVec3 {
     }
 }
 
+/// The point of a face's surface at (u, v) as the GPU evaluates it: its closed form, or its
+/// packed B-spline in `data`.
+pub fn face_point(s: &TrimFaceSurface, data: &[f32], u: f64, v: f64) -> DVec3 {
+    if s.kind == SURFACE_BSPLINE {
+        packed_bspline_point(data, s.data, u, v)
+    } else {
+        closed_form_point(s, u, v)
+    }
+}
+
+/// The direction of S_u × S_v of a face's surface at (u, v) (a B-spline's by central
+/// differences a ten-thousandth of its box wide).
+fn face_normal(s: &TrimFaceSurface, data: &[f32], u: f64, v: f64) -> DVec3 {
+    if s.kind != SURFACE_BSPLINE {
+        return closed_form_normal(s, u, v);
+    }
+    let (hu, hv) = (1e-4 * s.uv_size[0], 1e-4 * s.uv_size[1]);
+    let p = |u, v| packed_bspline_point(data, s.data, u, v);
+    let su = p(u + hu, v) - p(u - hu, v);
+    let sv = p(u, v + hv) - p(u, v - hv);
+    su.cross(sv)
+}
+
 /// Samples per side of the (u, v) box when bounding a face's surface.
 const SPHERE_SAMPLES: usize = 9;
 
@@ -211,12 +522,13 @@ const SPHERE_SAMPLES: usize = 9;
 /// (the mesh's normals follow the shell's orientation).
 pub(crate) fn surface_record(
     s: &TrimFaceSurface,
+    data: &[f32],
     face_id: u32,
     points: impl Iterator<Item = ([f32; 3], [f32; 3], [f32; 2])>,
 ) -> crate::layout::TrimSurface {
     let mut agreement = 0.0;
     for (_, normal, uv) in points {
-        let exact = closed_form_normal(s, f64::from(uv[0]), f64::from(uv[1]));
+        let exact = face_normal(s, data, f64::from(uv[0]), f64::from(uv[1]));
         agreement += exact
             .normalize_or_zero()
             .dot(DVec3::from(normal.map(f64::from)));
@@ -230,7 +542,7 @@ pub(crate) fn surface_record(
         .map(|(i, j)| {
             let u = s.uv_origin[0] + s.uv_size[0] * i as f64 / n as f64;
             let v = s.uv_origin[1] + s.uv_size[1] * j as f64 / n as f64;
-            closed_form_point(s, u, v).as_vec3().to_array()
+            face_point(s, data, u, v).as_vec3().to_array()
         })
         .collect();
     let (centre, radius) = crate::coverage::bounding_sphere(samples.into_iter());
@@ -256,8 +568,8 @@ pub(crate) fn surface_record(
             centre.z as f32,
             (radius + chord) as f32 * (1.0 + 1e-5),
         ],
-        curvature: [muu as f32, muv as f32, mvv as f32, 0.0],
-        ids: [s.kind, face_id, s.tree, 0],
+        curvature: [muu as f32, muv as f32, mvv as f32, f32::from_bits(s.breaks)],
+        ids: [s.kind, face_id, s.tree, s.data],
     }
 }
 
@@ -265,21 +577,33 @@ pub(crate) fn surface_record(
 mod tests {
     use super::*;
 
-    fn pin_assembly() -> Model {
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../examples/pin-assembly.step"
-        );
-        let file = cadre_step::syntax::StepFile::read(std::path::Path::new(path)).expect("reads");
+    fn model(path: &str) -> Model {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .join(path);
+        let file = cadre_step::syntax::StepFile::read(&path).expect("reads");
         cadre_step::map_file(&file)
     }
 
-    /// The closed forms the GPU evaluates are the model's surfaces: every drawn face's
-    /// record gives the model's point at random (u, v) of its box.
+    /// The closed forms and packed B-splines the GPU evaluates are the model's surfaces:
+    /// every drawn face's record gives the model's point at (u, v) across its box.
     #[test]
     fn closed_forms_are_the_model_surfaces() {
-        let model = pin_assembly();
-        let scene = TrimScene::build(&model, 0.01);
+        let mut kinds = std::collections::BTreeSet::new();
+        for path in [
+            "examples/pin-assembly.step",
+            "crates/cadre-render/tests/data/dome-and-cone.step",
+            "crates/cadre-mesh/tests/data/quarter_sphere_collapsed_sides.step",
+        ] {
+            check_surfaces(&model(path), &mut kinds);
+        }
+        assert!(kinds.contains(&SURFACE_BSPLINE), "{kinds:?}");
+        assert!(kinds.contains(&SURFACE_SPHERE), "{kinds:?}");
+        assert!(kinds.contains(&SURFACE_CONE), "{kinds:?}");
+    }
+
+    fn check_surfaces(model: &Model, kinds: &mut std::collections::BTreeSet<u32>) {
+        let scene = TrimScene::build(model, 0.01);
         assert!(scene.drawn() > 0);
         assert_eq!(scene.drawn() + scene.fallback.len(), model.faces.len());
         let mut checked = 0;
@@ -291,20 +615,39 @@ mod tests {
                 let u = s.uv_origin[0] + t[0] * s.uv_size[0];
                 let v = s.uv_origin[1] + t[1] * s.uv_size[1];
                 let exact = surface.eval(u, v);
-                let ours = closed_form_point(s, u, v);
-                assert!(
-                    (exact - ours).length() < 1e-9,
-                    "face {i}: {exact} vs {ours}"
-                );
+                let ours = face_point(s, &scene.bspline_data, u, v);
+                // B-splines are packed in f32.
+                let tol = if s.kind == SURFACE_BSPLINE {
+                    1e-4
+                } else {
+                    1e-9
+                };
+                assert!((exact - ours).length() < tol, "face {i}: {exact} vs {ours}");
+                kinds.insert(s.kind);
                 checked += 1;
             }
         }
         assert!(checked > 0);
-        // Negative control: another face's record misses the surface.
-        let drawn: Vec<&TrimFaceSurface> = scene.faces.iter().flatten().collect();
-        let (a, b) = (drawn[0], drawn[drawn.len() - 1]);
-        let u = a.uv_origin[0] + 0.5 * a.uv_size[0];
-        let v = a.uv_origin[1] + 0.5 * a.uv_size[1];
-        assert!((closed_form_point(a, u, v) - closed_form_point(b, u, v)).length() > 1e-6);
+        // Negative control: another face's record misses this face's surface.
+        let drawn: Vec<(usize, &TrimFaceSurface)> = scene
+            .faces
+            .iter()
+            .enumerate()
+            .filter_map(|(i, f)| f.as_ref().map(|f| (i, f)))
+            .collect();
+        let surface_of = |i: usize| model.faces[i].surface;
+        if let Some(w) = drawn
+            .windows(2)
+            .find(|w| surface_of(w[0].0) != surface_of(w[1].0))
+        {
+            let (a, b) = (w[0].1, w[1].1);
+            let surface = &model.surfaces[surface_of(w[0].0).index()];
+            let missed = (0..8).any(|k| {
+                let u = a.uv_origin[0] + a.uv_size[0] * f64::from(k) / 7.0;
+                let v = a.uv_origin[1] + a.uv_size[1] * f64::from(7 - k) / 7.0;
+                (surface.eval(u, v) - face_point(b, &scene.bspline_data, u, v)).length() > 1e-6
+            });
+            assert!(missed, "another face's record matched");
+        }
     }
 }

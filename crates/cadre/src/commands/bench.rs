@@ -54,6 +54,9 @@ enum BenchWhat {
         /// draws in `scripts/compare_render.py`.
         #[arg(long, default_value = "shaded", value_parser = crate::commands::render::parse_mode)]
         mode: cadre_render::DisplayMode,
+        /// How faces are drawn (as `cadre render --method`).
+        #[arg(long, default_value = "mesh", value_enum)]
+        method: crate::commands::render::Method,
     },
     /// The viewer's frame on the same heavy scene: the scene uploaded once, then each frame
     /// orbits the camera by 2°, draws into a kept viewport (the window's path, no readback)
@@ -76,6 +79,9 @@ enum BenchWhat {
         /// shaded the same frame without the edges pass.
         #[arg(long, default_value = "shaded-edges", value_parser = crate::commands::render::parse_mode)]
         mode: cadre_render::DisplayMode,
+        /// How faces are drawn (as `cadre render --method`).
+        #[arg(long, default_value = "mesh", value_enum)]
+        method: crate::commands::render::Method,
     },
 }
 
@@ -101,14 +107,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             size,
             frames,
             mode,
-        } => bench_render(file, *grid, *size, *frames, *mode),
+            method,
+        } => bench_render(file, (*grid, *method), *size, *frames, *mode),
         BenchWhat::View {
             file,
             grid,
             size,
             frames,
             mode,
-        } => bench_view(file, *grid, *size, *frames, *mode),
+            method,
+        } => bench_view(file, (*grid, *method), *size, *frames, *mode),
         BenchWhat::Trim { path, tolerance } => {
             for file in step_files(path)? {
                 println!("{}", bench_trim(&file, *tolerance));
@@ -208,10 +216,12 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
 }
 
 /// `cadre bench render`: see [`BenchWhat::Render`].
-/// FILE meshed at 0.001 × its diagonal and placed `grid` × `grid` times, with its box.
+/// FILE meshed at 0.001 × its diagonal and placed `grid` × `grid` times, with its box; with
+/// `Method::Trim`, its faces drawn from their exact surfaces (trims within 10⁻⁵ of the
+/// diagonal, `cadre render`'s default).
 fn grid_scene(
     file: &Path,
-    grid: u32,
+    (grid, method): (u32, crate::commands::render::Method),
 ) -> Result<(cadre_render::RenderScene, glam::DVec3, glam::DVec3)> {
     use cadre_mesh::scene::SceneNode;
     use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
@@ -226,6 +236,9 @@ fn grid_scene(
     };
     let mesh = mesh_model(model, &params, None);
     let mut render_scene = RenderScene::from_model(model, &mesh);
+    if method == crate::commands::render::Method::Trim {
+        render_scene = render_scene.with_trims(model, 1e-5 * deflection_diagonal(model));
+    }
     let scene = &mut render_scene.assembly;
     let (lo, hi) = cadre_render::scene_bounds(scene).context("the model has no geometry")?;
     let step = (hi - lo).max(DVec3::splat(1e-6)) * 1.2;
@@ -259,7 +272,7 @@ fn median(values: &[f64]) -> f64 {
 /// `cadre bench view`: see [`BenchWhat::View`].
 fn bench_view(
     file: &Path,
-    grid: u32,
+    grid: (u32, crate::commands::render::Method),
     (width, height): (u32, u32),
     frames: u32,
     mode: cadre_render::DisplayMode,
@@ -372,6 +385,8 @@ fn bench_view(
             "backend": format!("{:?}", gpu.info.backend),
             "instances": prepared.instance_count(),
             "triangles": scene.assembly.instance_triangle_count(),
+            "method": format!("{:?}", grid.1),
+            "trimmed_faces": prepared.trimmed_faces(),
             "width": width,
             "height": height,
             "mode": format!("{mode:?}"),
@@ -390,7 +405,7 @@ fn bench_view(
 /// `cadre bench render`: see [`BenchWhat::Render`].
 fn bench_render(
     file: &Path,
-    grid: u32,
+    grid: (u32, crate::commands::render::Method),
     (width, height): (u32, u32),
     frames: u32,
     mode: cadre_render::DisplayMode,
@@ -437,6 +452,8 @@ fn bench_render(
             "backend": format!("{:?}", gpu.info.backend),
             "instances": scene.assembly.instances().count(),
             "triangles": scene.assembly.instance_triangle_count(),
+            "method": format!("{:?}", grid.1),
+            "trimmed_faces": renderer.prepare(&gpu, &scene).trimmed_faces(),
             "width": width,
             "height": height,
             "frame_ms": ms,

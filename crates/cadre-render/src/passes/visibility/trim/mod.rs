@@ -18,7 +18,7 @@ use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 use wgpu::util::DeviceExt;
 
 /// The render shader's bind group 0: frame, surfaces, the tessellation's levels, the five
-/// trim buffers (`cadre_trim::TrimBuffers`); group 1: the instances.
+/// trim buffers (`cadre_trim::TrimBuffers`), the packed B-splines; group 1: the instances.
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(TrimSurface::WGSL_NAME),
@@ -28,16 +28,19 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Storage("f32"),
     Binding::Storage("u32"),
     Binding::Storage("u32"),
+    Binding::Storage("f32"),
 ];
 
-/// The tessellation pass's bind group 0: frame, surfaces, tasks, and what it writes: the
-/// indirect draws and the levels; group 1: the instances.
+/// The tessellation pass's bind group 0: frame, surfaces, tasks, what it writes (the
+/// indirect draws and the levels), and the packed B-splines (their knot lines); group 1:
+/// the instances.
 pub(crate) const TESSELLATE_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(TrimSurface::WGSL_NAME),
     Binding::Storage(TrimTask::WGSL_NAME),
     Binding::StorageWrite("u32"),
     Binding::StorageWrite("u32"),
+    Binding::Storage("f32"),
 ];
 
 /// Vertices reserved for each face of a draw: 6 a cell of the largest grid, 256 × 256 cells
@@ -59,6 +62,7 @@ pub(crate) fn source() -> String {
         INSTANCES_WGSL,
         TEXEL_WGSL,
         SURFACE_WGSL,
+        include_str!("bspline.wgsl"),
         include_str!("trim.wgsl"),
         cadre_trim::TRIM_WGSL,
     ])
@@ -81,6 +85,7 @@ pub(crate) struct TrimGeometry {
     floats: wgpu::Buffer,
     piece_offsets: wgpu::Buffer,
     lists: wgpu::Buffer,
+    bspline: wgpu::Buffer,
 }
 
 /// A storage buffer of `bytes` (one word when empty: storage bindings may not be).
@@ -102,7 +107,7 @@ impl TrimGeometry {
     pub fn new(
         device: &wgpu::Device,
         surfaces: &[TrimSurface],
-        trees: &cadre_trim::TrimBuffers,
+        (trees, bspline): (&cadre_trim::TrimBuffers, &[f32]),
     ) -> TrimGeometry {
         TrimGeometry {
             surfaces: storage(device, "trim surfaces", bytemuck::cast_slice(surfaces)),
@@ -119,6 +124,7 @@ impl TrimGeometry {
                 bytemuck::cast_slice(&trees.piece_offsets),
             ),
             lists: storage(device, "trim lists", bytemuck::cast_slice(&trees.lists)),
+            bspline: storage(device, "trim B-splines", bytemuck::cast_slice(bspline)),
         }
     }
 }
@@ -199,9 +205,10 @@ impl TrimBackend {
         // two included).
         let mut group = entries(BINDINGS, wgpu::ShaderStages::VERTEX_FRAGMENT);
         group[2].visibility = wgpu::ShaderStages::VERTEX;
-        for entry in &mut group[3..] {
+        for entry in &mut group[3..8] {
             entry.visibility = wgpu::ShaderStages::FRAGMENT;
         }
+        group[8].visibility = wgpu::ShaderStages::VERTEX;
         let (layout, pipeline_layout) = layouts(device, "visibility trim", &group, Some(instances));
         let compute = shader(device, "trim tessellation", &tessellate_source());
         let (tessellate_layout, tessellate_pipeline_layout) = layouts(
@@ -252,6 +259,7 @@ impl TrimBackend {
                 trim.tasks.as_entire_binding(),
                 trim.args.as_entire_binding(),
                 trim.levels.as_entire_binding(),
+                geometry.bspline.as_entire_binding(),
             ],
         );
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -318,6 +326,7 @@ impl TrimBackend {
                 geometry.floats.as_entire_binding(),
                 geometry.piece_offsets.as_entire_binding(),
                 geometry.lists.as_entire_binding(),
+                geometry.bspline.as_entire_binding(),
             ],
         );
         pass.set_pipeline(pipeline);

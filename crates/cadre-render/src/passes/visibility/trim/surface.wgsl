@@ -1,6 +1,7 @@
 // Trim back-end, shared by its compute and render shaders: a face's record (`TrimSurface`,
-// `layout.rs`) and its support surface evaluated in closed form (`trim_surfaces.rs`'s
-// `closed_form_point` is the CPU twin).
+// `layout.rs`), its grid's spans, and its support surface evaluated in closed form
+// (`trim_surfaces.rs`'s `closed_form_point` is the CPU twin). The includer declares
+// `trim_bspline: array<f32>` (`TrimScene::bspline_data`).
 
 struct TrimSurface {
     origin: vec4<f32>,
@@ -34,6 +35,35 @@ const SURFACE_SPHERE: u32 = 3u;
 // largest grid, `TRIM_MAX_LEVEL`² cells.
 const TRIM_VERTICES: u32 = 393216u;
 const TRIM_MAX_LEVEL: f32 = 256.0;
+
+// `TrimFaceSurface::breaks` of a face drawn as one span each way.
+const NO_BREAKS: u32 = 0xffffffffu;
+
+// The spans of face `s`'s grid along u and v (its knot lines within its box; one span each
+// way for the closed forms).
+fn grid_spans(s: TrimSurface) -> vec2<u32> {
+    let at = bitcast<u32>(s.curvature.w);
+    if at == NO_BREAKS {
+        return vec2<u32>(1u);
+    }
+    return vec2<u32>(bitcast<u32>(trim_bspline[at]), bitcast<u32>(trim_bspline[at + 1u]));
+}
+
+// Breakpoint `k` (0 to the span count) along `axis` (0: u, 1: v) from the box's lower corner.
+fn grid_break(s: TrimSurface, spans: vec2<u32>, axis: u32, k: u32) -> f32 {
+    let at = bitcast<u32>(s.curvature.w);
+    if at == NO_BREAKS {
+        return select(0.0, s.uv[2u + axis], k > 0u);
+    }
+    return trim_bspline[at + 2u + select(0u, spans.x + 1u, axis == 1u) + k];
+}
+
+// The face-local parameter of grid line `g` along `axis`, with `per` cells in each span.
+fn grid_param(s: TrimSurface, spans: vec2<u32>, axis: u32, g: u32, per: u32) -> f32 {
+    let span = min(g / per, spans[axis] - 1u);
+    let f = f32(g - span * per) / f32(per);
+    return mix(grid_break(s, spans, axis, span), grid_break(s, spans, axis, span + 1u), f);
+}
 
 // A point of a surface and the direction of its normal S_u × S_v (any length; the poles of
 // spheres and tori and the cone's apex, where S_u × S_v vanishes, get the limit direction).

@@ -1,7 +1,8 @@
 // Trim back-end, tessellation (compute, before the visibility pass): for each face of each
 // mesh call (a `TrimTask`), the grid its surface is drawn with this frame, written as an
-// indirect draw (`args`, four words a task) and its levels (`levels`: cells along u in the
-// low 16 bits, along v in the high ones).
+// indirect draw (`args`, four words a task) and its levels (`levels`: cells per span along u
+// in the low 16 bits, along v in the high ones; a B-spline's spans are its knot spans within
+// the face, so that every knot line is a grid line, a closed form has one each way).
 //
 // The grid's error: a cell of size (h_u, h_v) departs from the surface by at most
 // (h_u² |S_uu| + 2 h_u h_v |S_uv| + h_v² |S_vv|) / 8 (the interpolation error of a function of
@@ -14,6 +15,7 @@
 @group(0) @binding(2) var<storage, read> tasks: array<TrimTask>;
 @group(0) @binding(3) var<storage, read_write> args: array<u32>;
 @group(0) @binding(4) var<storage, read_write> levels: array<u32>;
+@group(0) @binding(5) var<storage, read> trim_bspline: array<f32>;
 
 // The tessellation's tolerance, in pixels.
 override TOLERANCE_PX: f32 = 0.5;
@@ -70,18 +72,30 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = distance * 2.0 * frame.inv_proj[1][1] / frame.viewport.y;
     let eps = max(TOLERANCE_PX * pixel, 1e-30);
     let m = s.curvature.xyz * scale;
-    let size = s.uv.zw;
+    let spans = grid_spans(s);
+    // The widest span each way: every span gets the cells the widest needs.
+    var size = vec2<f32>(0.0);
+    for (var axis = 0u; axis < 2u; axis++) {
+        for (var k = 0u; k < spans[axis]; k++) {
+            let w = grid_break(s, spans, axis, k + 1u) - grid_break(s, spans, axis, k);
+            size[axis] = max(size[axis], w);
+        }
+    }
+    // Cells a span may hold so that the grid stays within TRIM_MAX_LEVEL lines.
+    let most = max(floor(vec2<f32>(TRIM_MAX_LEVEL) / vec2<f32>(spans)), vec2<f32>(1.0));
     // A quarter of the error for each pure term, then both levels raised together until the
     // mixed one fits too.
     var n = max(ceil(size * sqrt(m.xz / (2.0 * eps))), vec2<f32>(1.0));
-    n = min(n, vec2<f32>(TRIM_MAX_LEVEL));
+    n = min(n, most);
     let h = size / n;
     let e = (h.x * h.x * m.x + 2.0 * h.x * h.y * m.y + h.y * h.y * m.z) / 8.0;
-    n = clamp(ceil(n * sqrt(max(e / eps, 1.0))), vec2<f32>(1.0), vec2<f32>(TRIM_MAX_LEVEL));
-    let cells = select(0u, u32(n.x) * u32(n.y), visible);
+    n = clamp(ceil(n * sqrt(max(e / eps, 1.0))), vec2<f32>(1.0), most);
+    let per = vec2<u32>(n);
+    let lines = per * spans;
+    let cells = select(0u, lines.x * lines.y, visible);
     args[4u * t] = 6u * cells;
     args[4u * t + 1u] = task.instances;
     args[4u * t + 2u] = task.slot * TRIM_VERTICES;
     args[4u * t + 3u] = 0u;
-    levels[t] = u32(n.x) | (u32(n.y) << 16u);
+    levels[t] = per.x | (per.y << 16u);
 }

@@ -11,6 +11,7 @@
 @group(0) @binding(5) var<storage, read> trim_floats: array<f32>;
 @group(0) @binding(6) var<storage, read> trim_piece_offsets: array<u32>;
 @group(0) @binding(7) var<storage, read> trim_lists: array<u32>;
+@group(0) @binding(8) var<storage, read> trim_bspline: array<f32>;
 
 // The trim test, off only for the tests' negative control (the surfaces' whole boxes).
 override TRIM_TEST: bool = true;
@@ -37,14 +38,16 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     let index = call.range.x + k;
     let s = surfaces[index];
     let level = levels[call.range.y + k];
-    let n = vec2<u32>(max(level & 0xffffu, 1u), max(level >> 16u, 1u));
+    let per = vec2<u32>(max(level & 0xffffu, 1u), max(level >> 16u, 1u));
+    let spans = grid_spans(s);
+    let lines = per * spans;
     let cell = local_vertex / 6u;
     // Corners (0, 0), (1, 0), (1, 1), (0, 0), (1, 1), (0, 1) of the cell, as bit masks.
     let corner = local_vertex % 6u;
     let step = vec2<u32>((22u >> corner) & 1u, (52u >> corner) & 1u);
-    let grid = vec2<u32>(cell % n.x, cell / n.x) + step;
-    let local = vec2<f32>(grid) / vec2<f32>(n) * s.uv.zw;
-    let point = surface_point(s, s.uv.xy + local);
+    let grid = vec2<u32>(cell % lines.x, cell / lines.x) + step;
+    let local = vec2<f32>(grid_param(s, spans, 0u, grid.x, per.x), grid_param(s, spans, 1u, grid.y, per.y));
+    let point = face_point(s, s.uv.xy + local);
     let d = instance_draw(instance);
     let normal = point.normal * s.axis_y.w;
     let placed = place_vertex(d, point.position, normal);
