@@ -146,7 +146,10 @@ impl Gpu {
 
 /// Whether `device` builds a render pipeline whose vertex shader reads a storage buffer.
 fn compiles_vertex_storage(device: &wgpu::Device) -> bool {
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    // NVIDIA's GL reports the failure as an internal error (the shader's translation), not a
+    // validation one (H200, 2026-12-04): both are caught, or the uncaught one panics.
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("vertex storage probe"),
         source: wgpu::ShaderSource::Wgsl(
@@ -192,5 +195,7 @@ fn compiles_vertex_storage(device: &wgpu::Device) -> bool {
         multiview_mask: None,
         cache: None,
     });
-    pollster::block_on(scope.pop()).is_none()
+    let internal = pollster::block_on(internal.pop());
+    let validation = pollster::block_on(validation.pop());
+    internal.is_none() && validation.is_none()
 }

@@ -185,6 +185,13 @@ impl Renderer {
         self
     }
 
+    /// Triangles the trimmed faces of the last frame drawn were tessellated into (every
+    /// instance counted; 0 without trims): what the GPU chose for the screen-space error.
+    /// Waits for the GPU.
+    pub fn last_trim_triangles(&self, gpu: &Gpu) -> u64 {
+        self.visibility.last_trim_triangles(&gpu.device, &gpu.queue)
+    }
+
     /// Whether faces of scenes with trims ([`RenderScene::with_trims`]) are drawn from
     /// their exact surfaces here: the adapter runs compute shaders (otherwise their meshes
     /// draw them).

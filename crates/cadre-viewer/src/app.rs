@@ -53,6 +53,10 @@ struct ViewTexture {
 const VIEW_FORMAT: cadre_render::wgpu::TextureFormat =
     cadre_render::wgpu::TextureFormat::Rgba8UnormSrgb;
 
+/// Tolerance of the trims of exact faces, relative to the model's diagonal (as
+/// `cadre render --method trim`'s default).
+const TRIM_TOLERANCE_RELATIVE: f64 = 1e-5;
+
 struct App {
     options: ViewerOptions,
     proxy: EventLoopProxy<UserEvent>,
@@ -61,6 +65,8 @@ struct App {
     egui_state: Option<egui_winit::State>,
     session: Session,
     prepared: Option<PreparedScene>,
+    /// Whether `prepared` draws faces exactly (`Session::exact_faces` when it was made).
+    prepared_exact: bool,
     /// Orbit pivot of the drag in progress.
     pivot: Option<DVec3>,
     /// The hover pick asked for and not yet answered, with the cursor it is for: answered
@@ -90,6 +96,7 @@ pub(crate) fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         egui_state: None,
         session: Session::new(),
         prepared: None,
+        prepared_exact: false,
         pivot: None,
         hover_pick: None,
         hovered_at: None,
@@ -573,6 +580,32 @@ impl App {
             }
         };
         let view = frame.texture.create_view(&Default::default());
+        // The faces' method changed: the scene is prepared again, with or without trims.
+        if self.session.exact_faces != self.prepared_exact
+            && let Some(doc) = &self.session.doc
+        {
+            let scene = if self.session.exact_faces {
+                let tolerance =
+                    TRIM_TOLERANCE_RELATIVE * cadre_mesh::deflection_diagonal(&doc.model);
+                doc.scene.clone().with_trims(&doc.model, tolerance)
+            } else {
+                doc.scene.clone()
+            };
+            self.prepared = Some(gfx.renderer.prepare(&gfx.gpu, &scene));
+            self.prepared_exact = self.session.exact_faces;
+            if let Some(trim) = &scene.trim {
+                let line = format!(
+                    "exact faces {} of {} ({} from their meshes)",
+                    trim.drawn(),
+                    trim.faces.len(),
+                    trim.fallback.len()
+                );
+                if self.options.report {
+                    println!("{line}");
+                }
+                tracing::info!("{line}");
+            }
+        }
         let (w, h) = (gfx.config.width, gfx.config.height);
         let (vw, vh) = (
             (self.view_rect.width().round() as u32).clamp(1, gfx.gpu.max_side()),
@@ -809,6 +842,8 @@ impl ApplicationHandler<UserEvent> for App {
                         self.hovered_at = None;
                         if let Some(gfx) = &self.gfx {
                             self.prepared = Some(gfx.renderer.prepare(&gfx.gpu, &doc.scene));
+                            self.prepared_exact = false;
+                            self.session.exact_faces = false;
                             gfx.window.set_title(&format!("{} — cadre", doc.title()));
                         }
                         self.report(&format!(

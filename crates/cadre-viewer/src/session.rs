@@ -28,6 +28,9 @@ pub(crate) struct Session {
     pub nav: Option<Navigator>,
     /// How faces and edges are drawn.
     pub mode: DisplayMode,
+    /// Faces drawn from their exact surfaces, trimmed per pixel (the trim back-end), instead
+    /// of their static meshes.
+    pub exact_faces: bool,
     /// Per scene node: hidden by the user.
     pub hidden: Vec<bool>,
     /// Per instance: a colour (sRGB + opacity) the user gave it.
@@ -116,6 +119,7 @@ impl Session {
             doc: None,
             nav: None,
             mode: DisplayMode::ShadedEdges,
+            exact_faces: false,
             hidden: Vec::new(),
             colours: Vec::new(),
             hover: None,

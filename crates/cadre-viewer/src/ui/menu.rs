@@ -51,6 +51,12 @@ pub(super) fn menu_bar(
                     for (name, mode) in DISPLAY_MODES {
                         ui.radio_value(&mut s.mode, mode, name);
                     }
+                    ui.separator();
+                    ui.checkbox(&mut s.exact_faces, "Exact faces (GPU trimming)")
+                        .on_hover_text(
+                            "Faces drawn from their exact surfaces, tessellated to the \
+                             screen each frame and trimmed per pixel, instead of their meshes",
+                        );
                 });
                 ui.menu_button("Measure", |ui| {
                     ui.label("Keys: D distance, L edge length, R radius, A angle");

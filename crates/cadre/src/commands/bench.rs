@@ -339,6 +339,7 @@ fn bench_view(
         &target,
     )?;
     wait(&gpu)?;
+    let trim_triangles = renderer.last_trim_triangles(&gpu);
     let mut ms = Vec::new();
     for k in 1..=frames.max(1) {
         let t = Instant::now();
@@ -387,6 +388,7 @@ fn bench_view(
             "triangles": scene.assembly.instance_triangle_count(),
             "method": format!("{:?}", grid.1),
             "trimmed_faces": prepared.trimmed_faces(),
+            "trim_triangles": trim_triangles,
             "width": width,
             "height": height,
             "mode": format!("{mode:?}"),

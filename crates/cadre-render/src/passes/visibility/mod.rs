@@ -182,6 +182,14 @@ impl VisibilityPass {
         }
     }
 
+    /// Triangles the trim back-end drew the last frame with (see
+    /// [`trim::TrimBackend::last_triangles`]).
+    pub fn last_trim_triangles(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> u64 {
+        self.trim
+            .as_ref()
+            .map_or(0, |t| t.last_triangles(device, queue))
+    }
+
     /// Whether the trim back-end can draw (the adapter runs compute shaders).
     pub fn draws_trims(&self) -> bool {
         self.trim.is_some()

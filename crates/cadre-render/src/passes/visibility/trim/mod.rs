@@ -168,7 +168,7 @@ impl FrameTrim {
             args: written(
                 "trim draws",
                 16 * u64::from(count),
-                wgpu::BufferUsages::INDIRECT,
+                wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
             ),
             levels: written(
                 "trim levels",
@@ -193,6 +193,8 @@ pub(crate) struct TrimBackend {
     pipelines: [OnceLock<wgpu::RenderPipeline>; 4],
     /// Whether fragments are trimmed (off only for the tests' negative control).
     trim_test: bool,
+    /// The last frame's indirect draws and their count, for [`TrimBackend::last_triangles`].
+    last: std::sync::Mutex<Option<(wgpu::Buffer, u32)>>,
 }
 
 impl TrimBackend {
@@ -236,7 +238,40 @@ impl TrimBackend {
             tessellate_layout,
             pipelines: Default::default(),
             trim_test,
+            last: std::sync::Mutex::new(None),
         }
+    }
+
+    /// Triangles the last frame's trimmed faces were drawn with (every instance counted),
+    /// read back from its indirect draws (waits for the GPU); 0 when it had none.
+    pub fn last_triangles(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> u64 {
+        let Some((args, count)) = self.last.lock().unwrap_or_else(|e| e.into_inner()).clone()
+        else {
+            return 0;
+        };
+        let size = 16 * u64::from(count);
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("trim draws readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&args, 0, &readback, 0, size);
+        queue.submit([encoder.finish()]);
+        let slice = readback.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |_| {});
+        if device.poll(wgpu::PollType::wait_indefinitely()).is_err() {
+            return 0;
+        }
+        let Ok(view) = slice.get_mapped_range() else {
+            return 0;
+        };
+        let words: &[u32] = bytemuck::cast_slice(&view);
+        words
+            .chunks_exact(4)
+            .map(|d| u64::from(d[0] / 3) * u64::from(d[1]))
+            .sum()
     }
 
     /// Records the tessellation pass of a frame with trimmed faces.
@@ -266,6 +301,8 @@ impl TrimBackend {
             label: Some("trim tessellation"),
             timestamp_writes: None,
         });
+        *self.last.lock().unwrap_or_else(|e| e.into_inner()) =
+            Some((trim.args.clone(), trim.count));
         pass.set_pipeline(&self.tessellate);
         pass.set_bind_group(0, &bind, &[]);
         pass.set_bind_group(1, &inputs.scene.instances.bind, &[0]);

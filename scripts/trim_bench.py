@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""Frame time of the trim back-end against the mesh back-end (issue 16), in one run.
+
+Usage: python3 scripts/trim_bench.py --cadre CADRE --step STEP_DIR --out DIR
+           [--sizes 1920x1080,3840x2160] [--grids 1,10,36] [--frames 20] [--rounds 2]
+
+For each size, each grid (the corpus' largest assembly, trj4_pm2-ec-214: 32 parts and 801
+faces, placed GRID × GRID times; 36 × 36 is 1.04 M faces) and pr2db at grid 1, runs
+`cadre bench view --method mesh` and `--method trim` (shaded, the viewer's path: a kept
+viewport, 2° orbit a frame), interleaved over ROUNDS rounds, and writes DIR/trim_bench.jsonl
+(every raw figure) and DIR/trim_bench.md (medians and the trim / mesh ratio), flushing as it
+goes so that a run cut short still leaves what it measured.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import time
+
+FILES = [("trj4_pm2-ec-214.stp", None), ("pr2db.stp", [1])]
+
+
+def parse_args():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--cadre", required=True)
+    p.add_argument("--step", required=True)
+    p.add_argument("--out", required=True)
+    p.add_argument("--sizes", default="1920x1080,3840x2160")
+    p.add_argument("--grids", default="1,10,36")
+    p.add_argument("--frames", type=int, default=20)
+    p.add_argument("--rounds", type=int, default=2)
+    p.add_argument("--timeout", type=int, default=240, help="seconds per bench run")
+    return p.parse_args()
+
+
+def bench(args, path, grid, size, method):
+    cmd = [args.cadre, "bench", "view", path, "--grid", str(grid), "--size", size,
+           "--frames", str(args.frames), "--mode", "shaded", "--method", method]
+    t = time.time()
+    try:
+        run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
+    except subprocess.TimeoutExpired:
+        return {"error": f"timed out after {args.timeout} s"}
+    if run.returncode != 0:
+        return {"error": run.stderr.strip()[-400:]}
+    out = json.loads(run.stdout.strip().splitlines()[-1])
+    out["wall_s"] = time.time() - t
+    return out
+
+
+def main():
+    args = parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    jsonl = open(os.path.join(args.out, "trim_bench.jsonl"), "a")
+    md = open(os.path.join(args.out, "trim_bench.md"), "a")
+    md.write("| file | grid | size | mesh ms | trim ms | trim / mesh | faces drawn exactly |\n")
+    md.write("|---|---|---|---|---|---|---|\n")
+    md.flush()
+    grids = [int(g) for g in args.grids.split(",")]
+    for size in args.sizes.split(","):
+        for name, only in FILES:
+            path = os.path.join(args.step, name)
+            for grid in only or grids:
+                times = {"mesh": [], "trim": []}
+                faces = None
+                for _ in range(args.rounds):
+                    for method in ("mesh", "trim"):
+                        r = bench(args, path, grid, size, method)
+                        r.update({"name": name, "grid": grid, "size": size, "method": method})
+                        jsonl.write(json.dumps(r) + "\n")
+                        jsonl.flush()
+                        if "median_frame_ms" in r:
+                            times[method].append(r["median_frame_ms"])
+                            if method == "trim":
+                                faces = r.get("trimmed_faces")
+                med = {m: statistics.median(v) if v else float("nan") for m, v in times.items()}
+                md.write(f"| {name} | {grid} | {size} | {med['mesh']:.2f} | {med['trim']:.2f} | "
+                         f"{med['trim'] / med['mesh']:.2f} | {faces} per placement |\n")
+                md.flush()
+
+
+if __name__ == "__main__":
+    main()
