@@ -7,9 +7,12 @@ Usage: python3 scripts/trim_bench.py --cadre CADRE --step STEP_DIR --out DIR
 For each size, each grid (the corpus' largest assembly, trj4_pm2-ec-214: 32 parts and 801
 faces, placed GRID × GRID times; 36 × 36 is 1.04 M faces) and pr2db at grid 1, runs
 `cadre bench view --method mesh` and `--method trim` (shaded, the viewer's path: a kept
-viewport, 2° orbit a frame), interleaved over ROUNDS rounds, and writes DIR/trim_bench.jsonl
-(every raw figure) and DIR/trim_bench.md (medians and the trim / mesh ratio), flushing as it
-goes so that a run cut short still leaves what it measured.
+viewport, 2° orbit a frame), and the trim back-end with its per-fragment trim test off
+(`--trim-variant no-test`) and with its geometry at its least (`--trim-variant least`: one
+grid cell per knot span), which separate the costs; interleaved over ROUNDS rounds. Writes
+DIR/trim_bench.jsonl (every raw figure) and DIR/trim_bench.md (medians, the trim / mesh
+ratio and the triangles the trim back-end drew), flushing as it goes so that a run cut short
+still leaves what it measured.
 """
 import argparse
 import json
@@ -34,9 +37,13 @@ def parse_args():
     return p.parse_args()
 
 
-def bench(args, path, grid, size, method):
+RUNS = [("mesh", "full"), ("trim", "full"), ("trim", "no-test"), ("trim", "least")]
+
+
+def bench(args, path, grid, size, method, variant):
     cmd = [args.cadre, "bench", "view", path, "--grid", str(grid), "--size", size,
-           "--frames", str(args.frames), "--mode", "shaded", "--method", method]
+           "--frames", str(args.frames), "--mode", "shaded", "--method", method,
+           "--trim-variant", variant]
     t = time.time()
     try:
         run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
@@ -54,29 +61,36 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     jsonl = open(os.path.join(args.out, "trim_bench.jsonl"), "a")
     md = open(os.path.join(args.out, "trim_bench.md"), "a")
-    md.write("| file | grid | size | mesh ms | trim ms | trim / mesh | faces drawn exactly |\n")
-    md.write("|---|---|---|---|---|---|---|\n")
+    md.write("| file | grid | size | mesh ms | trim ms | trim / mesh | trim, no trim test | "
+             "trim, least geometry | trim triangles (mesh's) | faces drawn exactly |\n")
+    md.write("|---|---|---|---|---|---|---|---|---|---|\n")
     md.flush()
     grids = [int(g) for g in args.grids.split(",")]
     for size in args.sizes.split(","):
         for name, only in FILES:
             path = os.path.join(args.step, name)
             for grid in only or grids:
-                times = {"mesh": [], "trim": []}
-                faces = None
+                times = {run: [] for run in RUNS}
+                faces, triangles, mesh_triangles = None, None, None
                 for _ in range(args.rounds):
-                    for method in ("mesh", "trim"):
-                        r = bench(args, path, grid, size, method)
-                        r.update({"name": name, "grid": grid, "size": size, "method": method})
+                    for method, variant in RUNS:
+                        r = bench(args, path, grid, size, method, variant)
+                        r.update({"name": name, "grid": grid, "size": size, "method": method,
+                                  "variant": variant})
                         jsonl.write(json.dumps(r) + "\n")
                         jsonl.flush()
                         if "median_frame_ms" in r:
-                            times[method].append(r["median_frame_ms"])
-                            if method == "trim":
+                            times[(method, variant)].append(r["median_frame_ms"])
+                            if (method, variant) == ("trim", "full"):
                                 faces = r.get("trimmed_faces")
-                med = {m: statistics.median(v) if v else float("nan") for m, v in times.items()}
-                md.write(f"| {name} | {grid} | {size} | {med['mesh']:.2f} | {med['trim']:.2f} | "
-                         f"{med['trim'] / med['mesh']:.2f} | {faces} per placement |\n")
+                                triangles = r.get("trim_triangles")
+                                mesh_triangles = r.get("triangles")
+                med = {k: statistics.median(v) if v else float("nan") for k, v in times.items()}
+                mesh, trim = med[("mesh", "full")], med[("trim", "full")]
+                md.write(f"| {name} | {grid} | {size} | {mesh:.2f} | {trim:.2f} | "
+                         f"{trim / mesh:.2f} | {med[('trim', 'no-test')]:.2f} | "
+                         f"{med[('trim', 'least')]:.2f} | {triangles} ({mesh_triangles}) | "
+                         f"{faces} per placement |\n")
                 md.flush()
 
 

@@ -98,8 +98,13 @@ impl Gpu {
         let downlevel = adapter.get_downlevel_capabilities().flags;
         let read_only_depth = downlevel.contains(wgpu::DownlevelFlags::READ_ONLY_DEPTH_STENCIL);
         // The edges' compute rasterizer binds five storage buffers (segments, selection,
-        // coverage, records, locals): one more than the downlevel default.
-        let storage_buffers = adapter.limits().max_storage_buffers_per_shader_stage.min(8);
+        // coverage, records, locals): one more than the downlevel default; the trim
+        // back-end's vertex stage ten (`passes::visibility::trim::STORAGE_BUFFERS`;
+        // lavapipe allows 32).
+        let storage_buffers = adapter
+            .limits()
+            .max_storage_buffers_per_shader_stage
+            .min(16);
         let compute =
             downlevel.contains(wgpu::DownlevelFlags::COMPUTE_SHADERS) && storage_buffers >= 5;
         let mut required_limits =

@@ -179,9 +179,21 @@ impl Renderer {
     /// untrimmed: wrong wherever a face's box holds more than the face. Only for the tests'
     /// negative control, which must see it disagree with the CPU ray caster.
     #[doc(hidden)]
-    pub fn without_trim_test(mut self, gpu: &Gpu) -> Renderer {
+    pub fn without_trim_test(self, gpu: &Gpu) -> Renderer {
+        self.with_trim_variant(gpu, false, 256)
+    }
+
+    /// This renderer with the trim back-end's fragments trimmed or not (`trim_test`) and its
+    /// grids within `max_level` lines each way (256 by default; 1 leaves the geometry at its
+    /// least): for the benchmarks that separate the back-end's costs.
+    #[doc(hidden)]
+    pub fn with_trim_variant(mut self, gpu: &Gpu, trim_test: bool, max_level: u32) -> Renderer {
+        let variant = crate::passes::visibility::trim::TrimVariant {
+            trim_test,
+            max_level,
+        };
         self.visibility
-            .set_trim_test(&gpu.device, &self.instances, false);
+            .set_trim_variant(&gpu.device, &self.instances, variant);
         self
     }
 

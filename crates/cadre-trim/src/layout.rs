@@ -78,6 +78,18 @@ pub struct TrimBuffers {
     pub lists: Vec<u32>,
 }
 
+/// What a tree says of a cell of the (u, v) domain as a whole
+/// ([`TrimBuffers::classify_cell`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CellClass {
+    /// No point of the cell is on the face.
+    Out,
+    /// Every point of the cell is on the face.
+    In,
+    /// Some may be and some not, or the tree does not say without a finer look.
+    Crossed,
+}
+
 /// Why a tree does not fit the layout.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum LayoutError {
@@ -193,6 +205,87 @@ impl TrimBuffers {
     /// each on the GPU).
     pub fn bytes(&self) -> usize {
         4 * (self.nodes.len() + self.floats.len() + self.lists.len()) + 32 * self.faces.len()
+    }
+
+    /// What the tree of face `face` says of the face-local cell `lo`..`hi` as a whole (as
+    /// `trim_cell` in trim.wgsl, its GPU twin): the walk follows the cell down while one
+    /// child holds it; at a constant leaf it knows, at another leaf it knows when none of
+    /// the leaf's pieces meets the cell (their control points' box misses it: the boundary
+    /// does not enter the cell, so its centre answers for all); anything else is
+    /// [`CellClass::Crossed`].
+    pub fn classify_cell(&self, face: usize, lo: [f32; 2], hi: [f32; 2]) -> CellClass {
+        let f = self.faces[face];
+        if hi[0] < 0.0 || hi[1] < 0.0 || lo[0] > f.size[0] || lo[1] > f.size[1] {
+            return CellClass::Out;
+        }
+        if lo[0] < 0.0 || lo[1] < 0.0 || hi[0] > f.size[0] || hi[1] > f.size[1] {
+            return CellClass::Crossed;
+        }
+        let (mut nlo, mut nhi) = ([0.0f32; 2], f.size);
+        let mut index = f.nodes as usize;
+        for _ in 0..=crate::quadtree::MAX_DEPTH {
+            let word = self.nodes[index];
+            let payload = word & PAYLOAD;
+            let pieces: Vec<u32> = match word >> 29 {
+                KIND_CONSTANT if payload != 0 => return CellClass::In,
+                KIND_CONSTANT => return CellClass::Out,
+                KIND_SPLIT => Vec::new(),
+                KIND_ONE => vec![payload],
+                KIND_TWO => {
+                    let r = payload as usize;
+                    vec![self.floats[r + 3].to_bits(), self.floats[r + 4].to_bits()]
+                }
+                _ => {
+                    let at = payload as usize;
+                    let count = self.lists[at] as usize;
+                    self.lists[at + 2..at + 2 + count].to_vec()
+                }
+            };
+            if word >> 29 != KIND_SPLIT {
+                if pieces.iter().any(|&k| self.piece_meets(f, k, lo, hi)) {
+                    return CellClass::Crossed;
+                }
+                let centre = f.origin
+                    + Uv::new(
+                        f64::from(0.5 * (lo[0] + hi[0])),
+                        f64::from(0.5 * (lo[1] + hi[1])),
+                    );
+                return if self.classify(face, centre) {
+                    CellClass::In
+                } else {
+                    CellClass::Out
+                };
+            }
+            let mid = [0.5 * (nlo[0] + nhi[0]), 0.5 * (nlo[1] + nhi[1])];
+            let right = [lo[0] >= mid[0], lo[1] >= mid[1]];
+            let left = [hi[0] <= mid[0], hi[1] <= mid[1]];
+            if !((right[0] || left[0]) && (right[1] || left[1])) {
+                return CellClass::Crossed;
+            }
+            index = f.nodes as usize
+                + (word & PAYLOAD) as usize
+                + usize::from(right[0])
+                + 2 * usize::from(right[1]);
+            for a in 0..2 {
+                if right[a] {
+                    nlo[a] = mid[a];
+                } else {
+                    nhi[a] = mid[a];
+                }
+            }
+        }
+        CellClass::Crossed
+    }
+
+    /// Whether piece `k` of face `f` may meet the face-local cell `lo`..`hi`: its control
+    /// points' box does.
+    fn piece_meets(&self, f: FaceRecord, k: u32, lo: [f32; 2], hi: [f32; 2]) -> bool {
+        let at = (self.piece_offsets[(f.pieces + k) as usize] & PIECE_OFFSET) as usize;
+        let c = &self.floats[at..at + PIECE_FLOATS];
+        (0..2).all(|a| {
+            let (x0, x1, x2) = (c[a], c[2 + a], c[4 + a]);
+            x0.min(x1).min(x2) <= hi[a] && x0.max(x1).max(x2) >= lo[a]
+        })
     }
 
     /// Whether `p` is on face `face`, read from the words as the GPU reads them (`f32`).

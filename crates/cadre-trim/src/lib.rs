@@ -32,7 +32,7 @@ pub mod quad;
 pub mod quadtree;
 
 pub use fit::{UvTolerance, fit_points};
-pub use layout::{FaceRecord, LayoutError, TrimBuffers};
+pub use layout::{CellClass, FaceRecord, LayoutError, TrimBuffers};
 pub use model::{ModelTrees, TrimStats, model_trees};
 pub use quad::{Implicit, QuadPiece};
 pub use quadtree::{Leaf, Node, TrimTree};

@@ -94,6 +94,77 @@ fn trim_crossings(f: TrimFace, record: u32, q: vec2<f32>, hi: vec2<f32>) -> bool
     return odd;
 }
 
+// What the tree says of the face-local cell `lo`..`hi` as a whole (`TrimBuffers::
+// classify_cell` is its CPU twin): TRIM_CELL_OUT (no point of it on the face), TRIM_CELL_IN
+// (every point on it), or TRIM_CELL_CROSSED (either, or not known without a finer look): the
+// walk follows the cell down while one child holds it; at a constant leaf it knows, at
+// another leaf it knows when none of the leaf's pieces meets the cell (their control points'
+// box misses it: the boundary does not enter the cell, so its centre answers for all).
+const TRIM_CELL_OUT: u32 = 0u;
+const TRIM_CELL_IN: u32 = 1u;
+const TRIM_CELL_CROSSED: u32 = 2u;
+
+fn trim_cell(face: u32, cell_lo: vec2<f32>, cell_hi: vec2<f32>) -> u32 {
+    let f = trim_faces[face];
+    if any(cell_hi < vec2<f32>(0.0)) || any(cell_lo > f.size) {
+        return TRIM_CELL_OUT;
+    }
+    if any(cell_lo < vec2<f32>(0.0)) || any(cell_hi > f.size) {
+        return TRIM_CELL_CROSSED;
+    }
+    var lo = vec2<f32>(0.0);
+    var hi = f.size;
+    var index = f.nodes;
+    for (var step = 0u; step < TRIM_MAX_STEPS; step++) {
+        let word = trim_nodes[index];
+        let kind = word >> 29u;
+        let payload = word & TRIM_PAYLOAD;
+        if kind == TRIM_KIND_CONSTANT {
+            return select(TRIM_CELL_OUT, TRIM_CELL_IN, payload != 0u);
+        }
+        if kind != TRIM_KIND_SPLIT {
+            var meets = false;
+            if kind == TRIM_KIND_ONE {
+                meets = trim_piece_meets(f, payload, cell_lo, cell_hi);
+            } else if kind == TRIM_KIND_TWO {
+                meets = trim_piece_meets(f, bitcast<u32>(trim_floats[payload + 3u]), cell_lo, cell_hi)
+                    || trim_piece_meets(f, bitcast<u32>(trim_floats[payload + 4u]), cell_lo, cell_hi);
+            } else {
+                let count = trim_lists[payload];
+                for (var i = 0u; i < min(count, arrayLength(&trim_lists)); i++) {
+                    meets = meets || trim_piece_meets(f, trim_lists[payload + 2u + i], cell_lo, cell_hi);
+                }
+            }
+            if meets {
+                return TRIM_CELL_CROSSED;
+            }
+            let inside = trim_classify(face, 0.5 * (cell_lo + cell_hi));
+            return select(TRIM_CELL_OUT, TRIM_CELL_IN, inside);
+        }
+        let mid = 0.5 * (lo + hi);
+        let right = cell_lo >= mid;
+        let left = cell_hi <= mid;
+        if !all(right | left) {
+            return TRIM_CELL_CROSSED;
+        }
+        index = f.nodes + (word & TRIM_PAYLOAD) + select(0u, 1u, right.x) + select(0u, 2u, right.y);
+        lo = select(lo, mid, right);
+        hi = select(mid, hi, right);
+    }
+    return TRIM_CELL_CROSSED;
+}
+
+// Whether piece `k` of `f` may meet the cell `lo`..`hi`: its control points' box does.
+fn trim_piece_meets(f: TrimFace, k: u32, lo: vec2<f32>, hi: vec2<f32>) -> bool {
+    let at = trim_piece_offsets[f.pieces + k] & TRIM_PIECE_OFFSET;
+    let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
+    let c1 = vec2<f32>(trim_floats[at + 2u], trim_floats[at + 3u]);
+    let c2 = vec2<f32>(trim_floats[at + 4u], trim_floats[at + 5u]);
+    let box_lo = min(c0, min(c1, c2));
+    let box_hi = max(c0, max(c1, c2));
+    return all(box_lo <= hi) & all(box_hi >= lo);
+}
+
 // Whether the face-local point `q` lies on face `face`.
 fn trim_classify(face: u32, q: vec2<f32>) -> bool {
     return trim_classify_within(face, q, vec2<f32>(0.0));

@@ -8,7 +8,7 @@
 mod common;
 
 use cadre_trim::layout::{KIND_CONSTANT, PAYLOAD, PIECE_NEGATIVE};
-use cadre_trim::{QuadPiece, TrimBuffers, TrimTree, Uv, UvTolerance, fit_points};
+use cadre_trim::{CellClass, QuadPiece, TrimBuffers, TrimTree, Uv, UvTolerance, fit_points};
 use common::{even_odd, to_boundary};
 use proptest::prelude::*;
 use std::f64::consts::TAU;
@@ -62,6 +62,63 @@ fn face(radii: &[f64], (angle, holes): (f64, &[f64]), stretch: Uv) -> Face {
 
 fn pieces(face: &Face, tol: UvTolerance) -> Vec<QuadPiece> {
     face.runs.iter().flat_map(|r| fit_points(r, tol)).collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// A cell the packed tree calls in (out) has every one of its points on (off) the face
+    /// by the point classifier; cells of every size are asked, and some get an answer.
+    #[test]
+    fn a_cell_called_in_or_out_is_so_at_every_point(
+        radii in prop::collection::vec(0.35..1.0f64, 3..12),
+        angle in 0.0..TAU,
+        holes in prop::collection::vec(0.02..0.06f64, 0..3),
+        cells in prop::collection::vec((0.0..1.0f64, 0.0..1.0f64, 1..7u32), 200),
+    ) {
+        let tol = UvTolerance { u: 1e-4, v: 1e-4 };
+        let f = face(&radii, (angle, &holes), Uv::ONE);
+        let mut buffers = TrimBuffers::default();
+        let at = buffers.push(&TrimTree::build(&pieces(&f, tol))).unwrap();
+        let record = buffers.faces[at];
+        let size = [f64::from(record.size[0]), f64::from(record.size[1])];
+        let mut known = 0;
+        for (x, y, depth) in cells {
+            // A cell of 1/2^depth of the box, anywhere (not aligned with the tree's).
+            let w = [size[0] / f64::from(1u32 << depth), size[1] / f64::from(1u32 << depth)];
+            let lo = [x * (size[0] - w[0]), y * (size[1] - w[1])];
+            let hi = [lo[0] + w[0], lo[1] + w[1]];
+            let class = buffers.classify_cell(
+                at,
+                [lo[0] as f32, lo[1] as f32],
+                [hi[0] as f32, hi[1] as f32],
+            );
+            if class == CellClass::Crossed {
+                continue;
+            }
+            known += 1;
+            for i in 0..=6 {
+                for j in 0..=6 {
+                    let p = record.origin
+                        + Uv::new(
+                            lo[0] + w[0] * f64::from(i) / 6.0,
+                            lo[1] + w[1] * f64::from(j) / 6.0,
+                        );
+                    prop_assert_eq!(
+                        buffers.classify(at, p),
+                        class == CellClass::In,
+                        "{:?} cell {:?}..{:?} at {}", class, lo, hi, p
+                    );
+                }
+            }
+        }
+        prop_assert!(known > 0, "no cell was known");
+        // Negative control: the whole box crosses the boundary.
+        prop_assert_eq!(
+            buffers.classify_cell(at, [0.0; 2], record.size),
+            CellClass::Crossed
+        );
+    }
 }
 
 proptest! {

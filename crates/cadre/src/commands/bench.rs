@@ -82,7 +82,22 @@ enum BenchWhat {
         /// How faces are drawn (as `cadre render --method`).
         #[arg(long, default_value = "mesh", value_enum)]
         method: crate::commands::render::Method,
+        /// The trim back-end with a part switched off, to separate its costs: `no-test`
+        /// (fragments not trimmed), `least` (one grid cell per span and face).
+        #[arg(long, default_value = "full", value_enum)]
+        trim_variant: TrimVariant,
     },
+}
+
+/// `cadre bench view --trim-variant`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum TrimVariant {
+    /// As drawn.
+    Full,
+    /// Fragments not tested against their trees.
+    NoTest,
+    /// One grid cell per knot span each way.
+    Least,
 }
 
 fn step_files(path: &Path) -> Result<Vec<PathBuf>> {
@@ -116,7 +131,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             frames,
             mode,
             method,
-        } => bench_view(file, (*grid, *method), *size, *frames, *mode),
+            trim_variant,
+        } => bench_view(file, (*grid, *method, *trim_variant), *size, *frames, *mode),
         BenchWhat::Trim { path, tolerance } => {
             for file in step_files(path)? {
                 println!("{}", bench_trim(&file, *tolerance));
@@ -272,7 +288,7 @@ fn median(values: &[f64]) -> f64 {
 /// `cadre bench view`: see [`BenchWhat::View`].
 fn bench_view(
     file: &Path,
-    grid: (u32, crate::commands::render::Method),
+    (grid, method, variant): (u32, crate::commands::render::Method, TrimVariant),
     (width, height): (u32, u32),
     frames: u32,
     mode: cadre_render::DisplayMode,
@@ -282,11 +298,15 @@ fn bench_view(
     };
     use glam::{DQuat, DVec3};
 
-    let (scene, lo, hi) = grid_scene(file, grid)?;
+    let (scene, lo, hi) = grid_scene(file, (grid, method))?;
     let aspect = f64::from(width) / f64::from(height);
     let fitted = Camera::fit(lo, hi, ViewPreset::Iso, false, aspect);
     let gpu = Gpu::headless()?;
-    let renderer = Renderer::new(&gpu)?;
+    let renderer = match variant {
+        TrimVariant::Full => Renderer::new(&gpu)?,
+        TrimVariant::NoTest => Renderer::new(&gpu)?.with_trim_variant(&gpu, false, 256),
+        TrimVariant::Least => Renderer::new(&gpu)?.with_trim_variant(&gpu, true, 1),
+    };
     let t0 = Instant::now();
     let prepared = renderer.prepare(&gpu, &scene);
     let upload_ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -386,7 +406,8 @@ fn bench_view(
             "backend": format!("{:?}", gpu.info.backend),
             "instances": prepared.instance_count(),
             "triangles": scene.assembly.instance_triangle_count(),
-            "method": format!("{:?}", grid.1),
+            "method": format!("{method:?}"),
+            "trim_variant": format!("{variant:?}"),
             "trimmed_faces": prepared.trimmed_faces(),
             "trim_triangles": trim_triangles,
             "width": width,

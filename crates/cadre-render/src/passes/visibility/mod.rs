@@ -168,7 +168,7 @@ impl VisibilityPass {
     /// Builds every back-end's pipelines (the see-through ones for a `colour` target of that
     /// format).
     /// The trim back-end is built only where `compute` (`Gpu::compute`, which `instances`
-    /// was made for).
+    /// was made for) and the device binds its storage buffers.
     pub fn new(
         device: &wgpu::Device,
         colour: wgpu::TextureFormat,
@@ -177,7 +177,9 @@ impl VisibilityPass {
     ) -> VisibilityPass {
         VisibilityPass {
             mesh: mesh::MeshBackend::new(device, colour, instances),
-            trim: compute.then(|| trim::TrimBackend::new(device, instances, true)),
+            trim: (compute
+                && device.limits().max_storage_buffers_per_shader_stage >= trim::STORAGE_BUFFERS)
+                .then(|| trim::TrimBackend::new(device, instances, trim::TrimVariant::default())),
             analytic: analytic::AnalyticBackend::new(device, colour),
         }
     }
@@ -195,16 +197,16 @@ impl VisibilityPass {
         self.trim.is_some()
     }
 
-    /// This pass with the trim back-end's fragments trimmed or not (the tests' negative
-    /// control: every face drawn over its whole (u, v) box).
-    pub fn set_trim_test(
+    /// This pass with the trim back-end drawing `variant` (the tests' negative control, the
+    /// benchmarks that separate its costs).
+    pub fn set_trim_variant(
         &mut self,
         device: &wgpu::Device,
         instances: &crate::passes::instances::InstanceLayout,
-        on: bool,
+        variant: trim::TrimVariant,
     ) {
         if self.trim.is_some() {
-            self.trim = Some(trim::TrimBackend::new(device, instances, on));
+            self.trim = Some(trim::TrimBackend::new(device, instances, variant));
         }
     }
 

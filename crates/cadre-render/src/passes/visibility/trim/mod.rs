@@ -43,6 +43,10 @@ pub(crate) const TESSELLATE_BINDINGS: &[Binding] = &[
     Binding::Storage("f32"),
 ];
 
+/// Storage buffers the render shader's stages bind (its group 0's eight and the instances'
+/// two): an adapter allowing fewer per stage draws every face from its mesh.
+pub(crate) const STORAGE_BUFFERS: u32 = 10;
+
 /// Vertices reserved for each face of a draw: 6 a cell of the largest grid, 256 × 256 cells
 /// (`TRIM_VERTICES` in surface.wgsl).
 pub(crate) const TRIM_VERTICES: u32 = 6 * 256 * 256;
@@ -181,6 +185,25 @@ impl FrameTrim {
     }
 }
 
+/// How the back-end draws: as it should (the default), or with a part switched off, for the
+/// tests' negative control and the benchmarks that separate its costs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TrimVariant {
+    /// Fragments are tested against their trees (off: every face drawn over its whole box).
+    pub trim_test: bool,
+    /// Grid lines a face may have each way (256; 1 leaves the geometry at its least).
+    pub max_level: u32,
+}
+
+impl Default for TrimVariant {
+    fn default() -> Self {
+        TrimVariant {
+            trim_test: true,
+            max_level: 256,
+        }
+    }
+}
+
 /// The back-end's pipelines: the tessellation pass, and the render pipelines per variant
 /// (sections, (u, v) target), built on first use.
 pub(crate) struct TrimBackend {
@@ -199,18 +222,13 @@ pub(crate) struct TrimBackend {
 
 impl TrimBackend {
     /// Compiles both shaders and the tessellation pipeline (`instances` must be visible to
-    /// compute shaders).
-    pub fn new(device: &wgpu::Device, instances: &InstanceLayout, trim_test: bool) -> Self {
+    /// compute shaders); `variant`: see [`TrimVariant`].
+    pub fn new(device: &wgpu::Device, instances: &InstanceLayout, variant: TrimVariant) -> Self {
+        let trim_test = variant.trim_test;
         let module = shader(device, "visibility trim", &source());
-        // Each buffer is visible to the stage that reads it: the levels to the vertex stage,
-        // the trees to the fragment stage (a stage may bind 8 storage buffers, the instances'
-        // two included).
-        let mut group = entries(BINDINGS, wgpu::ShaderStages::VERTEX_FRAGMENT);
-        group[2].visibility = wgpu::ShaderStages::VERTEX;
-        for entry in &mut group[3..8] {
-            entry.visibility = wgpu::ShaderStages::FRAGMENT;
-        }
-        group[8].visibility = wgpu::ShaderStages::VERTEX;
+        // Both stages read the trees (the vertex stage classifies each grid cell, the
+        // fragment stage each crossed cell's pixels).
+        let group = entries(BINDINGS, wgpu::ShaderStages::VERTEX_FRAGMENT);
         let (layout, pipeline_layout) = layouts(device, "visibility trim", &group, Some(instances));
         let compute = shader(device, "trim tessellation", &tessellate_source());
         let (tessellate_layout, tessellate_pipeline_layout) = layouts(
@@ -225,7 +243,11 @@ impl TrimBackend {
             module: &compute,
             entry_point: Some("cs_main"),
             compilation_options: wgpu::PipelineCompilationOptions {
-                constants: &[("TOLERANCE_PX", TOLERANCE_PX)],
+                constants: &[
+                    ("TOLERANCE_PX", TOLERANCE_PX),
+                    ("MAX_LEVEL", f64::from(variant.max_level.clamp(1, 256))),
+                    ("MIN_LEVEL", f64::from(variant.max_level.clamp(1, 4))),
+                ],
                 ..Default::default()
             },
             cache: None,

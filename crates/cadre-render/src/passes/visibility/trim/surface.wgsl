@@ -32,9 +32,8 @@ const SURFACE_CONE: u32 = 2u;
 const SURFACE_SPHERE: u32 = 3u;
 
 // Vertices reserved for each face of a draw (`trim::TRIM_VERTICES`): 6 per cell of the
-// largest grid, `TRIM_MAX_LEVEL`² cells.
+// largest grid, 256² cells (tessellate.wgsl's `MAX_LEVEL` at most).
 const TRIM_VERTICES: u32 = 393216u;
-const TRIM_MAX_LEVEL: f32 = 256.0;
 
 // `TrimFaceSurface::breaks` of a face drawn as one span each way.
 const NO_BREAKS: u32 = 0xffffffffu;

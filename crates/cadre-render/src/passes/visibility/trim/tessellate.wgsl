@@ -19,6 +19,12 @@
 
 // The tessellation's tolerance, in pixels.
 override TOLERANCE_PX: f32 = 0.5;
+// Grid lines a face may have each way (at most 256: `TRIM_VERTICES`); lower only for the
+// benchmarks that separate the costs of the geometry from the others.
+override MAX_LEVEL: f32 = 256.0;
+// Grid lines a face has each way at least: cells wholly on the face skip the per-fragment
+// trim test, so even a plane is cut into a few (its 2 triangles would all be crossed).
+override MIN_LEVEL: f32 = 4.0;
 // Calls with more instances than this are not walked one by one: their nearest distance is
 // the task's `near` (from the runs' bounding spheres), and they are not culled here.
 const WALK: u32 = 64u;
@@ -81,11 +87,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             size[axis] = max(size[axis], w);
         }
     }
-    // Cells a span may hold so that the grid stays within TRIM_MAX_LEVEL lines.
-    let most = max(floor(vec2<f32>(TRIM_MAX_LEVEL) / vec2<f32>(spans)), vec2<f32>(1.0));
+    // Cells a span may hold so that the grid stays within MAX_LEVEL lines.
+    let most = max(floor(vec2<f32>(MAX_LEVEL) / vec2<f32>(spans)), vec2<f32>(1.0));
     // A quarter of the error for each pure term, then both levels raised together until the
     // mixed one fits too.
-    var n = max(ceil(size * sqrt(m.xz / (2.0 * eps))), vec2<f32>(1.0));
+    let least = max(ceil(vec2<f32>(MIN_LEVEL) / vec2<f32>(spans)), vec2<f32>(1.0));
+    var n = max(ceil(size * sqrt(m.xz / (2.0 * eps))), least);
     n = min(n, most);
     let h = size / n;
     let e = (h.x * h.x * m.x + 2.0 * h.x * h.y * m.y + h.y * h.y * m.z) / 8.0;

@@ -27,6 +27,9 @@ struct TrimOut {
     @location(4) world: vec3<f32>,
     // The face's outward normal against the view ray: negative where it faces the eye.
     @location(5) facing: f32,
+    // Whether the fragment must be tested against the tree: its cell is crossed by the trim
+    // (cells wholly on the face are not tested, those wholly off it are not drawn).
+    @location(6) @interpolate(flat) crossed: u32,
 }
 
 @vertex
@@ -45,8 +48,19 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     // Corners (0, 0), (1, 0), (1, 1), (0, 0), (1, 1), (0, 1) of the cell, as bit masks.
     let corner = local_vertex % 6u;
     let step = vec2<u32>((22u >> corner) & 1u, (52u >> corner) & 1u);
-    let grid = vec2<u32>(cell % lines.x, cell / lines.x) + step;
+    let first = vec2<u32>(cell % lines.x, cell / lines.x);
+    let grid = first + step;
     let local = vec2<f32>(grid_param(s, spans, 0u, grid.x, per.x), grid_param(s, spans, 1u, grid.y, per.y));
+    // The cell against the tree, the same at its six corners.
+    var verdict = TRIM_CELL_CROSSED;
+    if TRIM_TEST {
+        let cell_lo = vec2<f32>(grid_param(s, spans, 0u, first.x, per.x), grid_param(s, spans, 1u, first.y, per.y));
+        let cell_hi = vec2<f32>(
+            grid_param(s, spans, 0u, first.x + 1u, per.x),
+            grid_param(s, spans, 1u, first.y + 1u, per.y),
+        );
+        verdict = trim_cell(s.ids.z, cell_lo, cell_hi);
+    }
     let point = face_point(s, s.uv.xy + local);
     let d = instance_draw(instance);
     let normal = point.normal * s.axis_y.w;
@@ -61,6 +75,11 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
     let world_normal = (d.model * vec4<f32>(normal, 0.0)).xyz;
     out.facing = dot(world_normal, select(placed.world, frame.forward.xyz, ortho));
+    out.crossed = select(0u, 1u, verdict == TRIM_CELL_CROSSED);
+    // A cell wholly off the face: every corner at the same point, out of the view.
+    if verdict == TRIM_CELL_OUT {
+        out.clip = vec4<f32>(2.0, 2.0, 2.0, 1.0);
+    }
     return out;
 }
 
@@ -69,7 +88,7 @@ fn fs_main(in: TrimOut) -> VisibilityOut {
     // The pixel's footprint in (u, v), before any discard (derivatives need every lane).
     let footprint = fwidth(in.local);
     let s = surfaces[in.surface];
-    if TRIM_TEST && !trim_classify_within(s.ids.z, in.local, footprint) {
+    if TRIM_TEST && (in.crossed != 0u) && !trim_classify_within(s.ids.z, in.local, footprint) {
         discard;
     }
     if SECTIONS && section_cut(in.world) {
