@@ -8,8 +8,9 @@ For each size, each grid (the corpus' largest assembly, trj4_pm2-ec-214: 32 part
 faces, placed GRID × GRID times; 36 × 36 is 1.04 M faces) and pr2db at grid 1, runs
 `cadre bench view --method mesh` and `--method trim` (shaded, the viewer's path: a kept
 viewport, 2° orbit a frame), and the trim back-end with its per-fragment trim test off
-(`--trim-variant no-test`) and with its geometry at its least (`--trim-variant least`: one
-grid cell per knot span), which separate the costs; interleaved over ROUNDS rounds. Writes
+(`--trim-variant no-test`), with its geometry at its least (`--trim-variant least`: one
+grid cell per knot span) and with its surfaces evaluated by the vertex shader
+(`--trim-variant vertex-eval`), which separate the costs; interleaved over ROUNDS rounds. Writes
 DIR/trim_bench.jsonl (every raw figure) and DIR/trim_bench.md (medians, the trim / mesh
 ratio and the triangles the trim back-end drew), flushing as it goes so that a run cut short
 still leaves what it measured.
@@ -37,7 +38,8 @@ def parse_args():
     return p.parse_args()
 
 
-RUNS = [("mesh", "full"), ("trim", "full"), ("trim", "no-test"), ("trim", "least")]
+RUNS = [("mesh", "full"), ("trim", "full"), ("trim", "no-test"), ("trim", "least"),
+        ("trim", "vertex-eval")]
 
 
 def bench(args, path, grid, size, method, variant):
@@ -62,8 +64,9 @@ def main():
     jsonl = open(os.path.join(args.out, "trim_bench.jsonl"), "a")
     md = open(os.path.join(args.out, "trim_bench.md"), "a")
     md.write("| file | grid | size | mesh ms | trim ms | trim / mesh | trim, no trim test | "
-             "trim, least geometry | trim triangles (mesh's) | faces drawn exactly |\n")
-    md.write("|---|---|---|---|---|---|---|---|---|---|\n")
+             "trim, least geometry | trim, surfaces evaluated per vertex | "
+             "trim triangles (mesh's) | faces drawn exactly |\n")
+    md.write("|---|---|---|---|---|---|---|---|---|---|---|\n")
     md.flush()
     grids = [int(g) for g in args.grids.split(",")]
     for size in args.sizes.split(","):
@@ -89,7 +92,8 @@ def main():
                 mesh, trim = med[("mesh", "full")], med[("trim", "full")]
                 md.write(f"| {name} | {grid} | {size} | {mesh:.2f} | {trim:.2f} | "
                          f"{trim / mesh:.2f} | {med[('trim', 'no-test')]:.2f} | "
-                         f"{med[('trim', 'least')]:.2f} | {triangles} ({mesh_triangles}) | "
+                         f"{med[('trim', 'least')]:.2f} | {med[('trim', 'vertex-eval')]:.2f} | "
+                         f"{triangles} ({mesh_triangles}) | "
                          f"{faces} per placement |\n")
                 md.flush()
 

@@ -180,17 +180,23 @@ impl Renderer {
     /// negative control, which must see it disagree with the CPU ray caster.
     #[doc(hidden)]
     pub fn without_trim_test(self, gpu: &Gpu) -> Renderer {
-        self.with_trim_variant(gpu, false, 256)
+        self.with_trim_variant(gpu, (false, 256, true))
     }
 
-    /// This renderer with the trim back-end's fragments trimmed or not (`trim_test`) and its
+    /// This renderer with the trim back-end's fragments trimmed or not (`trim_test`), its
     /// grids within `max_level` lines each way (256 by default; 1 leaves the geometry at its
-    /// least): for the benchmarks that separate the back-end's costs.
+    /// least), its grid points evaluated in compute or by the vertex shader (`grid_points`
+    /// off): for the benchmarks that separate the back-end's costs and the tests of each way.
     #[doc(hidden)]
-    pub fn with_trim_variant(mut self, gpu: &Gpu, trim_test: bool, max_level: u32) -> Renderer {
+    pub fn with_trim_variant(
+        mut self,
+        gpu: &Gpu,
+        (trim_test, max_level, grid_points): (bool, u32, bool),
+    ) -> Renderer {
         let variant = crate::passes::visibility::trim::TrimVariant {
             trim_test,
             max_level,
+            grid_points,
         };
         self.visibility
             .set_trim_variant(&gpu.device, &self.instances, variant);

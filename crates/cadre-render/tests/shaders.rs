@@ -239,6 +239,10 @@ fn naga_bindings(module: &naga::Module, group: u32) -> Result<Vec<(u32, Binding)
                 size: naga::VectorSize::Quad,
                 scalar: naga::Scalar::U32,
             } => Ok("vec4<u32>"),
+            naga::TypeInner::Vector {
+                size: naga::VectorSize::Quad,
+                scalar: naga::Scalar::F32,
+            } => Ok("vec4<f32>"),
             naga::TypeInner::Scalar(naga::Scalar::U32) => Ok("u32"),
             naga::TypeInner::Scalar(naga::Scalar::F32) => Ok("f32"),
             ref other => Err(format!("unnamed binding type {other:?}")),

@@ -128,6 +128,11 @@ fn trimmed_faces_agree_with_the_exact_ray_caster() {
     let untrimmed = Renderer::new(&gpu)
         .expect("pipelines")
         .without_trim_test(&gpu);
+    // Every face's surface evaluated by the vertex shader, as when the tessellation pass's
+    // room for grid points runs out.
+    let vertex_eval = Renderer::new(&gpu)
+        .expect("pipelines")
+        .with_trim_variant(&gpu, (true, 256, false));
     for name in [
         "examples/pin-assembly.step",
         "crates/cadre-render/tests/data/dome-and-cone.step",
@@ -165,6 +170,11 @@ fn trimmed_faces_agree_with_the_exact_ray_caster() {
                     100.0 * mesh
                 );
                 assert!(trim >= 0.99, "{name} {view:?} ×{zoom}: {trim}");
+                let by_vertex = agreement(&gpu, &vertex_eval, (&model, &trim_scene), &camera);
+                assert!(
+                    by_vertex >= 0.99,
+                    "{name} {view:?} ×{zoom}: vertex eval {by_vertex}"
+                );
                 // Up close the mesh's facets show where the exact faces do not.
                 if zoom > 1.0 {
                     assert!(

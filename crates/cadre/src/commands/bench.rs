@@ -83,7 +83,8 @@ enum BenchWhat {
         #[arg(long, default_value = "mesh", value_enum)]
         method: crate::commands::render::Method,
         /// The trim back-end with a part switched off, to separate its costs: `no-test`
-        /// (fragments not trimmed), `least` (one grid cell per span and face).
+        /// (fragments not trimmed), `least` (one grid cell per span and face),
+        /// `vertex-eval` (surfaces evaluated by the vertex shader).
         #[arg(long, default_value = "full", value_enum)]
         trim_variant: TrimVariant,
     },
@@ -98,6 +99,9 @@ enum TrimVariant {
     NoTest,
     /// One grid cell per knot span each way.
     Least,
+    /// Surfaces evaluated by the vertex shader (six times a cell) instead of once a grid
+    /// point in the tessellation pass.
+    VertexEval,
 }
 
 fn step_files(path: &Path) -> Result<Vec<PathBuf>> {
@@ -304,8 +308,9 @@ fn bench_view(
     let gpu = Gpu::headless()?;
     let renderer = match variant {
         TrimVariant::Full => Renderer::new(&gpu)?,
-        TrimVariant::NoTest => Renderer::new(&gpu)?.with_trim_variant(&gpu, false, 256),
-        TrimVariant::Least => Renderer::new(&gpu)?.with_trim_variant(&gpu, true, 1),
+        TrimVariant::NoTest => Renderer::new(&gpu)?.with_trim_variant(&gpu, (false, 256, true)),
+        TrimVariant::Least => Renderer::new(&gpu)?.with_trim_variant(&gpu, (true, 1, true)),
+        TrimVariant::VertexEval => Renderer::new(&gpu)?.with_trim_variant(&gpu, (true, 256, false)),
     };
     let t0 = Instant::now();
     let prepared = renderer.prepare(&gpu, &scene);

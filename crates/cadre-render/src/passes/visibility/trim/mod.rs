@@ -18,7 +18,8 @@ use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 use wgpu::util::DeviceExt;
 
 /// The render shader's bind group 0: frame, surfaces, the tessellation's levels, the five
-/// trim buffers (`cadre_trim::TrimBuffers`), the packed B-splines; group 1: the instances.
+/// trim buffers (`cadre_trim::TrimBuffers`), the packed B-splines, the evaluated grid
+/// points; group 1: the instances.
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(TrimSurface::WGSL_NAME),
@@ -29,11 +30,12 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Storage("u32"),
     Binding::Storage("u32"),
     Binding::Storage("f32"),
+    Binding::Storage("vec4<f32>"),
 ];
 
 /// The tessellation pass's bind group 0: frame, surfaces, tasks, what it writes (the
-/// indirect draws and the levels), and the packed B-splines (their knot lines); group 1:
-/// the instances.
+/// indirect draws and the levels), the packed B-splines (their knot lines), the count of
+/// grid points taken and the points; group 1: the instances.
 pub(crate) const TESSELLATE_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(TrimSurface::WGSL_NAME),
@@ -41,11 +43,21 @@ pub(crate) const TESSELLATE_BINDINGS: &[Binding] = &[
     Binding::StorageWrite("u32"),
     Binding::StorageWrite("u32"),
     Binding::Storage("f32"),
+    Binding::AtomicStorage,
+    Binding::StorageWrite("vec4<f32>"),
 ];
 
 /// Storage buffers the render shader's stages bind (its group 0's eight and the instances'
 /// two): an adapter allowing fewer per stage draws every face from its mesh.
-pub(crate) const STORAGE_BUFFERS: u32 = 10;
+pub(crate) const STORAGE_BUFFERS: u32 = 11;
+
+/// Grid points the tessellation pass may hold per task, on average, before faces fall back
+/// to being evaluated by the vertex shader: a 32 × 32 grid (a frame's faces mostly need far
+/// fewer; the room is taken first come, first served).
+const POINTS_PER_TASK: u64 = 33 * 33;
+
+/// Bytes of one grid point (two `vec4<f32>`).
+const POINT_BYTES: u64 = 32;
 
 /// Vertices reserved for each face of a draw: 6 a cell of the largest grid, 256 × 256 cells
 /// (`TRIM_VERTICES` in surface.wgsl).
@@ -77,6 +89,7 @@ pub(crate) fn tessellate_source() -> String {
     wgsl(&[
         INSTANCES_WGSL,
         SURFACE_WGSL,
+        include_str!("bspline.wgsl"),
         include_str!("tessellate.wgsl"),
     ])
 }
@@ -176,7 +189,7 @@ impl FrameTrim {
             ),
             levels: written(
                 "trim levels",
-                4 * u64::from(count),
+                8 * u64::from(count),
                 wgpu::BufferUsages::empty(),
             ),
             count,
@@ -193,6 +206,9 @@ pub struct TrimVariant {
     pub trim_test: bool,
     /// Grid lines a face may have each way (256; 1 leaves the geometry at its least).
     pub max_level: u32,
+    /// Grid points evaluated in the tessellation pass (off: room for none, so that every
+    /// face takes the vertex shader's way, which the tests check as well).
+    pub grid_points: bool,
 }
 
 impl Default for TrimVariant {
@@ -200,6 +216,7 @@ impl Default for TrimVariant {
         TrimVariant {
             trim_test: true,
             max_level: 256,
+            grid_points: true,
         }
     }
 }
@@ -211,11 +228,19 @@ pub(crate) struct TrimBackend {
     pipeline_layout: wgpu::PipelineLayout,
     layout: wgpu::BindGroupLayout,
     tessellate: wgpu::ComputePipeline,
+    /// The tessellation's second entry point: the grid points.
+    points: wgpu::ComputePipeline,
     tessellate_layout: wgpu::BindGroupLayout,
+    /// The grid points' buffer (its capacity in points), kept while large enough, and the
+    /// count of points taken (cleared each frame).
+    grid: std::sync::Mutex<Option<(wgpu::Buffer, u64)>>,
+    points_used: wgpu::Buffer,
     /// Indexed by `sections + 2 × with_uv`.
     pipelines: [OnceLock<wgpu::RenderPipeline>; 4],
     /// Whether fragments are trimmed (off only for the tests' negative control).
     trim_test: bool,
+    /// Whether the tessellation pass evaluates grid points ([`TrimVariant::grid_points`]).
+    grid_points: bool,
     /// The last frame's indirect draws and their count, for [`TrimBackend::last_triangles`].
     last: std::sync::Mutex<Option<(wgpu::Buffer, u32)>>,
 }
@@ -252,14 +277,32 @@ impl TrimBackend {
             },
             cache: None,
         });
+        let points = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("trim grid points"),
+            layout: Some(&tessellate_pipeline_layout),
+            module: &compute,
+            entry_point: Some("cs_points"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let points_used = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("trim points taken"),
+            size: 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         TrimBackend {
             module,
             pipeline_layout,
             layout,
             tessellate,
+            points,
+            grid: std::sync::Mutex::new(None),
+            points_used,
             tessellate_layout,
             pipelines: Default::default(),
             trim_test,
+            grid_points: variant.grid_points,
             last: std::sync::Mutex::new(None),
         }
     }
@@ -306,6 +349,8 @@ impl TrimBackend {
         let (Some(trim), Some(geometry)) = (&inputs.scene.trim, &inputs.scene.geometry.trim) else {
             return;
         };
+        let grid = self.grid_points(device, trim.count);
+        encoder.clear_buffer(&self.points_used, 0, None);
         let bind = binds.get(
             device,
             "trim tessellation",
@@ -317,6 +362,8 @@ impl TrimBackend {
                 trim.args.as_entire_binding(),
                 trim.levels.as_entire_binding(),
                 geometry.bspline.as_entire_binding(),
+                self.points_used.as_entire_binding(),
+                grid.as_entire_binding(),
             ],
         );
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -329,6 +376,34 @@ impl TrimBackend {
         pass.set_bind_group(0, &bind, &[]);
         pass.set_bind_group(1, &inputs.scene.instances.bind, &[0]);
         pass.dispatch_workgroups(trim.count.div_ceil(64), 1, 1);
+        // One workgroup a task, in rows of at most 65,535.
+        pass.set_pipeline(&self.points);
+        pass.dispatch_workgroups(trim.count.min(65_535), trim.count.div_ceil(65_535), 1);
+    }
+
+    /// The grid points' buffer for a frame of `tasks` tasks: the kept one, or a larger one
+    /// ([`POINTS_PER_TASK`] a task, within the device's largest storage binding).
+    fn grid_points(&self, device: &wgpu::Device, tasks: u32) -> wgpu::Buffer {
+        let most = device.limits().max_storage_buffer_binding_size / POINT_BYTES;
+        let wanted = if self.grid_points {
+            (u64::from(tasks) * POINTS_PER_TASK).clamp(1 << 12, most.max(1))
+        } else {
+            1
+        };
+        let mut kept = self.grid.lock().unwrap_or_else(|e| e.into_inner());
+        match &*kept {
+            Some((buffer, capacity)) if *capacity >= wanted => buffer.clone(),
+            _ => {
+                let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("trim grid points"),
+                    size: wanted * POINT_BYTES,
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                });
+                *kept = Some((buffer.clone(), wanted));
+                buffer
+            }
+        }
     }
 
     /// Draws its part of `phase`: the trimmed faces into the visibility buffer (the
@@ -372,6 +447,15 @@ impl TrimBackend {
                 },
             )
         });
+        let Some(grid) = self
+            .grid
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .as_ref()
+            .map(|(buffer, _)| buffer.clone())
+        else {
+            return;
+        };
         let bind = binds.get(
             device,
             "visibility trim",
@@ -386,6 +470,7 @@ impl TrimBackend {
                 geometry.piece_offsets.as_entire_binding(),
                 geometry.lists.as_entire_binding(),
                 geometry.bspline.as_entire_binding(),
+                grid.as_entire_binding(),
             ],
         );
         pass.set_pipeline(pipeline);

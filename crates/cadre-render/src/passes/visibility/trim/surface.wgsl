@@ -35,6 +35,9 @@ const SURFACE_SPHERE: u32 = 3u;
 // largest grid, 256² cells (tessellate.wgsl's `MAX_LEVEL` at most).
 const TRIM_VERTICES: u32 = 393216u;
 
+// A task whose grid points found no room in `grid_points` (tessellate.wgsl).
+const NO_POINTS: u32 = 0xffffffffu;
+
 // `TrimFaceSurface::breaks` of a face drawn as one span each way.
 const NO_BREAKS: u32 = 0xffffffffu;
 

@@ -1,8 +1,12 @@
 // Trim back-end, tessellation (compute, before the visibility pass): for each face of each
 // mesh call (a `TrimTask`), the grid its surface is drawn with this frame, written as an
-// indirect draw (`args`, four words a task) and its levels (`levels`: cells per span along u
-// in the low 16 bits, along v in the high ones; a B-spline's spans are its knot spans within
-// the face, so that every knot line is a grid line, a closed form has one each way).
+// indirect draw (`args`, four words a task) and its levels (`levels`, two words a task: cells
+// per span along u in the low 16 bits, along v in the high ones, then where its grid points
+// start in `grid_points`; a B-spline's spans are its knot spans within the face, so that
+// every knot line is a grid line, a closed form has one each way). `cs_main` chooses the
+// grids and takes room for their points from `points_used`; `cs_points` then evaluates the
+// points, once each (the draw's six corners a cell read them): a face whose points found no
+// room (`NO_POINTS`) is evaluated by the vertex shader instead.
 //
 // The grid's error: a cell of size (h_u, h_v) departs from the surface by at most
 // (h_u² |S_uu| + 2 h_u h_v |S_uv| + h_v² |S_vv|) / 8 (the interpolation error of a function of
@@ -16,6 +20,8 @@
 @group(0) @binding(3) var<storage, read_write> args: array<u32>;
 @group(0) @binding(4) var<storage, read_write> levels: array<u32>;
 @group(0) @binding(5) var<storage, read> trim_bspline: array<f32>;
+@group(0) @binding(6) var<storage, read_write> points_used: array<atomic<u32>>;
+@group(0) @binding(7) var<storage, read_write> grid_points: array<vec4<f32>>;
 
 // The tessellation's tolerance, in pixels.
 override TOLERANCE_PX: f32 = 0.5;
@@ -104,5 +110,42 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     args[4u * t + 1u] = task.instances;
     args[4u * t + 2u] = task.slot * TRIM_VERTICES;
     args[4u * t + 3u] = 0u;
-    levels[t] = per.x | (per.y << 16u);
+    // Room for the grid's points (two vec4 each), or none: the vertex shader evaluates them.
+    let points = select(0u, (lines.x + 1u) * (lines.y + 1u), visible);
+    var base = NO_POINTS;
+    if points > 0u {
+        let at = atomicAdd(&points_used[0], points);
+        if at + points <= arrayLength(&grid_points) / 2u {
+            base = at;
+        }
+    }
+    levels[2u * t] = per.x | (per.y << 16u);
+    levels[2u * t + 1u] = base;
+}
+
+// The grid points of task `wg.x + 65535 wg.y`, 64 invocations each: position and (u, v)
+// from the box's corner, as (x, y, z, u) then (normal, v).
+@compute @workgroup_size(64)
+fn cs_points(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
+    let t = wg.x + 65535u * wg.y;
+    if t >= arrayLength(&tasks) {
+        return;
+    }
+    let base = levels[2u * t + 1u];
+    if base == NO_POINTS {
+        return;
+    }
+    let s = surfaces[tasks[t].surface];
+    let level = levels[2u * t];
+    let per = vec2<u32>(max(level & 0xffffu, 1u), max(level >> 16u, 1u));
+    let spans = grid_spans(s);
+    let row = per.x * spans.x + 1u;
+    let count = row * (per.y * spans.y + 1u);
+    for (var i = lane; i < count; i += 64u) {
+        let g = vec2<u32>(i % row, i / row);
+        let local = vec2<f32>(grid_param(s, spans, 0u, g.x, per.x), grid_param(s, spans, 1u, g.y, per.y));
+        let p = face_point(s, s.uv.xy + local);
+        grid_points[2u * (base + i)] = vec4<f32>(p.position, local.x);
+        grid_points[2u * (base + i) + 1u] = vec4<f32>(p.normal, local.y);
+    }
 }

@@ -12,6 +12,7 @@
 @group(0) @binding(6) var<storage, read> trim_piece_offsets: array<u32>;
 @group(0) @binding(7) var<storage, read> trim_lists: array<u32>;
 @group(0) @binding(8) var<storage, read> trim_bspline: array<f32>;
+@group(0) @binding(9) var<storage, read> grid_points: array<vec4<f32>>;
 
 // The trim test, off only for the tests' negative control (the surfaces' whole boxes).
 override TRIM_TEST: bool = true;
@@ -40,7 +41,9 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     let local_vertex = vertex % TRIM_VERTICES;
     let index = call.range.x + k;
     let s = surfaces[index];
-    let level = levels[call.range.y + k];
+    let task = call.range.y + k;
+    let level = levels[2u * task];
+    let base = levels[2u * task + 1u];
     let per = vec2<u32>(max(level & 0xffffu, 1u), max(level >> 16u, 1u));
     let spans = grid_spans(s);
     let lines = per * spans;
@@ -50,7 +53,19 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     let step = vec2<u32>((22u >> corner) & 1u, (52u >> corner) & 1u);
     let first = vec2<u32>(cell % lines.x, cell / lines.x);
     let grid = first + step;
-    let local = vec2<f32>(grid_param(s, spans, 0u, grid.x, per.x), grid_param(s, spans, 1u, grid.y, per.y));
+    // The point the tessellation pass evaluated, or (no room there) evaluated here.
+    var local: vec2<f32>;
+    var point: SurfacePoint;
+    if base != NO_POINTS {
+        let i = base + grid.y * (lines.x + 1u) + grid.x;
+        let a = grid_points[2u * i];
+        let b = grid_points[2u * i + 1u];
+        local = vec2<f32>(a.w, b.w);
+        point = SurfacePoint(a.xyz, b.xyz);
+    } else {
+        local = vec2<f32>(grid_param(s, spans, 0u, grid.x, per.x), grid_param(s, spans, 1u, grid.y, per.y));
+        point = face_point(s, s.uv.xy + local);
+    }
     // The cell against the tree, the same at its six corners.
     var verdict = TRIM_CELL_CROSSED;
     if TRIM_TEST {
@@ -61,7 +76,6 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
         );
         verdict = trim_cell(s.ids.z, cell_lo, cell_hi);
     }
-    let point = face_point(s, s.uv.xy + local);
     let d = instance_draw(instance);
     let normal = point.normal * s.axis_y.w;
     let placed = place_vertex(d, point.position, normal);
