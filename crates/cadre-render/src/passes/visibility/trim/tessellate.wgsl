@@ -95,10 +95,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     // Cells a span may hold so that the grid stays within MAX_LEVEL lines.
     let most = max(floor(vec2<f32>(MAX_LEVEL) / vec2<f32>(spans)), vec2<f32>(1.0));
-    // A quarter of the error for each pure term, then both levels raised together until the
-    // mixed one fits too.
-    let least = max(ceil(vec2<f32>(MIN_LEVEL) / vec2<f32>(spans)), vec2<f32>(1.0));
-    var n = max(ceil(size * sqrt(m.xz / (2.0 * eps))), least);
+    // Half the error for each pure term, then both levels raised together until the whole
+    // bound, the mixed term's included, fits.
+    // Faces over 16 pixels across at their nearest are cut into MIN_LEVEL cells each way at
+    // least (smaller ones have few pixels to test).
+    let across = s.sphere.w * scale / pixel;
+    let least_lines = select(1.0, MIN_LEVEL, across > 16.0);
+    let least = max(ceil(vec2<f32>(least_lines) / vec2<f32>(spans)), vec2<f32>(1.0));
+    var n = max(ceil(size * sqrt(m.xz / (4.0 * eps))), least);
     n = min(n, most);
     let h = size / n;
     let e = (h.x * h.x * m.x + 2.0 * h.x * h.y * m.y + h.y * h.y * m.z) / 8.0;
