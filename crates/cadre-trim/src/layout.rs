@@ -278,14 +278,28 @@ impl TrimBuffers {
     }
 
     /// Whether piece `k` of face `f` may meet the face-local cell `lo`..`hi`: its control
-    /// points' box does.
+    /// triangle does (no separating axis among the box's two and the triangle's three edge
+    /// normals; a straight piece's triangle is its chord).
     fn piece_meets(&self, f: FaceRecord, k: u32, lo: [f32; 2], hi: [f32; 2]) -> bool {
         let at = (self.piece_offsets[(f.pieces + k) as usize] & PIECE_OFFSET) as usize;
         let c = &self.floats[at..at + PIECE_FLOATS];
-        (0..2).all(|a| {
+        let boxes = (0..2).all(|a| {
             let (x0, x1, x2) = (c[a], c[2 + a], c[4 + a]);
             x0.min(x1).min(x2) <= hi[a] && x0.max(x1).max(x2) >= lo[a]
-        })
+        });
+        let points = [[c[0], c[1]], [c[2], c[3]], [c[4], c[5]]];
+        let centre = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+        let half = [0.5 * (hi[0] - lo[0]), 0.5 * (hi[1] - lo[1])];
+        let dot = |n: [f32; 2], p: [f32; 2]| n[0] * p[0] + n[1] * p[1];
+        boxes
+            && (0..3).all(|e| {
+                let (a, b) = (points[e], points[(e + 1) % 3]);
+                let n = [a[1] - b[1], b[0] - a[0]];
+                let p = points.map(|q| dot(n, q));
+                let r = n[0].abs() * half[0] + n[1].abs() * half[1];
+                let m = dot(n, centre);
+                p[0].min(p[1]).min(p[2]) <= m + r && p[0].max(p[1]).max(p[2]) >= m - r
+            })
     }
 
     /// Whether `p` is on face `face`, read from the words as the GPU reads them (`f32`).

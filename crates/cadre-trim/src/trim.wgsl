@@ -154,7 +154,8 @@ fn trim_cell(face: u32, cell_lo: vec2<f32>, cell_hi: vec2<f32>) -> u32 {
     return TRIM_CELL_CROSSED;
 }
 
-// Whether piece `k` of `f` may meet the cell `lo`..`hi`: its control points' box does.
+// Whether piece `k` of `f` may meet the cell `lo`..`hi`: its control triangle does (no
+// separating axis among the box's two and the triangle's three edge normals).
 fn trim_piece_meets(f: TrimFace, k: u32, lo: vec2<f32>, hi: vec2<f32>) -> bool {
     let at = trim_piece_offsets[f.pieces + k] & TRIM_PIECE_OFFSET;
     let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
@@ -162,7 +163,18 @@ fn trim_piece_meets(f: TrimFace, k: u32, lo: vec2<f32>, hi: vec2<f32>) -> bool {
     let c2 = vec2<f32>(trim_floats[at + 4u], trim_floats[at + 5u]);
     let box_lo = min(c0, min(c1, c2));
     let box_hi = max(c0, max(c1, c2));
-    return all(box_lo <= hi) & all(box_hi >= lo);
+    var meets = all(box_lo <= hi) & all(box_hi >= lo);
+    let centre = 0.5 * (lo + hi);
+    let half = 0.5 * (hi - lo);
+    let edges = array<vec2<f32>, 3>(c1 - c0, c2 - c1, c0 - c2);
+    for (var e = 0u; e < 3u; e++) {
+        let n = vec2<f32>(-edges[e].y, edges[e].x);
+        let p = vec3<f32>(dot(n, c0), dot(n, c1), dot(n, c2));
+        let r = abs(n.x) * half.x + abs(n.y) * half.y;
+        let m = dot(n, centre);
+        meets = meets & (min(p.x, min(p.y, p.z)) <= m + r) & (max(p.x, max(p.y, p.z)) >= m - r);
+    }
+    return meets;
 }
 
 // Whether the face-local point `q` lies on face `face`.

@@ -68,7 +68,8 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(16))]
 
     /// A cell the packed tree calls in (out) has every one of its points on (off) the face
-    /// by the point classifier; cells of every size are asked, and some get an answer.
+    /// by the point classifier; cells of every size are asked (random ones and the aligned
+    /// depth-4 grid), and some get an answer.
     #[test]
     fn a_cell_called_in_or_out_is_so_at_every_point(
         radii in prop::collection::vec(0.35..1.0f64, 3..12),
@@ -83,7 +84,11 @@ proptest! {
         let record = buffers.faces[at];
         let size = [f64::from(record.size[0]), f64::from(record.size[1])];
         let mut known = 0;
-        for (x, y, depth) in cells {
+        // The random cells, then every cell of the depth-4 grid (aligned with the tree's).
+        let grid = (0..16u32).flat_map(|i| {
+            (0..16u32).map(move |j| (f64::from(i) / 15.0, f64::from(j) / 15.0, 4u32))
+        });
+        for (x, y, depth) in cells.into_iter().chain(grid) {
             // A cell of 1/2^depth of the box, anywhere (not aligned with the tree's).
             let w = [size[0] / f64::from(1u32 << depth), size[1] / f64::from(1u32 << depth)];
             let lo = [x * (size[0] - w[0]), y * (size[1] - w[1])];

@@ -26,8 +26,9 @@ enum BenchWhat {
         repeat: u32,
     },
     /// Trim trees (cadre-trim) of every STEP file of a folder against its static meshes:
-    /// prints one JSON line per file with the trees' counts, bytes and build time, and the
-    /// time and bytes of meshing the same model at the same tolerance and at a tenth of it.
+    /// prints one JSON line per file with the trees' counts, bytes and build time, the time
+    /// and bytes of meshing the same model at the same tolerance and at a tenth of it, and
+    /// what the trim back-end adds (faces it draws, the surfaces' bytes).
     Trim {
         /// Folder of STEP files (or a single file).
         path: PathBuf,
@@ -206,6 +207,12 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
     };
     let (mesh_s, mesh_bytes) = mesh(tolerance);
     let (_, fine_bytes) = mesh(0.1 * tolerance);
+    // What the trim back-end adds to the trees: a 128-byte record per face it draws and the
+    // B-splines' packed knots and control points (built again here: the trees' time above
+    // is the figure).
+    let scene = cadre_render::TrimScene::build(&model, tolerance);
+    let surface_bytes = std::mem::size_of::<cadre_render::layout::TrimSurface>() * scene.drawn()
+        + 4 * scene.bspline_data.len();
     let per = |n: usize| {
         if n == 0 {
             0.0
@@ -232,6 +239,9 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
         "mesh_seconds": mesh_s,
         "mesh_bytes": mesh_bytes,
         "mesh_bytes_tenth": fine_bytes,
+        "exact_faces": scene.drawn(),
+        "mesh_faces": scene.fallback.len(),
+        "surface_bytes": surface_bytes,
     })
 }
 
