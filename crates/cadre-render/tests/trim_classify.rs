@@ -26,17 +26,34 @@ fn shader() -> String {
              if id.x >= arrayLength(&queries) {{ return; }}
              let query = queries[id.x];
              let q = vec2<f32>(bitcast<f32>(query.y), bitcast<f32>(query.z));
-             answers[id.x] = select(0u, 1u, trim_classify(query.x, q));
+             // w: 0 for a point, else the side of the cell from q (its answer 10 + class).
+             let side = bitcast<f32>(query.w);
+             if query.w == 0u {{
+                 answers[id.x] = select(0u, 1u, trim_classify(query.x, q));
+             }} else {{
+                 answers[id.x] = 10u + trim_cell(query.x, q, q + vec2<f32>(side));
+             }}
          }}",
         cadre_trim::TRIM_WGSL
     )
 }
 
-/// The GPU's answers for `queries` (face, face-local point).
+/// The GPU's answers for `queries` (face, face-local point): on the face or not.
 fn gpu_answers(
     gpu: &cadre_render::Gpu,
     buffers: &TrimBuffers,
     queries: &[(u32, [f32; 2])],
+) -> Vec<u32> {
+    let cells: Vec<(u32, [f32; 2], f32)> = queries.iter().map(|&(f, q)| (f, q, 0.0)).collect();
+    gpu_cell_answers(gpu, buffers, &cells)
+}
+
+/// The GPU's answers for `queries` (face, face-local corner, side): a point's (side 0) on
+/// the face or not, a cell's `10 + trim_cell`.
+fn gpu_cell_answers(
+    gpu: &cadre_render::Gpu,
+    buffers: &TrimBuffers,
+    queries: &[(u32, [f32; 2], f32)],
 ) -> Vec<u32> {
     let device = &gpu.device;
     let storage = |label: &str, bytes: &[u8]| {
@@ -54,7 +71,7 @@ fn gpu_answers(
     };
     let words: Vec<u32> = queries
         .iter()
-        .flat_map(|(f, q)| [*f, q[0].to_bits(), q[1].to_bits(), 0])
+        .flat_map(|(f, q, side)| [*f, q[0].to_bits(), q[1].to_bits(), side.to_bits()])
         .collect();
     let inputs = [
         storage("faces", bytemuck::cast_slice(&buffers.face_words())),
@@ -210,5 +227,73 @@ fn the_gpu_trim_test_answers_as_the_cpu_oracle() {
     assert!(
         differ * 20 > queries.len(),
         "the next face's tree differs on {differ} only"
+    );
+}
+
+/// The GPU's cell test (`trim_cell`, which the trim back-end's vertex shader asks of every
+/// grid cell) answers as its CPU twin (`TrimBuffers::classify_cell`) on random cells of every
+/// face of the bundled assembly and of the sliver. Negative control: the same cells asked of
+/// the next face's tree.
+#[test]
+fn the_gpu_cell_test_answers_as_the_cpu_oracle() {
+    use cadre_trim::CellClass;
+    let gpu = common::gpu();
+    let (model, _) = common::model_and_scene("pin-assembly.step");
+    let mut buffers = model_trees(&model, 0.01).buffers;
+    buffers.push(&sliver()).expect("packs");
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut random = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let mut queries = Vec::new();
+    for (face, record) in buffers.faces.iter().enumerate() {
+        for k in 0..2000 {
+            let side = record.size[0].min(record.size[1]) / (2 << (k % 6)) as f32;
+            let q = [
+                (random() * 1.1 - 0.05) * record.size[0],
+                (random() * 1.1 - 0.05) * record.size[1],
+            ];
+            queries.push((face as u32, q, side));
+        }
+    }
+    let class = |c: CellClass| match c {
+        CellClass::Out => 10u32,
+        CellClass::In => 11,
+        CellClass::Crossed => 12,
+    };
+    let cpu_of = |face: usize, q: [f32; 2], side: f32| {
+        class(buffers.classify_cell(face, q, [q[0] + side, q[1] + side]))
+    };
+    let cpu: Vec<u32> = queries
+        .iter()
+        .map(|&(f, q, side)| cpu_of(f as usize, q, side))
+        .collect();
+    let known = cpu.iter().filter(|&&c| c != 12).count();
+    assert!(
+        known > queries.len() / 4,
+        "{known} of {} known",
+        queries.len()
+    );
+    let answers = gpu_cell_answers(&gpu, &buffers, &queries);
+    let differ = cpu.iter().zip(&answers).filter(|(a, b)| a != b).count();
+    assert!(
+        differ * 1_000 <= queries.len(),
+        "{}: the GPU differs from the CPU on {differ} of {} cells",
+        gpu.info.name,
+        queries.len()
+    );
+    // Negative control: the next face's tree answers otherwise for many of them.
+    let faces = buffers.faces.len();
+    let other = queries
+        .iter()
+        .zip(&answers)
+        .filter(|((f, q, side), a)| cpu_of((*f as usize + 1) % faces, *q, *side) != **a)
+        .count();
+    assert!(
+        other * 10 > queries.len(),
+        "another tree agreed on all but {other}"
     );
 }
