@@ -9,8 +9,6 @@ mod common;
 use cadre_geom::Vec3;
 use cadre_geom::bspline::BSplineSurface;
 use cadre_render::trim_surfaces::{pack_bspline, surface_wgsl};
-use cadre_render::wgpu;
-use wgpu::util::DeviceExt;
 
 /// A surface of degrees `(p, q)` over a `nu × nv` wavy net, with interior knots (one of them
 /// repeated), rational when `rational`.
@@ -54,7 +52,6 @@ fn surface(p: usize, q: usize, (nu, nv): (usize, usize), rational: bool) -> BSpl
 
 /// The GPU's point and S_u × S_v of the surface packed at each query's offset.
 fn gpu_points(gpu: &cadre_render::Gpu, data: &[f32], queries: &[(u32, [f32; 2])]) -> Vec<[f32; 8]> {
-    let device = &gpu.device;
     let shader = format!(
         "@group(0) @binding(0) var<storage, read> trim_bspline: array<f32>;
          @group(0) @binding(1) var<storage, read> queries: array<vec4<u32>>;
@@ -70,80 +67,14 @@ fn gpu_points(gpu: &cadre_render::Gpu, data: &[f32], queries: &[(u32, [f32; 2])]
          }}",
         surface_wgsl()
     );
-    let storage = |label: &str, bytes: &[u8]| {
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(label),
-            contents: bytes,
-            usage: wgpu::BufferUsages::STORAGE,
-        })
-    };
     let words: Vec<u32> = queries
         .iter()
         .flat_map(|(at, q)| [*at, q[0].to_bits(), q[1].to_bits(), 0])
         .collect();
-    let inputs = [
-        storage("B-splines", bytemuck::cast_slice(data)),
-        storage("queries", bytemuck::cast_slice(&words)),
-    ];
-    let size = 32 * queries.len() as u64;
-    let answers = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("answers"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("B-spline points"),
-        source: wgpu::ShaderSource::Wgsl(shader.into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("B-spline points"),
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("B-spline points"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: inputs[0].as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: inputs[1].as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: answers.as_entire_binding(),
-            },
-        ],
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind, &[]);
-        pass.dispatch_workgroups((queries.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&answers, 0, &readback, 0, size);
-    gpu.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("maps"));
-    gpu.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("polls");
-    let view = slice.get_mapped_range().expect("mapped");
-    let floats: Vec<f32> = bytemuck::cast_slice(&view).to_vec();
+    let count = queries.len() as u32;
+    let inputs: [&[u8]; 2] = [bytemuck::cast_slice(data), bytemuck::cast_slice(&words)];
+    let bytes = common::run_compute(gpu, &shader, &inputs, (count, 32 * u64::from(count)));
+    let floats: &[f32] = bytemuck::cast_slice(&bytes);
     floats
         .chunks_exact(8)
         .map(|c| c.try_into().expect("8 floats"))

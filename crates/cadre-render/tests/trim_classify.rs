@@ -6,9 +6,7 @@
 
 mod common;
 
-use cadre_render::wgpu;
 use cadre_trim::{QuadPiece, TrimBuffers, TrimTree, Uv, model_trees};
-use wgpu::util::DeviceExt;
 
 /// The shader: the five trim buffers, the queries (face, q as f32 bits), the answers.
 fn shader() -> String {
@@ -55,94 +53,22 @@ fn gpu_cell_answers(
     buffers: &TrimBuffers,
     queries: &[(u32, [f32; 2], f32)],
 ) -> Vec<u32> {
-    let device = &gpu.device;
-    let storage = |label: &str, bytes: &[u8]| {
-        // Storage bindings may not be empty.
-        let bytes = if bytes.is_empty() {
-            &[0u8; 4][..]
-        } else {
-            bytes
-        };
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(label),
-            contents: bytes,
-            usage: wgpu::BufferUsages::STORAGE,
-        })
-    };
     let words: Vec<u32> = queries
         .iter()
         .flat_map(|(f, q, side)| [*f, q[0].to_bits(), q[1].to_bits(), side.to_bits()])
         .collect();
-    let inputs = [
-        storage("faces", bytemuck::cast_slice(&buffers.face_words())),
-        storage("nodes", bytemuck::cast_slice(&buffers.nodes)),
-        storage("floats", bytemuck::cast_slice(&buffers.floats)),
-        storage(
-            "piece offsets",
-            bytemuck::cast_slice(&buffers.piece_offsets),
-        ),
-        storage("lists", bytemuck::cast_slice(&buffers.lists)),
-        storage("queries", bytemuck::cast_slice(&words)),
+    let faces = buffers.face_words();
+    let inputs: [&[u8]; 6] = [
+        bytemuck::cast_slice(&faces),
+        bytemuck::cast_slice(&buffers.nodes),
+        bytemuck::cast_slice(&buffers.floats),
+        bytemuck::cast_slice(&buffers.piece_offsets),
+        bytemuck::cast_slice(&buffers.lists),
+        bytemuck::cast_slice(&words),
     ];
-    let size = 4 * queries.len() as u64;
-    let answers = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("answers"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("trim classify"),
-        source: wgpu::ShaderSource::Wgsl(shader().into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("trim classify"),
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let mut entries: Vec<wgpu::BindGroupEntry> = inputs
-        .iter()
-        .enumerate()
-        .map(|(i, b)| wgpu::BindGroupEntry {
-            binding: i as u32,
-            resource: b.as_entire_binding(),
-        })
-        .collect();
-    entries.push(wgpu::BindGroupEntry {
-        binding: 6,
-        resource: answers.as_entire_binding(),
-    });
-    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("trim classify"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind, &[]);
-        pass.dispatch_workgroups((queries.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&answers, 0, &readback, 0, size);
-    gpu.queue.submit([encoder.finish()]);
-    readback
-        .slice(..)
-        .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let view = readback.slice(..).get_mapped_range().expect("mapped");
-    bytemuck::cast_slice(&view).to_vec()
+    let count = queries.len() as u32;
+    let bytes = common::run_compute(gpu, &shader(), &inputs, (count, 4 * u64::from(count)));
+    bytemuck::cast_slice(&bytes).to_vec()
 }
 
 /// A sliver face: a curve out and the same curve back a hair below it.
@@ -174,13 +100,7 @@ fn the_gpu_trim_test_answers_as_the_cpu_oracle() {
         sliver().fallback_leaves() > 0,
         "the sliver has no fallback leaf"
     );
-    let mut seed = 0x2545_f491_4f6c_dd1du64;
-    let mut random = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut random = common::xorshift(0x2545_f491_4f6c_dd1d);
     let mut queries = Vec::new();
     for (face, record) in buffers.faces.iter().enumerate() {
         for _ in 0..2000 {
@@ -241,13 +161,7 @@ fn the_gpu_cell_test_answers_as_the_cpu_oracle() {
     let (model, _) = common::model_and_scene("pin-assembly.step");
     let mut buffers = model_trees(&model, 0.01).buffers;
     buffers.push(&sliver()).expect("packs");
-    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-    let mut random = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut random = common::xorshift(0x9e37_79b9_7f4a_7c15);
     let mut queries = Vec::new();
     for (face, record) in buffers.faces.iter().enumerate() {
         for k in 0..2000 {

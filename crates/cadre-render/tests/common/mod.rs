@@ -188,3 +188,99 @@ impl OneShot for Renderer {
         self.render_uv(gpu, &prepared, camera, options, &ViewState::default())
     }
 }
+
+/// A uniform random number in [0, 1) from an xorshift generator seeded with `seed` (the
+/// tests' queries: reproducible, no dependency).
+pub fn xorshift(mut seed: u64) -> impl FnMut() -> f32 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// Runs the compute shader `wgsl` (entry point `main`, workgroups of 64) over `invocations`
+/// on `gpu`: `inputs` bound as read-only storage at bindings 0, 1, …, and a read-write
+/// buffer of `answer_bytes` after them, whose bytes come back.
+pub fn run_compute(
+    gpu: &Gpu,
+    wgsl: &str,
+    inputs: &[&[u8]],
+    (invocations, answer_bytes): (u32, u64),
+) -> Vec<u8> {
+    use cadre_render::wgpu;
+    use wgpu::util::DeviceExt;
+    let device = &gpu.device;
+    let buffers: Vec<wgpu::Buffer> = inputs
+        .iter()
+        .map(|bytes| {
+            // Storage bindings may not be empty.
+            let bytes = if bytes.is_empty() {
+                &[0u8; 4][..]
+            } else {
+                bytes
+            };
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("input"),
+                contents: bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        })
+        .collect();
+    let answers = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("answers"),
+        size: answer_bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: answer_bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("test compute"),
+        source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("test compute"),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let entries: Vec<wgpu::BindGroupEntry> = buffers
+        .iter()
+        .chain([&answers])
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect();
+    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("test compute"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &entries,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.dispatch_workgroups(invocations.div_ceil(64), 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(&answers, 0, &readback, 0, answer_bytes);
+    gpu.queue.submit([encoder.finish()]);
+    readback
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("poll");
+    let view = readback.slice(..).get_mapped_range().expect("mapped");
+    view.to_vec()
+}
