@@ -32,6 +32,9 @@ enum Command {
     View(commands::view::ViewArgs),
     /// Time cadre's stages over a folder of files (used by the scripts in `scripts/`).
     Bench(commands::bench::BenchArgs),
+    /// Check a file's face-id images (mesh or exact faces) against the CPU ray caster of the
+    /// exact B-Rep, in four views at several magnifications.
+    Verify(commands::verify::VerifyArgs),
 }
 
 fn main() -> std::process::ExitCode {
@@ -70,6 +73,7 @@ fn run() -> Result<()> {
         Command::Render(args) => commands::render::run(&args),
         Command::View(args) => commands::view::run(&args),
         Command::Bench(args) => commands::bench::run(&args),
+        Command::Verify(args) => commands::verify::run(&args),
     }
 }
 

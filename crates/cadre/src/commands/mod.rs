@@ -4,4 +4,5 @@ pub mod bench;
 pub mod info;
 pub mod mesh;
 pub mod render;
+pub mod verify;
 pub mod view;

@@ -1,0 +1,251 @@
+//! `cadre verify`: the face-id image of a file's views, drawn by the mesh or the trim
+//! back-end, against the CPU ray caster of the exact B-Rep (`cadre_render::raycast`), at
+//! several magnifications: so anyone can check any file.
+
+use std::collections::HashSet;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
+use cadre_render::raycast::RayCaster;
+use cadre_render::{Camera, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset, ViewState};
+use serde_json::json;
+
+use crate::commands::render::{Method, centre_point, parse_size, with_trims};
+use crate::load::load_step;
+
+/// Arguments of `cadre verify`.
+#[derive(clap::Args)]
+pub struct VerifyArgs {
+    /// A STEP file.
+    input: PathBuf,
+    /// How faces are drawn (as `cadre render --method`).
+    #[arg(long, default_value = "trim", value_enum)]
+    method: Method,
+    /// Magnifications, comma-separated (as `cadre render --zoom`, about the model point at
+    /// the centre of each view).
+    #[arg(long, default_value = "1,10,100,1000", value_delimiter = ',')]
+    zoom: Vec<f64>,
+    /// Image size, WIDTHxHEIGHT (the ray caster casts nine rays a pixel).
+    #[arg(long, default_value = "160x120", value_parser = parse_size)]
+    size: (u32, u32),
+    /// Tolerance of the trims, relative to the bounding-box diagonal.
+    #[arg(long, default_value_t = 1e-5)]
+    trim_tolerance_rel: f64,
+    /// One JSON object instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The views each magnification is checked in.
+const VIEWS: [(&str, ViewPreset); 4] = [
+    ("iso", ViewPreset::Iso),
+    ("front", ViewPreset::Front),
+    ("top", ViewPreset::Top),
+    ("right", ViewPreset::Right),
+];
+
+/// Farthest distance, in pixels, a disagreeing pixel is looked at for the face it shows.
+const SEARCH_PX: i64 = 16;
+
+/// One view's figures.
+struct ViewFigures {
+    /// Share of the compared pixels that disagree farther than 0.5 px from a true boundary.
+    disagree_share: f64,
+    /// Largest distance (pixels) from a disagreeing pixel to where the ray caster sees the
+    /// face the GPU drew there ([`SEARCH_PX`] + 1 when farther).
+    worst_px: f64,
+    /// The same for pixels where one side sees the background and the other a face.
+    silhouette_px: f64,
+    /// Share of the covered pixels left out: they show faces the ray caster cannot cast.
+    unverified_share: f64,
+    /// Pixels compared.
+    compared: usize,
+}
+
+/// Runs `cadre verify`.
+pub fn run(args: &VerifyArgs) -> Result<()> {
+    let input = args.input.as_path();
+    let loaded = load_step(input)?;
+    let model = &loaded.model;
+    let params = MeshParams {
+        deflection: Deflection::Relative(0.0005).resolve(deflection_diagonal(model)),
+        angle: 0.35,
+        ..MeshParams::default()
+    };
+    let mesh = mesh_model(model, &params, None);
+    let gpu = Gpu::headless().context("no GPU adapter")?;
+    let renderer = Renderer::new(&gpu)?;
+    let mut scene = RenderScene::from_model(model, &mesh);
+    let (lo, hi) = scene
+        .bounds()
+        .with_context(|| format!("{}: nothing to draw", input.display()))?;
+    if args.method == Method::Trim {
+        scene = with_trims(&renderer, scene, model, args.trim_tolerance_rel, input);
+    }
+    let fallback: Vec<u64> = scene
+        .trim
+        .as_ref()
+        .map_or_else(Vec::new, |t| t.fallback.iter().map(|(id, _)| *id).collect());
+    let prepared = renderer.prepare(&gpu, &scene);
+    let caster = RayCaster::new(model, 1e-4 * (hi - lo).length());
+    let skipped: HashSet<u64> = caster.skipped.iter().copied().collect();
+    let (w, h) = args.size;
+    let options = FrameOptions {
+        width: w,
+        height: h,
+        supersample: 1,
+        ..FrameOptions::default()
+    };
+    let mut views = Vec::new();
+    for (name, preset) in VIEWS {
+        let fitted = Camera::fit(lo, hi, preset, false, f64::from(w) / f64::from(h));
+        let point = centre_point(model, &fitted, (lo, hi));
+        for &zoom in &args.zoom {
+            let camera = fitted.zoomed_at(point, zoom, (lo, hi));
+            let ids =
+                renderer.render_ids(&gpu, &prepared, &camera, &options, &ViewState::default())?;
+            let gpu_ids: Vec<u64> = ids.iter().map(|p| scene.face_step_id(p[0])).collect();
+            let exact = caster.face_ids(&camera, w, h);
+            let near = caster.near_boundary(&camera, w, h, 0.5);
+            let figures = compare_view((&gpu_ids, &exact, &near), (w, h), &skipped);
+            views.push((name, zoom, figures));
+        }
+    }
+    if args.json {
+        let views: Vec<serde_json::Value> = views
+            .iter()
+            .map(|(view, zoom, f)| {
+                json!({
+                    "view": view,
+                    "zoom": zoom,
+                    "disagree_share": f.disagree_share,
+                    "worst_px": f.worst_px,
+                    "silhouette_px": f.silhouette_px,
+                    "unverified_share": f.unverified_share,
+                    "compared": f.compared,
+                })
+            })
+            .collect();
+        println!(
+            "{}",
+            json!({
+                "file": input.display().to_string(),
+                "method": format!("{:?}", args.method).to_lowercase(),
+                "faces": model.faces.len(),
+                "fallback_faces": fallback,
+                "uncast_faces": caster.skipped,
+                "views": views,
+            })
+        );
+    } else {
+        println!(
+            "{}: {} faces, {} drawn from their meshes, {} the ray caster cannot cast",
+            input.display(),
+            model.faces.len(),
+            fallback.len(),
+            caster.skipped.len()
+        );
+        println!("view   zoom  disagree  worst px  silhouette px  unverified");
+        for (view, zoom, f) in &views {
+            println!(
+                "{view:<6} {zoom:>5}  {:>7.3} %  {:>8.1}  {:>13.1}  {:>8.1} %",
+                100.0 * f.disagree_share,
+                f.worst_px,
+                f.silhouette_px,
+                100.0 * f.unverified_share
+            );
+        }
+    }
+    Ok(())
+}
+
+/// One view's figures from the GPU's and the ray caster's face ids (STEP ids, 0 for the
+/// background) and the ray caster's near-boundary pixels; pixels showing a face in `skipped`
+/// on either side are left out.
+fn compare_view(
+    (gpu, exact, near): (&[u64], &[u64], &[bool]),
+    (w, h): (u32, u32),
+    skipped: &HashSet<u64>,
+) -> ViewFigures {
+    let (w, h) = (i64::from(w), i64::from(h));
+    let (mut compared, mut disagree, mut covered, mut unverified) =
+        (0usize, 0usize, 0usize, 0usize);
+    let (mut worst, mut silhouette) = (0.0f64, 0.0f64);
+    for i in 0..gpu.len() {
+        let (g, e) = (gpu[i], exact[i]);
+        if g == 0 && e == 0 {
+            continue;
+        }
+        covered += 1;
+        if skipped.contains(&g) || skipped.contains(&e) {
+            unverified += 1;
+            continue;
+        }
+        if near[i] {
+            continue;
+        }
+        compared += 1;
+        if g == e {
+            continue;
+        }
+        disagree += 1;
+        // How far the ray caster sees what the GPU drew here.
+        let (x, y) = (i as i64 % w, i as i64 / w);
+        let mut distance = (SEARCH_PX + 1) as f64;
+        for dy in -SEARCH_PX..=SEARCH_PX {
+            for dx in -SEARCH_PX..=SEARCH_PX {
+                let (a, b) = (x + dx, y + dy);
+                if a < 0 || b < 0 || a >= w || b >= h {
+                    continue;
+                }
+                let d = ((dx * dx + dy * dy) as f64).sqrt();
+                if d < distance && exact[(b * w + a) as usize] == g {
+                    distance = d;
+                }
+            }
+        }
+        worst = worst.max(distance);
+        if g == 0 || e == 0 {
+            silhouette = silhouette.max(distance);
+        }
+    }
+    ViewFigures {
+        disagree_share: disagree as f64 / compared.max(1) as f64,
+        worst_px: worst,
+        silhouette_px: silhouette,
+        unverified_share: unverified as f64 / covered.max(1) as f64,
+        compared,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pixel_off_by_three_is_three_pixels_out() {
+        // A 16 × 4 image: face 1 on the left half, face 2 on the right; the GPU's boundary
+        // three columns to the right of the exact one.
+        let (w, h) = (16u32, 4u32);
+        let exact: Vec<u64> = (0..w * h).map(|i| if i % w < 8 { 1 } else { 2 }).collect();
+        let gpu: Vec<u64> = (0..w * h).map(|i| if i % w < 11 { 1 } else { 2 }).collect();
+        let near: Vec<bool> = (0..w * h).map(|i| (i % w == 7) || (i % w == 8)).collect();
+        let f = compare_view((&gpu, &exact, &near), (w, h), &HashSet::new());
+        assert_eq!(f.worst_px, 3.0);
+        assert_eq!(f.silhouette_px, 0.0);
+        assert!(
+            (f.disagree_share - 12.0 / 56.0).abs() < 1e-12,
+            "{}",
+            f.disagree_share
+        );
+        // Negative control: the same images agree everywhere when they are the same.
+        let same = compare_view((&exact, &exact, &near), (w, h), &HashSet::new());
+        assert_eq!((same.disagree_share, same.worst_px), (0.0, 0.0));
+        // Faces the ray caster cannot cast are left out, not counted as wrong.
+        let skipped: HashSet<u64> = [1].into_iter().collect();
+        let f = compare_view((&gpu, &exact, &near), (w, h), &skipped);
+        assert_eq!(f.disagree_share, 0.0);
+        assert!(f.unverified_share > 0.5);
+    }
+}
