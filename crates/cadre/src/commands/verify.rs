@@ -235,7 +235,7 @@ mod tests {
         assert_eq!(f.worst_px, 3.0);
         assert_eq!(f.silhouette_px, 0.0);
         assert!(
-            (f.disagree_share - 12.0 / 56.0).abs() < 1e-12,
+            (f.disagree_share - 8.0 / 56.0).abs() < 1e-12,
             "{}",
             f.disagree_share
         );
