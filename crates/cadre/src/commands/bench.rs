@@ -468,6 +468,7 @@ fn bench_render(
         mode,
         ..FrameOptions::default()
     };
+    let trimmed_faces = renderer.prepare(&gpu, &scene).trimmed_faces();
     // An image from the scene, as `cadre render` makes it: upload, frame, readback.
     let render = || {
         let prepared = renderer.prepare(&gpu, &scene);
@@ -491,7 +492,7 @@ fn bench_render(
             "instances": scene.assembly.instances().count(),
             "triangles": scene.assembly.instance_triangle_count(),
             "method": format!("{:?}", grid.1),
-            "trimmed_faces": renderer.prepare(&gpu, &scene).trimmed_faces(),
+            "trimmed_faces": trimmed_faces,
             "width": width,
             "height": height,
             "frame_ms": ms,

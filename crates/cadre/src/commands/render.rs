@@ -437,7 +437,8 @@ fn draw_file(
     let camera = if args.zoom == 1.0 {
         fitted
     } else {
-        let point = centre_point(model, &fitted, (lo, hi));
+        let caster = cadre_render::raycast::RayCaster::new(model, 1e-4 * (hi - lo).length());
+        let point = centre_point(&caster, &fitted, (lo, hi));
         fitted.zoomed_at(point, args.zoom, (lo, hi))
     };
     let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
@@ -497,15 +498,14 @@ pub(crate) fn with_trims(
 }
 
 /// The model's point seen at the centre of `camera`'s image, or the visible one nearest the
-/// centre (the box's centre when nothing is seen): where `--zoom` magnifies.
+/// centre (the box's centre when nothing is seen), by `caster`: where `--zoom` magnifies.
 pub(crate) fn centre_point(
-    model: &cadre_brep::Model,
+    caster: &cadre_render::raycast::RayCaster,
     camera: &Camera,
     (lo, hi): (glam::DVec3, glam::DVec3),
 ) -> glam::DVec3 {
     let (w, h) = (33u32, 33u32);
-    let deflection = 1e-4 * (hi - lo).length();
-    let hits = cadre_render::raycast::RayCaster::new(model, deflection).hits(camera, w, h);
+    let hits = caster.hits(camera, w, h);
     hits.iter()
         .enumerate()
         .filter_map(|(i, hit)| {

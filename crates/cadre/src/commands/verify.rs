@@ -100,7 +100,7 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
     let mut views = Vec::new();
     for (name, preset) in VIEWS {
         let fitted = Camera::fit(lo, hi, preset, false, f64::from(w) / f64::from(h));
-        let point = centre_point(model, &fitted, (lo, hi));
+        let point = centre_point(&caster, &fitted, (lo, hi));
         for &zoom in &args.zoom {
             let camera = fitted.zoomed_at(point, zoom, (lo, hi));
             let ids =
