@@ -140,6 +140,8 @@ fn trimmed_faces_agree_with_the_exact_ray_caster() {
         "crates/cadre-mesh/tests/data/cone_patch_clockwise.step",
         "crates/cadre-mesh/tests/data/half_cones_wrong_sense.step",
         "crates/cadre-mesh/tests/data/unit_cube.step",
+        "crates/cadre-render/tests/data/torus-elbow.step",
+        "crates/cadre-mesh/tests/data/quarter_sphere_collapsed_sides.step",
     ] {
         let bytes = std::fs::read(common::root().join(name)).expect("fixture reads");
         let (model, mesh_scene) = common::model_and_scene_of(bytes, 0.01);

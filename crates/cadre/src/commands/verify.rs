@@ -35,6 +35,10 @@ pub struct VerifyArgs {
     /// One JSON object instead of a table.
     #[arg(long)]
     json: bool,
+    /// Print each disagreeing pixel on stderr with the face ids around it, both images
+    /// side by side (the GPU's on the left).
+    #[arg(long)]
+    explain: bool,
 }
 
 /// The views each magnification is checked in.
@@ -109,6 +113,9 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
             let exact = caster.face_ids(&camera, w, h);
             let near = caster.near_boundary(&camera, w, h, 0.5);
             let figures = compare_view((&gpu_ids, &exact, &near), (w, h), &skipped);
+            if args.explain {
+                explain(name, zoom, (&gpu_ids, &exact, &near), (w, h), &skipped);
+            }
             views.push((name, zoom, figures));
         }
     }
@@ -216,6 +223,34 @@ fn compare_view(
         silhouette_px: silhouette,
         unverified_share: unverified as f64 / covered.max(1) as f64,
         compared,
+    }
+}
+
+/// Prints, for each pixel [`compare_view`] counts as disagreeing, the face ids of the GPU
+/// (left) and of the ray caster (right) in the 17 × 13 pixels about it.
+fn explain(
+    view: &str,
+    zoom: f64,
+    (gpu, exact, near): (&[u64], &[u64], &[bool]),
+    (w, h): (u32, u32),
+    skipped: &HashSet<u64>,
+) {
+    let (w, h) = (i64::from(w), i64::from(h));
+    for i in 0..gpu.len() {
+        let (g, e) = (gpu[i], exact[i]);
+        if g == e || near[i] || skipped.contains(&g) || skipped.contains(&e) {
+            continue;
+        }
+        let (x, y) = (i as i64 % w, i as i64 / w);
+        eprintln!("{view} ×{zoom}, pixel ({x}, {y}): GPU face #{g}, ray caster #{e}");
+        for b in (y - 6).max(0)..(y + 7).min(h) {
+            let row = |img: &[u64]| {
+                ((x - 8).max(0)..(x + 9).min(w))
+                    .map(|a| format!("{:>7}", img[(b * w + a) as usize]))
+                    .collect::<String>()
+            };
+            eprintln!("{}   |{}", row(gpu), row(exact));
+        }
     }
 }
 

@@ -1,8 +1,11 @@
-//! A CPU ray caster of the exact B-Rep: each face is its support surface, intersected in
-//! closed form, cut by its trim loops. It is the independent oracle for the GPU's face-id
-//! buffer (which draws the tessellation) and the reference for the exact-rendering work that
-//! follows. Planes, cylinders, cones and spheres are supported; faces on other surfaces are
-//! reported, not guessed.
+//! A CPU ray caster of the exact B-Rep: each face is its support surface, cut by its trim
+//! loops. It is the independent oracle for the GPU's face-id buffer, whichever back-end drew
+//! it. Planes, cylinders, cones and spheres are intersected in closed form; every other
+//! surface (tori, B-splines, revolutions, extrusions, offsets) through a tree of boxed
+//! (u, v) cells and Newton's method from each leaf the ray enters ([`patch_tree`]).
+
+mod closed_form;
+mod patch_tree;
 
 use cadre_brep::trim::{TrimTolerance, face_trim};
 use cadre_brep::{Body, FaceId, Model};
@@ -10,14 +13,29 @@ use cadre_geom::{Accuracy, Surface, Transform};
 use cadre_mesh::MeshParams;
 use cadre_mesh::edges::EdgeDiscretisation;
 use glam::{DVec2, DVec3, DVec4};
+use rayon::prelude::*;
 
 use crate::Camera;
+use patch_tree::{PatchTree, slab};
+
+/// How a face's surface is intersected.
+enum Intersect {
+    /// A quadric or a plane, in closed form.
+    ClosedForm,
+    /// Any other surface, through its cell tree.
+    Tree(PatchTree),
+}
 
 /// One face ready to be hit: its surface, its trim polygons in (u, v), its periods.
 struct CastFace {
     step_id: u64,
     surface: Surface,
+    intersect: Intersect,
     loops: Vec<Vec<DVec2>>,
+    /// The loops' (u, v) box: `[u0, u1, v0, v1]`.
+    uv_box: [f64; 4],
+    /// Box holding the face in its part's space.
+    bounds: (DVec3, DVec3),
     period_u: Option<f64>,
     period_v: Option<f64>,
 }
@@ -48,35 +66,34 @@ impl RayCaster {
             accuracy: acc,
             keep_exact: false,
         };
+        let prepared: Vec<Option<CastFace>> = model
+            .faces
+            .par_iter()
+            .enumerate()
+            .map(|(i, face)| {
+                let trim = face_trim(model, FaceId(i as u32), &edges, &tol).ok()?;
+                let loops = trim
+                    .loops
+                    .iter()
+                    .map(|l| l.polygon().iter().map(|p| p.uv).collect())
+                    .collect();
+                CastFace::new(
+                    face.step_id,
+                    model.surfaces[face.surface.index()].clone(),
+                    loops,
+                )
+            })
+            .collect();
         let mut faces = Vec::new();
         let mut index_of = vec![None; model.faces.len()];
         let mut skipped = Vec::new();
-        for (i, face) in model.faces.iter().enumerate() {
-            let surface = model.surfaces[face.surface.index()].clone();
-            let supported = matches!(
-                surface,
-                Surface::Plane { .. }
-                    | Surface::Cylinder { .. }
-                    | Surface::Cone { .. }
-                    | Surface::Sphere { .. }
-            );
-            let trim = face_trim(model, FaceId(i as u32), &edges, &tol);
-            match (supported, trim) {
-                (true, Ok(trim)) => {
+        for (i, face) in prepared.into_iter().enumerate() {
+            match face {
+                Some(face) => {
                     index_of[i] = Some(faces.len());
-                    faces.push(CastFace {
-                        step_id: face.step_id,
-                        loops: trim
-                            .loops
-                            .iter()
-                            .map(|l| l.polygon().iter().map(|p| p.uv).collect())
-                            .collect(),
-                        period_u: surface.u_period(),
-                        period_v: surface.v_period(),
-                        surface,
-                    });
+                    faces.push(face);
                 }
-                _ => skipped.push(face.step_id),
+                None => skipped.push(model.faces[i].step_id),
             }
         }
         let mut instances = Vec::new();
@@ -140,13 +157,12 @@ impl RayCaster {
             DVec2::new(u1, v1),
             DVec2::new(u0, v1),
         ];
-        self.faces.push(CastFace {
-            step_id: u64::from(primitive.face_id),
-            loops: vec![rectangle],
-            period_u: surface.u_period(),
-            period_v: surface.v_period(),
-            surface,
-        });
+        let Some(face) = CastFace::new(u64::from(primitive.face_id), surface, vec![rectangle])
+        else {
+            self.skipped.push(u64::from(primitive.face_id));
+            return;
+        };
+        self.faces.push(face);
         self.instances
             .push((Transform::IDENTITY, vec![self.faces.len() - 1]));
     }
@@ -206,25 +222,15 @@ impl RayCaster {
         height: u32,
         offset: DVec2,
     ) -> Vec<Option<(u64, DVec3)>> {
-        let aspect = f64::from(width) / f64::from(height);
-        let unproject = (camera.projection_matrix(aspect) * camera.view_rotation()).inverse();
-        let mut out = Vec::with_capacity((width * height) as usize);
-        for y in 0..height {
-            for x in 0..width {
-                let ndc = DVec2::new(
-                    (f64::from(x) + 0.5 + offset.x) / f64::from(width) * 2.0 - 1.0,
-                    1.0 - (f64::from(y) + 0.5 + offset.y) / f64::from(height) * 2.0,
-                );
-                // Reverse Z: depth 1 is the near plane, 0 the far one.
-                let near = unproject * DVec4::new(ndc.x, ndc.y, 1.0, 1.0);
-                let far = unproject * DVec4::new(ndc.x, ndc.y, 0.0, 1.0);
-                let (near, far) = (near.truncate() / near.w, far.truncate() / far.w);
-                let origin = camera.eye + near;
-                let dir = (far - near).normalize();
-                out.push(self.cast(origin, dir).map(|(t, id)| (id, origin + dir * t)));
-            }
-        }
-        out
+        let rays = PixelRays::new(camera, width, height);
+        (0..width * height)
+            .into_par_iter()
+            .map(|i| {
+                let pixel = DVec2::new(f64::from(i % width), f64::from(i / width)) + offset;
+                let (origin, dir) = rays.through(pixel);
+                self.cast(origin, dir).map(|(t, id)| (id, origin + dir * t))
+            })
+            .collect()
     }
 
     /// The ray parameter and STEP id of the nearest face hit by the ray.
@@ -233,12 +239,14 @@ impl RayCaster {
         for (to_part, ids) in &self.instances {
             let o = to_part.transform_point3(origin);
             let d = to_part.transform_vector3(dir);
+            let inv = d.recip();
             for &k in ids {
                 let face = &self.faces[k];
-                for t in hits(&face.surface, o, d) {
-                    if t > 0.0 && t < best.0 && face.contains(o + d * t) {
-                        best = (t, face.step_id);
-                    }
+                if slab(face.bounds.0, face.bounds.1, o, inv, best.0).is_none() {
+                    continue;
+                }
+                if let Some(t) = face.nearest_hit(o, d, best.0) {
+                    best = (t, face.step_id);
                 }
             }
         }
@@ -246,20 +254,114 @@ impl RayCaster {
     }
 }
 
+/// The rays of a camera's image: from the near plane through each pixel.
+pub struct PixelRays {
+    eye: DVec3,
+    unproject: glam::DMat4,
+    size: DVec2,
+}
+
+impl PixelRays {
+    /// The rays of a `width` × `height` image seen by `camera`.
+    pub fn new(camera: &Camera, width: u32, height: u32) -> PixelRays {
+        let aspect = f64::from(width) / f64::from(height);
+        PixelRays {
+            eye: camera.eye,
+            unproject: (camera.projection_matrix(aspect) * camera.view_rotation()).inverse(),
+            size: DVec2::new(f64::from(width), f64::from(height)),
+        }
+    }
+
+    /// Origin (on the near plane) and unit direction of the ray through the image point
+    /// `pixel` + ½ (pixel (x, y) has its centre at (x + ½, y + ½); y down).
+    pub fn through(&self, pixel: DVec2) -> (DVec3, DVec3) {
+        let ndc = DVec2::new(
+            (pixel.x + 0.5) / self.size.x * 2.0 - 1.0,
+            1.0 - (pixel.y + 0.5) / self.size.y * 2.0,
+        );
+        // Reverse Z: depth 1 is the near plane, 0 the far one.
+        let near = self.unproject * DVec4::new(ndc.x, ndc.y, 1.0, 1.0);
+        let far = self.unproject * DVec4::new(ndc.x, ndc.y, 0.0, 1.0);
+        let (near, far) = (near.truncate() / near.w, far.truncate() / far.w);
+        (self.eye + near, (far - near).normalize())
+    }
+}
+
 impl CastFace {
-    /// Whether a point of the surface lies inside the trim (even-odd over the loops), trying
-    /// the (u, v) a period either side on closed surfaces.
-    fn contains(&self, p: DVec3) -> bool {
-        let Some((u, v)) = self.surface.project(p, None, Accuracy::default()) else {
-            return false;
+    /// The face of `surface` trimmed by `loops` (even-odd, in (u, v)); `None` when it has
+    /// no loop or its surface gives no finite box over them.
+    fn new(step_id: u64, surface: Surface, loops: Vec<Vec<DVec2>>) -> Option<CastFace> {
+        // A rectangular trim of a quadric is the quadric, trimmed by the loops anyway.
+        let surface = match surface {
+            Surface::Trimmed { basis, .. } if closed_form::handles(&basis) => *basis,
+            other => other,
         };
-        let shifts = |period: Option<f64>| match period {
-            Some(t) => vec![-t, 0.0, t],
-            None => vec![0.0],
+        let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
+        for p in loops.iter().flatten() {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        if !(lo.x < hi.x && lo.y < hi.y && lo.is_finite() && hi.is_finite()) {
+            return None;
+        }
+        let (intersect, bounds) = if closed_form::handles(&surface) {
+            let b = surface.bbox_over(lo.x, hi.x, lo.y, hi.y);
+            if b.is_empty() || !(b.min.is_finite() && b.max.is_finite()) {
+                return None;
+            }
+            let pad = DVec3::splat(1e-9 * (b.max - b.min).length().max(1e-300));
+            (Intersect::ClosedForm, (b.min - pad, b.max + pad))
+        } else {
+            let tree = PatchTree::build(&surface, (lo.x, hi.x), (lo.y, hi.y))?;
+            let bounds = tree.bounds();
+            (Intersect::Tree(tree), bounds)
         };
-        for du in shifts(self.period_u) {
-            for dv in shifts(self.period_v) {
-                if self.even_odd(DVec2::new(u + du, v + dv)) {
+        Some(CastFace {
+            step_id,
+            period_u: surface.u_period(),
+            period_v: surface.v_period(),
+            surface,
+            intersect,
+            loops,
+            uv_box: [lo.x, hi.x, lo.y, hi.y],
+            bounds,
+        })
+    }
+
+    /// The nearest `t` in `(0, t_max)` where the ray `o + t·d` (part space) meets the face.
+    fn nearest_hit(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<f64> {
+        match &self.intersect {
+            Intersect::ClosedForm => closed_form::hits(&self.surface, o, d)
+                .into_iter()
+                .filter(|&t| t > 0.0 && t < t_max)
+                .filter(|&t| {
+                    closed_form::uv_of(&self.surface, o + d * t).is_some_and(|q| self.contains(q))
+                })
+                .min_by(f64::total_cmp),
+            Intersect::Tree(tree) => tree
+                .nearest(&self.surface, (o, d), t_max, |u, v| {
+                    self.contains(DVec2::new(u, v))
+                })
+                .map(|h| h.t),
+        }
+    }
+
+    /// Whether the surface point of parameters `q` lies inside the trim (even-odd over the
+    /// loops), `q` taken into the loops' box by whole periods on closed surfaces.
+    fn contains(&self, q: DVec2) -> bool {
+        let [u0, _, v0, _] = self.uv_box;
+        // The loops may span a little more than one period: try the point and its image a
+        // period on.
+        let candidates = |x: f64, start: f64, period: Option<f64>| match period {
+            Some(t) if t > 0.0 => {
+                let x = start + (x - start).rem_euclid(t);
+                [x, x + t]
+            }
+            _ => [x, f64::NAN],
+        };
+        for u in candidates(q.x, u0, self.period_u) {
+            for v in candidates(q.y, v0, self.period_v) {
+                if !u.is_nan() && !v.is_nan() && self.even_odd(DVec2::new(u, v)) {
                     return true;
                 }
             }
@@ -280,112 +382,5 @@ impl CastFace {
             }
         }
         inside
-    }
-}
-
-/// Ray parameters where `o + t d` meets the surface (closed form; empty for other types).
-fn hits(surface: &Surface, o: DVec3, d: DVec3) -> Vec<f64> {
-    let local = |frame: &cadre_geom::Frame| {
-        let q = o - frame.origin;
-        (
-            DVec3::new(q.dot(frame.x), q.dot(frame.y), q.dot(frame.z)),
-            DVec3::new(d.dot(frame.x), d.dot(frame.y), d.dot(frame.z)),
-        )
-    };
-    match surface {
-        Surface::Plane { frame } => {
-            let (q, e) = local(frame);
-            if e.z.abs() < 1e-300 {
-                vec![]
-            } else {
-                vec![-q.z / e.z]
-            }
-        }
-        Surface::Cylinder { frame, radius } => {
-            let (q, e) = local(frame);
-            quadratic(
-                e.x * e.x + e.y * e.y,
-                2.0 * (q.x * e.x + q.y * e.y),
-                q.x * q.x + q.y * q.y - radius * radius,
-            )
-        }
-        Surface::Sphere { frame, radius } => {
-            let (q, e) = local(frame);
-            quadratic(e.dot(e), 2.0 * q.dot(e), q.dot(q) - radius * radius)
-        }
-        Surface::Cone {
-            frame,
-            radius,
-            semi_angle,
-        } => {
-            // x² + y² = (r + z tan α)²
-            let (q, e) = local(frame);
-            let k = semi_angle.tan();
-            let (r0, r1) = (radius + q.z * k, e.z * k);
-            quadratic(
-                e.x * e.x + e.y * e.y - r1 * r1,
-                2.0 * (q.x * e.x + q.y * e.y - r0 * r1),
-                q.x * q.x + q.y * q.y - r0 * r0,
-            )
-        }
-        _ => vec![],
-    }
-}
-
-/// Real roots of `a t² + b t + c`.
-fn quadratic(a: f64, b: f64, c: f64) -> Vec<f64> {
-    if a.abs() < 1e-300 {
-        return if b.abs() < 1e-300 {
-            vec![]
-        } else {
-            vec![-c / b]
-        };
-    }
-    let disc = b * b - 4.0 * a * c;
-    if disc < 0.0 {
-        return vec![];
-    }
-    // The stable form: no cancellation between b and the root.
-    let s = disc.sqrt();
-    let q = -0.5 * (b + b.signum() * s);
-    let mut roots = vec![q / a];
-    if q != 0.0 {
-        roots.push(c / q);
-    }
-    roots
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn quadratic_roots_and_surface_hits() {
-        let mut r = quadratic(1.0, -3.0, 2.0);
-        r.sort_by(f64::total_cmp);
-        assert_eq!(r, vec![1.0, 2.0]);
-        assert!(quadratic(1.0, 0.0, 1.0).is_empty());
-        let sphere = Surface::Sphere {
-            frame: cadre_geom::Frame::WORLD,
-            radius: 2.0,
-        };
-        let mut t = hits(&sphere, DVec3::new(-5.0, 0.0, 0.0), DVec3::X);
-        t.sort_by(f64::total_cmp);
-        assert!(
-            (t[0] - 3.0).abs() < 1e-12 && (t[1] - 7.0).abs() < 1e-12,
-            "{t:?}"
-        );
-        let cone = Surface::Cone {
-            frame: cadre_geom::Frame::WORLD,
-            radius: 1.0,
-            semi_angle: std::f64::consts::FRAC_PI_4,
-        };
-        // At height 1 the cone's radius is 2.
-        let mut t = hits(&cone, DVec3::new(-5.0, 0.0, 1.0), DVec3::X);
-        t.sort_by(f64::total_cmp);
-        assert!(
-            (t[0] - 3.0).abs() < 1e-12 && (t[1] - 7.0).abs() < 1e-12,
-            "{t:?}"
-        );
     }
 }
