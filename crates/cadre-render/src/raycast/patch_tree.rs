@@ -6,6 +6,9 @@
 //! too tight; the leaves are small enough that the surface is nearly flat over each, so
 //! Newton converges from the centre to the hit in it for every ray that does not graze it.
 
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
 use cadre_geom::Surface;
 use glam::DVec3;
 
@@ -21,9 +24,6 @@ const MAX_ANGLE: f64 = std::f64::consts::FRAC_PI_2;
 const NEWTON_STEPS: usize = 24;
 /// Halvings of a leaf, at most, while isolating the nearest hit of a grazing ray.
 const REFINE_DEPTH: u32 = 12;
-/// A ray meeting the surface at less than this sine of an angle (about 17°) is grazing: the
-/// cell is halved until the nearest hit is isolated.
-const GRAZING_SIN: f64 = 0.3;
 /// Safety factor on the sampled second-derivative bound.
 const CURVATURE_SAFETY: f64 = 2.0;
 
@@ -37,6 +37,9 @@ struct Node {
     cell: [f64; 4],
     /// Index of the first of two children, or `u32::MAX` for a leaf.
     children: u32,
+    /// Sine of the largest angle between the cell's sampled normals, doubled (1 where a
+    /// normal vanishes): rays steeper than this cannot meet the cell twice.
+    spread: f64,
 }
 
 /// The cell tree of one surface patch.
@@ -45,6 +48,33 @@ pub(crate) struct PatchTree {
     roots: Vec<u32>,
     /// Distance below which `S(u, v) − (o + t·d)` counts as zero.
     tolerance: f64,
+}
+
+/// A cell the ray enters at `t`, ordered nearest first in a [`BinaryHeap`].
+struct Entry {
+    t: f64,
+    node: u32,
+}
+
+impl PartialEq for Entry {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Entry {}
+
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Entry {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // Reversed: the heap pops the nearest.
+        other.t.total_cmp(&self.t)
+    }
 }
 
 /// A ray's hit: its parameter and the surface parameters there.
@@ -121,6 +151,7 @@ impl PatchTree {
             hi: sample.hi,
             cell,
             children: u32::MAX,
+            spread: sample.spread,
         };
         if sample.flat || depth >= MAX_DEPTH {
             return Some(node);
@@ -147,21 +178,31 @@ impl PatchTree {
     ) -> Option<PatchHit> {
         let inv = d.recip();
         let mut best = None;
-        let mut stack: Vec<u32> = self.roots.clone();
-        while let Some(k) = stack.pop() {
-            let node = &self.nodes[k as usize];
-            let Some(enter) = slab(node.lo, node.hi, o, inv, t_max) else {
-                continue;
-            };
+        // Front to back: once a hit is kept, every cell entered beyond it is skipped.
+        let mut queue: BinaryHeap<Entry> = self
+            .roots
+            .iter()
+            .filter_map(|&k| {
+                let n = &self.nodes[k as usize];
+                slab(n.lo, n.hi, o, inv, t_max).map(|t| Entry { t, node: k })
+            })
+            .collect();
+        while let Some(Entry { t: enter, node: k }) = queue.pop() {
             if enter >= t_max {
-                continue;
+                break;
             }
+            let node = &self.nodes[k as usize];
             if node.children != u32::MAX {
-                stack.push(node.children);
-                stack.push(node.children + 1);
+                for child in [node.children, node.children + 1] {
+                    let n = &self.nodes[child as usize];
+                    if let Some(t) = slab(n.lo, n.hi, o, inv, t_max) {
+                        queue.push(Entry { t, node: child });
+                    }
+                }
                 continue;
             }
-            if let Some(hit) = self.solve(surface, (o, d), node.cell, t_max, &keep, 0) {
+            let leaf = (node.cell, node.spread);
+            if let Some(hit) = self.solve(surface, (o, d), leaf, t_max, &keep, 0) {
                 t_max = hit.t;
                 best = Some(hit);
             }
@@ -170,15 +211,15 @@ impl PatchTree {
     }
 
     /// The nearest kept hit in `(0, t_max)` within `cell`: Newton's method from its centre,
-    /// trusted when the ray meets the surface steeply enough that the (nearly flat) cell
-    /// cannot hold a second, nearer hit; otherwise, and when Newton fails, the cell is
+    /// trusted when the ray meets the surface more steeply than the cell's normals spread
+    /// (`spread`), so that it cannot hold a second, nearer hit; otherwise, and when Newton fails, the cell is
     /// halved and each half the ray enters solved in turn, nearest first, down to
     /// [`REFINE_DEPTH`] more levels (a ray grazing the surface: near a silhouette).
     fn solve(
         &self,
         surface: &Surface,
         (o, d): (DVec3, DVec3),
-        cell: [f64; 4],
+        (cell, spread): ([f64; 4], f64),
         t_max: f64,
         keep: &impl Fn(f64, f64) -> bool,
         extra: u32,
@@ -186,7 +227,7 @@ impl PatchTree {
         let hit = self.newton(surface, (o, d), cell);
         if let Some(h) = hit {
             let normal = surface.normal(h.u, h.v).unwrap_or(DVec3::ZERO);
-            let steep = normal.dot(d).abs() >= GRAZING_SIN * d.length();
+            let steep = normal.dot(d).abs() > spread * d.length();
             if steep || extra >= REFINE_DEPTH {
                 return (h.t > 0.0 && h.t < t_max && keep(h.u, h.v)).then_some(h);
             }
@@ -195,12 +236,12 @@ impl PatchTree {
         }
         let sample = CellSample::of(surface, cell)?;
         let inv = d.recip();
-        let mut halves: Vec<(f64, [f64; 4])> = sample
+        let mut halves: Vec<(f64, ([f64; 4], f64))> = sample
             .halves(cell)
             .into_iter()
             .filter_map(|half| {
                 let s = CellSample::of(surface, half)?;
-                slab(s.lo, s.hi, o, inv, t_max).map(|enter| (enter, half))
+                slab(s.lo, s.hi, o, inv, t_max).map(|enter| (enter, (half, s.spread)))
             })
             .collect();
         halves.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -271,6 +312,8 @@ struct CellSample {
     lo: DVec3,
     hi: DVec3,
     flat: bool,
+    /// As [`Node::spread`].
+    spread: f64,
     /// `max |Su| · Δu` and `max |Sv| · Δv`: the cell's extent on the surface each way.
     extent_u: f64,
     extent_v: f64,
@@ -311,10 +354,20 @@ impl CellSample {
             && normals
                 .iter()
                 .all(|n| *n != DVec3::ZERO && n.dot(centre) >= FLAT_COS);
+        let spread = if normals.contains(&DVec3::ZERO) {
+            1.0
+        } else {
+            let sin = normals
+                .iter()
+                .map(|n| n.cross(centre).length())
+                .fold(0.0, f64::max);
+            (2.0 * sin).min(1.0)
+        };
         Some(CellSample {
             lo: lo - margin,
             hi: hi + margin,
             flat,
+            spread,
             extent_u: su * (u1 - u0),
             extent_v: sv * (v1 - v0),
         })
