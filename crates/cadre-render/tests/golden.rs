@@ -96,6 +96,51 @@ fn fixtures_match_their_golden_images() {
     }
 }
 
+/// The trim back-end's images (faces drawn from their exact surfaces, trimmed per pixel):
+/// each fixture against its own golden image, and against the mesh back-end's image of the
+/// same view, which it must match within the golden tolerance (they differ only by the
+/// mesh's facets and by pixels along boundaries).
+#[test]
+fn trimmed_faces_match_their_golden_images() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    if !renderer.draws_trims() {
+        eprintln!("skipped: the adapter runs no compute shaders, its scenes keep their meshes");
+        return;
+    }
+    for (name, mode, golden) in [
+        (
+            "pin-assembly.step",
+            DisplayMode::ShadedEdges,
+            "pin-assembly-iso-shaded-edges-trim.png",
+        ),
+        (
+            "dome-and-cone.step",
+            DisplayMode::Shaded,
+            "dome-and-cone-iso-trim.png",
+        ),
+        (
+            "torus-elbow.step",
+            DisplayMode::ShadedEdges,
+            "torus-elbow-iso-shaded-edges-trim.png",
+        ),
+    ] {
+        let (model, mesh) = model_and_scene(name);
+        let trimmed = mesh.clone().with_trims(&model, 0.001);
+        let fallback = &trimmed.trim.as_ref().expect("trims").fallback;
+        assert!(fallback.is_empty(), "{name}: {fallback:?}");
+        let image = render_mode(&gpu, &renderer, &trimmed, ViewPreset::Iso, false, mode);
+        check_golden(golden, &image);
+        let by_mesh = render_mode(&gpu, &renderer, &mesh, ViewPreset::Iso, false, mode);
+        let diff = compare(&image, &by_mesh, TOLERANCE);
+        assert!(
+            diff.passes(MAX_DIFFERING),
+            "{name}: the trim and mesh images differ on {:?}",
+            diff
+        );
+    }
+}
+
 #[test]
 fn a_wrong_image_is_caught() {
     // Negative control: the iso render compared with the front view must fail the same bar.

@@ -6,6 +6,7 @@
 //! too tight; the leaves are small enough that the surface is nearly flat over each, so
 //! Newton converges from the centre to the hit in it for every ray that does not graze it.
 
+use std::cell::Cell;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -24,6 +25,14 @@ const MAX_ANGLE: f64 = std::f64::consts::FRAC_PI_2;
 const NEWTON_STEPS: usize = 24;
 /// Halvings of a leaf, at most, while isolating the nearest hit of a grazing ray.
 const REFINE_DEPTH: u32 = 12;
+/// Halvings of a leaf, at most, where Newton's method found no hit for a grazing ray.
+const MISSED_REFINE_DEPTH: u32 = 4;
+/// A ray meeting a cell's centre at less than this sine of an angle (about 17°) may have
+/// thrown Newton's method off a hit there.
+const GRAZING_SIN: f64 = 0.3;
+/// Cell halvings per ray, at most (each samples two cells): bounds the work of a ray
+/// running along a surface inside many cells' boxes.
+const REFINE_BUDGET: u32 = 64;
 /// Safety factor on the sampled second-derivative bound.
 const CURVATURE_SAFETY: f64 = 2.0;
 
@@ -178,6 +187,7 @@ impl PatchTree {
     ) -> Option<PatchHit> {
         let inv = d.recip();
         let mut best = None;
+        let budget = Cell::new(REFINE_BUDGET);
         // Front to back: once a hit is kept, every cell entered beyond it is skipped.
         let mut queue: BinaryHeap<Entry> = self
             .roots
@@ -202,7 +212,7 @@ impl PatchTree {
                 continue;
             }
             let leaf = (node.cell, node.spread);
-            if let Some(hit) = self.solve(surface, (o, d), leaf, t_max, &keep, 0) {
+            if let Some(hit) = self.solve(surface, (o, d), leaf, t_max, &keep, (0, &budget)) {
                 t_max = hit.t;
                 best = Some(hit);
             }
@@ -214,7 +224,8 @@ impl PatchTree {
     /// trusted when the ray meets the surface more steeply than the cell's normals spread
     /// (`spread`), so that it cannot hold a second, nearer hit; otherwise, and when Newton fails, the cell is
     /// halved and each half the ray enters solved in turn, nearest first, down to
-    /// [`REFINE_DEPTH`] more levels (a ray grazing the surface: near a silhouette).
+    /// [`REFINE_DEPTH`] more levels (a ray grazing the surface: near a silhouette), or
+    /// [`MISSED_REFINE_DEPTH`] where Newton found nothing, within the ray's `budget`.
     fn solve(
         &self,
         surface: &Surface,
@@ -222,18 +233,32 @@ impl PatchTree {
         (cell, spread): ([f64; 4], f64),
         t_max: f64,
         keep: &impl Fn(f64, f64) -> bool,
-        extra: u32,
+        (extra, budget): (u32, &Cell<u32>),
     ) -> Option<PatchHit> {
         let hit = self.newton(surface, (o, d), cell);
-        if let Some(h) = hit {
-            let normal = surface.normal(h.u, h.v).unwrap_or(DVec3::ZERO);
-            let steep = normal.dot(d).abs() > spread * d.length();
-            if steep || extra >= REFINE_DEPTH {
-                return (h.t > 0.0 && h.t < t_max && keep(h.u, h.v)).then_some(h);
+        let kept = |h: PatchHit| (h.t > 0.0 && h.t < t_max && keep(h.u, h.v)).then_some(h);
+        let out_of_budget = budget.get() == 0;
+        match hit {
+            Some(h) => {
+                let normal = surface.normal(h.u, h.v).unwrap_or(DVec3::ZERO);
+                let steep = normal.dot(d).abs() > spread * d.length();
+                if steep || extra >= REFINE_DEPTH || out_of_budget {
+                    return kept(h);
+                }
             }
-        } else if extra >= REFINE_DEPTH {
-            return None;
+            None => {
+                // Newton fails in a nearly flat cell the ray crosses steeply only when the
+                // ray misses the surface there; a grazing ray may have been thrown off.
+                let [u0, u1, v0, v1] = cell;
+                let centre = surface.normal(0.5 * (u0 + u1), 0.5 * (v0 + v1));
+                let grazing =
+                    centre.is_none_or(|n| n.dot(d).abs() <= spread.max(GRAZING_SIN) * d.length());
+                if !grazing || extra >= MISSED_REFINE_DEPTH || out_of_budget {
+                    return None;
+                }
+            }
         }
+        budget.set(budget.get().saturating_sub(1));
         let sample = CellSample::of(surface, cell)?;
         let inv = d.recip();
         let mut halves: Vec<(f64, ([f64; 4], f64))> = sample
@@ -251,7 +276,7 @@ impl PatchTree {
             if enter >= limit {
                 break;
             }
-            if let Some(h) = self.solve(surface, (o, d), half, limit, keep, extra + 1) {
+            if let Some(h) = self.solve(surface, (o, d), half, limit, keep, (extra + 1, budget)) {
                 best = Some(h);
             }
         }
@@ -342,7 +367,14 @@ impl CellSample {
                 mvv = mvv.max(d.dvv.length());
                 su = su.max(d.du.length());
                 sv = sv.max(d.dv.length());
-                normals[i * 3 + j] = d.du.cross(d.dv).normalize_or_zero();
+                // Where the partials are parallel (a collapsed edge, a pole) the normal of a
+                // point a step inside, so such a cell can still count as flat.
+                normals[i * 3 + j] = match d.du.cross(d.dv).try_normalize() {
+                    Some(n) => n,
+                    None => surface
+                        .normal(u0 + hu * i as f64, v0 + hv * j as f64)
+                        .unwrap_or(DVec3::ZERO),
+                };
             }
         }
         // The surface's distance from the bilinear pieces through the 3 × 3 samples, which
