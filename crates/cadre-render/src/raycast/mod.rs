@@ -16,7 +16,7 @@ use glam::{DVec2, DVec3, DVec4};
 use rayon::prelude::*;
 
 use crate::Camera;
-use patch_tree::{PatchTree, slab};
+use patch_tree::{PatchTree, REFINE_CACHE_CELLS, RefineCache, slab};
 
 /// How a face's surface is intersected.
 enum Intersect {
@@ -47,6 +47,8 @@ pub struct RayCaster {
     instances: Vec<(Transform, Vec<usize>)>,
     /// STEP ids of faces skipped (unsupported surface, or no trim).
     pub skipped: Vec<u64>,
+    /// Refined cells kept by every face's tree, shared so their memory is bounded.
+    cache: RefineCache,
 }
 
 impl RayCaster {
@@ -66,6 +68,7 @@ impl RayCaster {
             accuracy: acc,
             keep_exact: false,
         };
+        let cache = RefineCache::new(REFINE_CACHE_CELLS);
         let prepared: Vec<Option<CastFace>> = model
             .faces
             .par_iter()
@@ -81,6 +84,7 @@ impl RayCaster {
                     face.step_id,
                     model.surfaces[face.surface.index()].clone(),
                     loops,
+                    &cache,
                 )
             })
             .collect();
@@ -130,6 +134,7 @@ impl RayCaster {
             faces,
             instances,
             skipped,
+            cache,
         }
     }
 
@@ -157,8 +162,8 @@ impl RayCaster {
             DVec2::new(u1, v1),
             DVec2::new(u0, v1),
         ];
-        let Some(face) = CastFace::new(u64::from(primitive.face_id), surface, vec![rectangle])
-        else {
+        let id = u64::from(primitive.face_id);
+        let Some(face) = CastFace::new(id, surface, vec![rectangle], &self.cache) else {
             self.skipped.push(u64::from(primitive.face_id));
             return;
         };
@@ -290,7 +295,12 @@ impl PixelRays {
 impl CastFace {
     /// The face of `surface` trimmed by `loops` (even-odd, in (u, v)); `None` when it has
     /// no loop or its surface gives no finite box over them.
-    fn new(step_id: u64, surface: Surface, loops: Vec<Vec<DVec2>>) -> Option<CastFace> {
+    fn new(
+        step_id: u64,
+        surface: Surface,
+        loops: Vec<Vec<DVec2>>,
+        cache: &RefineCache,
+    ) -> Option<CastFace> {
         // A rectangular trim of a quadric is the quadric, trimmed by the loops anyway.
         let surface = match surface {
             Surface::Trimmed { basis, .. } if closed_form::handles(&basis) => *basis,
@@ -312,7 +322,7 @@ impl CastFace {
             let pad = DVec3::splat(1e-9 * (b.max - b.min).length().max(1e-300));
             (Intersect::ClosedForm, (b.min - pad, b.max + pad))
         } else {
-            let tree = PatchTree::build(&surface, (lo.x, hi.x), (lo.y, hi.y))?;
+            let tree = PatchTree::build(&surface, (lo.x, hi.x), (lo.y, hi.y), cache.clone())?;
             let bounds = tree.bounds();
             (Intersect::Tree(tree), bounds)
         };

@@ -9,6 +9,8 @@
 use std::cell::Cell;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
+use std::sync::atomic::{AtomicUsize, Ordering as AtomicOrdering};
+use std::sync::{Arc, OnceLock};
 
 use cadre_geom::Surface;
 use glam::DVec3;
@@ -29,10 +31,12 @@ const REFINE_DEPTH: u32 = 12;
 const MISSED_REFINE_DEPTH: u32 = 4;
 /// A ray meeting a cell's centre at less than this sine of an angle (about 17°) may have
 /// thrown Newton's method off a hit there.
-const GRAZING_SIN: f64 = 0.3;
+const GRAZING_SIN: f64 = 0.0;
 /// Cell halvings per ray, at most (each samples two cells): bounds the work of a ray
 /// running along a surface inside many cells' boxes.
 const REFINE_BUDGET: u32 = 64;
+/// Refined cells a [`RefineCache`] keeps, at most, by default (about 170 bytes each).
+pub(crate) const REFINE_CACHE_CELLS: usize = 1 << 19;
 /// Safety factor on the sampled second-derivative bound.
 const CURVATURE_SAFETY: f64 = 2.0;
 
@@ -49,11 +53,89 @@ struct Node {
     /// Sine of the largest angle between the cell's sampled normals, doubled (1 where a
     /// normal vanishes): rays steeper than this cannot meet the cell twice.
     spread: f64,
+    /// A second bound, a slab across the cell's centre normal (zero where there is none):
+    /// `normal · p` lies in `[range.0, range.1]` for every point of the surface over the
+    /// cell. Much tighter than the box for a nearly flat cell lying oblique to the axes, so
+    /// a ray grazing such a cell is not sent into it unless it passes within its thickness.
+    normal: DVec3,
+    range: (f64, f64),
+    /// `max |Su| · Δu` and `max |Sv| · Δv`: the cell's extent on the surface each way,
+    /// which chooses the direction it is halved in.
+    extent_u: f64,
+    extent_v: f64,
+}
+
+impl Node {
+    /// Where the ray `o + t·d` (`inv` = 1 / d) enters the cell's bounds (the box and the
+    /// slab), when it meets them for some `0 ≤ t ≤ t_max`.
+    fn entry(&self, o: DVec3, d: DVec3, inv: DVec3, t_max: f64) -> Option<f64> {
+        let (near, far) = slab_span(self.lo, self.hi, o, inv, t_max)?;
+        if self.normal == DVec3::ZERO {
+            return Some(near);
+        }
+        let (a, b) = (self.normal.dot(o), self.normal.dot(d));
+        let (lo, hi) = self.range;
+        if b.abs() < 1e-300 {
+            return (a >= lo && a <= hi).then_some(near);
+        }
+        let (t1, t2) = ((lo - a) / b, (hi - a) / b);
+        let near = near.max(t1.min(t2));
+        let far = far.min(t1.max(t2));
+        (near <= far).then_some(near)
+    }
+
+    /// The cell halved across its longer side on the surface.
+    fn halves(&self) -> [[f64; 4]; 2] {
+        let [u0, u1, v0, v1] = self.cell;
+        if self.extent_u >= self.extent_v {
+            let um = 0.5 * (u0 + u1);
+            [[u0, um, v0, v1], [um, u1, v0, v1]]
+        } else {
+            let vm = 0.5 * (v0 + v1);
+            [[u0, u1, v0, vm], [u0, u1, vm, v1]]
+        }
+    }
+}
+
+/// The two halves of a refined cell, once some ray has needed them (`None`: the surface is
+/// not finite over that half).
+type Halves = OnceLock<Box<[Option<Refined>; 2]>>;
+
+/// A cell below a leaf, made while refining a grazing ray's hit and kept for the next ray.
+struct Refined {
+    node: Node,
+    halves: Halves,
+}
+
+/// How many more refined cells the trees sharing it may keep: the cells a grazing ray
+/// needs are the same for its neighbours (and the eight boundary probes of each pixel), so
+/// they are sampled once and kept, up to this bound on memory; past it each ray samples its
+/// own again.
+#[derive(Clone, Debug)]
+pub(crate) struct RefineCache(Arc<AtomicUsize>);
+
+impl RefineCache {
+    /// A cache keeping at most `cells` refined cells.
+    pub fn new(cells: usize) -> RefineCache {
+        RefineCache(Arc::new(AtomicUsize::new(cells)))
+    }
+
+    /// Takes room for two cells; false when there is none left.
+    fn reserve(&self) -> bool {
+        self.0
+            .fetch_update(AtomicOrdering::Relaxed, AtomicOrdering::Relaxed, |left| {
+                left.checked_sub(2)
+            })
+            .is_ok()
+    }
 }
 
 /// The cell tree of one surface patch.
 pub(crate) struct PatchTree {
     nodes: Vec<Node>,
+    /// Per node, its refined halves (used for leaves only).
+    halves: Vec<Halves>,
+    cache: RefineCache,
     roots: Vec<u32>,
     /// Distance below which `S(u, v) − (o + t·d)` counts as zero.
     tolerance: f64,
@@ -97,7 +179,12 @@ pub(crate) struct PatchHit {
 impl PatchTree {
     /// The tree of `surface` over `[u0, u1] × [v0, v1]` (clipped to the domain where a
     /// direction is not periodic); `None` when the patch is empty or not finite.
-    pub fn build(surface: &Surface, (u0, u1): (f64, f64), (v0, v1): (f64, f64)) -> Option<Self> {
+    pub fn build(
+        surface: &Surface,
+        (u0, u1): (f64, f64),
+        (v0, v1): (f64, f64),
+        cache: RefineCache,
+    ) -> Option<Self> {
         let ((du0, du1), (dv0, dv1)) = surface.domain();
         let clip = |a: f64, b: f64, lo: f64, hi: f64, periodic: bool| {
             if periodic {
@@ -125,6 +212,8 @@ impl PatchTree {
         );
         let mut tree = PatchTree {
             nodes: Vec::new(),
+            halves: Vec::new(),
+            cache,
             roots: Vec::new(),
             tolerance: 0.0,
         };
@@ -137,6 +226,7 @@ impl PatchTree {
                 tree.nodes.push(root);
             }
         }
+        tree.halves = (0..tree.nodes.len()).map(|_| OnceLock::new()).collect();
         tree.tolerance = 1e-10 * (extent.1 - extent.0).length().max(1e-300);
         Some(tree)
     }
@@ -154,22 +244,15 @@ impl PatchTree {
     /// The node of `cell`, its descendants added to the tree (`None` if the surface is not
     /// finite there).
     fn grow(&mut self, surface: &Surface, cell: [f64; 4], depth: u32) -> Option<Node> {
-        let sample = CellSample::of(surface, cell)?;
-        let mut node = Node {
-            lo: sample.lo,
-            hi: sample.hi,
-            cell,
-            children: u32::MAX,
-            spread: sample.spread,
-        };
-        if sample.flat || depth >= MAX_DEPTH {
+        let (mut node, flat) = CellSample::of(surface, cell)?;
+        if flat || depth >= MAX_DEPTH {
             return Some(node);
         }
         // Children are stored next to each other: reserve both slots first.
         let first = self.nodes.len();
         self.nodes.push(node);
         self.nodes.push(node);
-        for (k, half) in sample.halves(cell).into_iter().enumerate() {
+        for (k, half) in node.halves().into_iter().enumerate() {
             self.nodes[first + k] = self.grow(surface, half, depth + 1)?;
         }
         node.children = first as u32;
@@ -194,7 +277,7 @@ impl PatchTree {
             .iter()
             .filter_map(|&k| {
                 let n = &self.nodes[k as usize];
-                slab(n.lo, n.hi, o, inv, t_max).map(|t| Entry { t, node: k })
+                n.entry(o, d, inv, t_max).map(|t| Entry { t, node: k })
             })
             .collect();
         while let Some(Entry { t: enter, node: k }) = queue.pop() {
@@ -205,13 +288,13 @@ impl PatchTree {
             if node.children != u32::MAX {
                 for child in [node.children, node.children + 1] {
                     let n = &self.nodes[child as usize];
-                    if let Some(t) = slab(n.lo, n.hi, o, inv, t_max) {
+                    if let Some(t) = n.entry(o, d, inv, t_max) {
                         queue.push(Entry { t, node: child });
                     }
                 }
                 continue;
             }
-            let leaf = (node.cell, node.spread);
+            let leaf = (node, &self.halves[k as usize]);
             if let Some(hit) = self.solve(surface, (o, d), leaf, t_max, &keep, (0, &budget)) {
                 t_max = hit.t;
                 best = Some(hit);
@@ -230,11 +313,12 @@ impl PatchTree {
         &self,
         surface: &Surface,
         (o, d): (DVec3, DVec3),
-        (cell, spread): ([f64; 4], f64),
+        (node, halves): (&Node, &Halves),
         t_max: f64,
         keep: &impl Fn(f64, f64) -> bool,
         (extra, budget): (u32, &Cell<u32>),
     ) -> Option<PatchHit> {
+        let (cell, spread) = (node.cell, node.spread);
         let hit = self.newton(surface, (o, d), cell);
         let kept = |h: PatchHit| (h.t > 0.0 && h.t < t_max && keep(h.u, h.v)).then_some(h);
         let out_of_budget = budget.get() == 0;
@@ -259,24 +343,38 @@ impl PatchTree {
             }
         }
         budget.set(budget.get().saturating_sub(1));
-        let sample = CellSample::of(surface, cell)?;
+        let sample = || {
+            Box::new(node.halves().map(|cell| {
+                CellSample::of(surface, cell).map(|(node, _)| Refined {
+                    node,
+                    halves: OnceLock::new(),
+                })
+            }))
+        };
+        let owned;
+        let children: &[Option<Refined>; 2] = match halves.get() {
+            Some(kept) => kept,
+            None if self.cache.reserve() => halves.get_or_init(sample),
+            None => {
+                owned = sample();
+                &owned
+            }
+        };
         let inv = d.recip();
-        let mut halves: Vec<(f64, ([f64; 4], f64))> = sample
-            .halves(cell)
-            .into_iter()
-            .filter_map(|half| {
-                let s = CellSample::of(surface, half)?;
-                slab(s.lo, s.hi, o, inv, t_max).map(|enter| (enter, (half, s.spread)))
-            })
+        let mut entered: Vec<(f64, &Refined)> = children
+            .iter()
+            .flatten()
+            .filter_map(|half| half.node.entry(o, d, inv, t_max).map(|t| (t, half)))
             .collect();
-        halves.sort_by(|a, b| a.0.total_cmp(&b.0));
+        entered.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut best: Option<PatchHit> = None;
-        for (enter, half) in halves {
+        for (enter, half) in entered {
             let limit = best.map_or(t_max, |b| b.t);
             if enter >= limit {
                 break;
             }
-            if let Some(h) = self.solve(surface, (o, d), half, limit, keep, (extra + 1, budget)) {
+            let cell = (&half.node, &half.halves);
+            if let Some(h) = self.solve(surface, (o, d), cell, limit, keep, (extra + 1, budget)) {
                 best = Some(h);
             }
         }
@@ -331,22 +429,13 @@ impl PatchTree {
     }
 }
 
-/// A cell's 3 × 3 samples, digested: the box holding the surface over it, whether it is
-/// flat enough to be a leaf, and its sizes on the surface.
-struct CellSample {
-    lo: DVec3,
-    hi: DVec3,
-    flat: bool,
-    /// As [`Node::spread`].
-    spread: f64,
-    /// `max |Su| · Δu` and `max |Sv| · Δv`: the cell's extent on the surface each way.
-    extent_u: f64,
-    extent_v: f64,
-}
+/// A cell's 3 × 3 samples, digested into its [`Node`] (a leaf) and whether it is flat
+/// enough to stay one.
+struct CellSample;
 
 impl CellSample {
     /// Samples `cell`; `None` if the surface is not finite there.
-    fn of(surface: &Surface, cell: [f64; 4]) -> Option<CellSample> {
+    fn of(surface: &Surface, cell: [f64; 4]) -> Option<(Node, bool)> {
         let [u0, u1, v0, v1] = cell;
         let (hu, hv) = (0.5 * (u1 - u0), 0.5 * (v1 - v0));
         let mut lo = DVec3::INFINITY;
@@ -354,12 +443,14 @@ impl CellSample {
         let (mut muu, mut muv, mut mvv) = (0.0f64, 0.0f64, 0.0f64);
         let (mut su, mut sv) = (0.0f64, 0.0f64);
         let mut normals = [DVec3::ZERO; 9];
+        let mut points = [DVec3::ZERO; 9];
         for i in 0..3 {
             for j in 0..3 {
                 let d = surface.derivs(u0 + hu * i as f64, v0 + hv * j as f64);
                 if !d.point.is_finite() {
                     return None;
                 }
+                points[i * 3 + j] = d.point;
                 lo = lo.min(d.point);
                 hi = hi.max(d.point);
                 muu = muu.max(d.duu.length());
@@ -378,9 +469,9 @@ impl CellSample {
             }
         }
         // The surface's distance from the bilinear pieces through the 3 × 3 samples, which
-        // the box of the samples holds.
+        // the box (and any slab) of the samples holds.
         let bend = CURVATURE_SAFETY * (muu * hu * hu + 2.0 * muv * hu * hv + mvv * hv * hv) / 8.0;
-        let margin = DVec3::splat(bend.max(1e-12 * (hi - lo).length()));
+        let margin = bend.max(1e-12 * (hi - lo).length());
         let centre = normals[4];
         let flat = centre != DVec3::ZERO
             && normals
@@ -395,25 +486,24 @@ impl CellSample {
                 .fold(0.0, f64::max);
             (2.0 * sin).min(1.0)
         };
-        Some(CellSample {
-            lo: lo - margin,
-            hi: hi + margin,
-            flat,
+        let range = points
+            .iter()
+            .map(|p| centre.dot(*p))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+        let node = Node {
+            lo: lo - DVec3::splat(margin),
+            hi: hi + DVec3::splat(margin),
+            cell,
+            children: u32::MAX,
             spread,
+            normal: centre,
+            range: (range.0 - margin, range.1 + margin),
             extent_u: su * (u1 - u0),
             extent_v: sv * (v1 - v0),
-        })
-    }
-
-    /// `cell` halved across its longer side on the surface.
-    fn halves(&self, [u0, u1, v0, v1]: [f64; 4]) -> [[f64; 4]; 2] {
-        if self.extent_u >= self.extent_v {
-            let um = 0.5 * (u0 + u1);
-            [[u0, um, v0, v1], [um, u1, v0, v1]]
-        } else {
-            let vm = 0.5 * (v0 + v1);
-            [[u0, u1, v0, vm], [u0, u1, vm, v1]]
-        }
+        };
+        Some((node, flat))
     }
 }
 
@@ -449,12 +539,18 @@ fn root_splits(a: f64, b: f64, breaks: Vec<f64>, periodic: bool) -> Vec<f64> {
 /// Where the ray `o + t·d` (`inv` = 1 / d) enters the box, when it meets it for some
 /// `0 ≤ t ≤ t_max`.
 pub(crate) fn slab(lo: DVec3, hi: DVec3, o: DVec3, inv: DVec3, t_max: f64) -> Option<f64> {
+    slab_span(lo, hi, o, inv, t_max).map(|(near, _)| near)
+}
+
+/// Where the ray `o + t·d` (`inv` = 1 / d) enters and leaves the box, clipped to
+/// `[0, t_max]`, when it meets it there.
+fn slab_span(lo: DVec3, hi: DVec3, o: DVec3, inv: DVec3, t_max: f64) -> Option<(f64, f64)> {
     let a = (lo - o) * inv;
     let b = (hi - o) * inv;
     // NaN (0 · ∞, a ray in a face's plane) makes min/max take the other operand.
     let near = a.min(b).max_element().max(0.0);
     let far = a.max(b).min_element().min(t_max);
-    (near <= far).then_some(near)
+    (near <= far).then_some((near, far))
 }
 
 #[cfg(test)]
@@ -474,7 +570,8 @@ mod tests {
     fn rays_hit_a_torus_where_its_quartic_vanishes() {
         let surface = torus();
         let tau = std::f64::consts::TAU;
-        let tree = PatchTree::build(&surface, (0.0, tau), (0.0, tau)).expect("tree");
+        let tree = PatchTree::build(&surface, (0.0, tau), (0.0, tau), RefineCache::new(1 << 12))
+            .expect("tree");
         // Along x at height 0: the tube's outer wall at x = −4 first.
         let hit = tree
             .nearest(
@@ -545,7 +642,8 @@ mod tests {
     fn a_filter_rejecting_the_nearest_hit_gives_the_next() {
         let surface = torus();
         let tau = std::f64::consts::TAU;
-        let tree = PatchTree::build(&surface, (0.0, tau), (0.0, tau)).expect("tree");
+        let tree = PatchTree::build(&surface, (0.0, tau), (0.0, tau), RefineCache::new(1 << 12))
+            .expect("tree");
         let ray = (DVec3::new(-10.0, 0.0, 0.0), DVec3::X);
         // Keep only the tube's inner half (|v| > π/2): the ray's second hit, x = −2.
         let inner = |_: f64, v: f64| {
@@ -562,7 +660,8 @@ mod tests {
     fn a_grazing_ray_gets_the_nearer_of_two_close_hits() {
         let surface = torus();
         let tau = std::f64::consts::TAU;
-        let tree = PatchTree::build(&surface, (0.0, tau), (0.0, tau)).expect("tree");
+        let tree = PatchTree::build(&surface, (0.0, tau), (0.0, tau), RefineCache::new(1 << 12))
+            .expect("tree");
         // Just under the tube's top (z = 1) along y: the ray meets the tube where
         // (ρ − 3)² = 1 − z², at ρ = 3 ± √(1 − z²): the outer wall first, the inner one a
         // hair farther, both in one nearly flat cell.
@@ -594,7 +693,13 @@ mod tests {
         // The tube's inner half alone (a face ending on the top circle): the inner wall,
         // whose hit sits at the face's edge for these rays, is still found.
         let half_pi = std::f64::consts::FRAC_PI_2;
-        let inner = PatchTree::build(&surface, (0.0, tau), (half_pi, 3.0 * half_pi)).expect("tree");
+        let inner = PatchTree::build(
+            &surface,
+            (0.0, tau),
+            (half_pi, 3.0 * half_pi),
+            RefineCache::new(0),
+        )
+        .expect("tree");
         for z in [0.99, 0.999, 0.9999, 0.99999] {
             let gap = (1.0f64 - z * z).sqrt();
             for k in 0..21 {
