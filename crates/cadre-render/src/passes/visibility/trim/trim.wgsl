@@ -100,7 +100,12 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
 @fragment
 fn fs_main(in: TrimOut) -> VisibilityOut {
     // The pixel's footprint in (u, v), before any discard (derivatives need every lane).
-    let footprint = fwidth(in.local);
+    // A cell answered by its coverage bit misplaces the trim boundary by up to the cell's
+    // size on screen; fwidth sums the (u, v) change over a step in x and one in y, so a
+    // quarter of it keeps that within half a pixel where the face is not seen edge-on
+    // (with the whole fwidth, pixels two away from a face were drawn on it), while the
+    // cells of a distant perforated face still merge into their majority (no moiré).
+    let footprint = 0.25 * fwidth(in.local);
     let s = surfaces[in.surface];
     if TRIM_TEST && (in.crossed != 0u) && !trim_classify_within(s.ids.z, in.local, footprint) {
         discard;
