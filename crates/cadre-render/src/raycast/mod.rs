@@ -190,7 +190,9 @@ impl RayCaster {
     /// passes within `radius` pixels of its centre: whether the face seen at any of eight
     /// points on the circle of that radius about the centre differs from the one seen at the
     /// centre (a boundary crossing the disc between two of them unseen: a detail thinner than
-    /// the sampling, is missed).
+    /// the sampling, is missed). A pixel whose centre sees two faces at the same depth
+    /// (coincident faces, within [`TIE`] of the distance: which one shows is undefined, on
+    /// the GPU as here) counts as on a boundary too.
     pub fn near_boundary(
         &self,
         camera: &Camera,
@@ -198,14 +200,14 @@ impl RayCaster {
         height: u32,
         radius: f64,
     ) -> Vec<bool> {
-        let centre = self.face_ids_at(camera, width, height, DVec2::ZERO);
-        let mut near = vec![false; centre.len()];
+        let centre = self.samples_at(camera, width, height, DVec2::ZERO);
+        let mut near: Vec<bool> = centre.iter().map(|s| s.tied).collect();
         for k in 0..8 {
             let angle = f64::from(k) * std::f64::consts::FRAC_PI_4;
             let offset = DVec2::new(angle.cos(), angle.sin()) * radius;
             let ids = self.face_ids_at(camera, width, height, offset);
             for ((n, a), b) in near.iter_mut().zip(&centre).zip(&ids) {
-                *n |= a != b;
+                *n |= a.id() != *b;
             }
         }
         near
@@ -213,9 +215,9 @@ impl RayCaster {
 
     /// [`RayCaster::face_ids`] at `offset` pixels from each pixel's centre.
     fn face_ids_at(&self, camera: &Camera, width: u32, height: u32, offset: DVec2) -> Vec<u64> {
-        self.hits_at(camera, width, height, offset)
+        self.samples_at(camera, width, height, offset)
             .into_iter()
-            .map(|h| h.map_or(0, |(id, _)| id))
+            .map(|s| s.id())
             .collect()
     }
 
@@ -227,35 +229,92 @@ impl RayCaster {
         height: u32,
         offset: DVec2,
     ) -> Vec<Option<(u64, DVec3)>> {
+        self.samples_at(camera, width, height, offset)
+            .into_iter()
+            .map(|s| s.hit)
+            .collect()
+    }
+
+    /// Each pixel's [`PixelSample`] at `offset` pixels from its centre, row by row.
+    fn samples_at(
+        &self,
+        camera: &Camera,
+        width: u32,
+        height: u32,
+        offset: DVec2,
+    ) -> Vec<PixelSample> {
         let rays = PixelRays::new(camera, width, height);
         (0..width * height)
             .into_par_iter()
             .map(|i| {
                 let pixel = DVec2::new(f64::from(i % width), f64::from(i / width)) + offset;
                 let (origin, dir) = rays.through(pixel);
-                self.cast(origin, dir).map(|(t, id)| (id, origin + dir * t))
+                match self.cast(origin, dir) {
+                    Some((t, id, tied)) => PixelSample {
+                        hit: Some((id, origin + dir * t)),
+                        tied,
+                    },
+                    None => PixelSample {
+                        hit: None,
+                        tied: false,
+                    },
+                }
             })
             .collect()
     }
 
-    /// The ray parameter and STEP id of the nearest face hit by the ray.
-    fn cast(&self, origin: DVec3, dir: DVec3) -> Option<(f64, u64)> {
-        let mut best = (f64::INFINITY, 0);
+    /// The ray parameter and STEP id of the nearest face hit by the ray, and whether
+    /// another face is hit at the same distance (within [`TIE`] of it).
+    fn cast(&self, origin: DVec3, dir: DVec3) -> Option<(f64, u64, bool)> {
+        let mut best = (f64::INFINITY, 0, false);
+        // Faces are searched a tie's width beyond the nearest hit so far, so that a
+        // coincident face is seen whichever comes first.
+        let reach = |t: f64| t + TIE * t;
         for (to_part, ids) in &self.instances {
             let o = to_part.transform_point3(origin);
             let d = to_part.transform_vector3(dir);
             let inv = d.recip();
             for &k in ids {
                 let face = &self.faces[k];
-                if slab(face.bounds.0, face.bounds.1, o, inv, best.0).is_none() {
+                let t_max = reach(best.0);
+                if slab(face.bounds.0, face.bounds.1, o, inv, t_max).is_none() {
                     continue;
                 }
-                if let Some(t) = face.nearest_hit(o, d, best.0) {
-                    best = (t, face.step_id);
+                if let Some(t) = face.nearest_hit(o, d, t_max) {
+                    let id = face.step_id;
+                    if reach(t) < best.0 {
+                        best = (t, id, false);
+                    } else {
+                        // Within a tie of the nearest: the nearer stays, marked as tied
+                        // unless both are the same face (another instance of it).
+                        let tied = best.2 || id != best.1;
+                        best = if t < best.0 {
+                            (t, id, tied)
+                        } else {
+                            (best.0, best.1, tied)
+                        };
+                    }
                 }
             }
         }
         best.0.is_finite().then_some(best)
+    }
+}
+
+/// Two faces hit by one ray closer than this share of its distance are at the same depth:
+/// below f32 depth's resolution, so which one a GPU shows is undefined.
+pub const TIE: f64 = 1e-6;
+
+/// What one ray sees: the face and point, and whether another face ties with it.
+struct PixelSample {
+    hit: Option<(u64, DVec3)>,
+    tied: bool,
+}
+
+impl PixelSample {
+    /// The STEP id of the face seen (0 for background).
+    fn id(&self) -> u64 {
+        self.hit.map_or(0, |(id, _)| id)
     }
 }
 
@@ -392,5 +451,51 @@ impl CastFace {
             }
         }
         inside
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::ViewPreset;
+    use crate::{AnalyticPrimitive, AnalyticShape};
+    use cadre_geom::Frame;
+
+    /// A caster of two 2 × 2 squares facing +Z, the second `lift` above the first.
+    fn two_squares(lift: f64) -> RayCaster {
+        let mut caster = RayCaster::new(&Model::default(), 1e-3);
+        for (face_id, z) in [(7, 0.0), (9, lift)] {
+            let mut frame = Frame::WORLD;
+            frame.origin.z = z;
+            caster.add_primitive(&AnalyticPrimitive {
+                shape: AnalyticShape::Rectangle {
+                    half_width: 1.0,
+                    half_height: 1.0,
+                },
+                frame,
+                face_id,
+                colour: [1.0; 4],
+            });
+        }
+        caster
+    }
+
+    #[test]
+    fn coincident_faces_count_as_a_boundary_and_separate_ones_do_not() {
+        let camera = Camera::fit(
+            DVec3::splat(-1.0),
+            DVec3::splat(1.0),
+            ViewPreset::Top,
+            true,
+            1.0,
+        );
+        // The centre pixel of a 9 × 9 image, far from the squares' edges.
+        let centre = 4 * 9 + 4;
+        let tied = two_squares(0.0);
+        assert!(tied.near_boundary(&camera, 9, 9, 0.5)[centre]);
+        // Negative control: a thousandth apart, the upper square is seen and nothing ties.
+        let apart = two_squares(1e-3);
+        assert_eq!(apart.face_ids(&camera, 9, 9)[centre], 9);
+        assert!(!apart.near_boundary(&camera, 9, 9, 0.5)[centre]);
     }
 }

@@ -69,6 +69,11 @@ pub(crate) const FACES_PER_DRAW: u32 = u32::MAX / TRIM_VERTICES;
 /// The tessellation's tolerance in pixels (`TOLERANCE_PX` in tessellate.wgsl).
 pub const TOLERANCE_PX: f64 = 0.5;
 
+/// The tessellation's tolerance relative to a face's bounding radius (`TOLERANCE_REL` in
+/// tessellate.wgsl): a bound in depth too, so a coarse grid does not sag through a surface
+/// just behind it (a thin wall's other side).
+pub const TOLERANCE_REL: f64 = 0.002;
+
 /// The shared declarations: the face record and the surfaces' closed forms.
 const SURFACE_WGSL: &str = include_str!("surface.wgsl");
 
@@ -270,6 +275,7 @@ impl TrimBackend {
             compilation_options: wgpu::PipelineCompilationOptions {
                 constants: &[
                     ("TOLERANCE_PX", TOLERANCE_PX),
+                    ("TOLERANCE_REL", TOLERANCE_REL),
                     ("MAX_LEVEL", f64::from(variant.max_level.clamp(1, 256))),
                     ("MIN_LEVEL", f64::from(variant.max_level.clamp(1, 4))),
                 ],

@@ -12,7 +12,10 @@
 // (h_u² |S_uu| + 2 h_u h_v |S_uv| + h_v² |S_vv|) / 8 (the interpolation error of a function of
 // bounded second derivatives), which must stay within `TOLERANCE_PX` pixels at the face's
 // nearest point: a pixel's world size there is its distance times the projection's slope
-// (perspective), or the view's constant one (orthographic). Faces outside the view frustum
+// (perspective), or the view's constant one (orthographic) — and within `TOLERANCE_REL` of
+// the face's bounding radius: the pixel bound alone lets a small or distant curved face sag
+// through whatever lies just behind it (a pipe's bore through its 2 mm wall at 20 mm a pixel),
+// since it bounds the error across the screen, not in depth. Faces outside the view frustum
 // in all the call's instances get no cells.
 
 @group(0) @binding(1) var<storage, read> surfaces: array<TrimSurface>;
@@ -25,6 +28,8 @@
 
 // The tessellation's tolerance, in pixels.
 override TOLERANCE_PX: f32 = 0.5;
+// The tessellation's tolerance relative to the face's bounding radius.
+override TOLERANCE_REL: f32 = 0.002;
 // Grid lines a face may have each way (at most 256: `TRIM_VERTICES`); lower only for the
 // benchmarks that separate the costs of the geometry from the others.
 override MAX_LEVEL: f32 = 256.0;
@@ -82,7 +87,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
     let distance = select(max(near, z_near), 1.0, ortho);
     let pixel = distance * 2.0 * frame.inv_proj[1][1] / frame.viewport.y;
-    let eps = max(TOLERANCE_PX * pixel, 1e-30);
+    let eps = max(min(TOLERANCE_PX * pixel, TOLERANCE_REL * s.sphere.w * scale), 1e-30);
     let m = s.curvature.xyz * scale;
     let spans = grid_spans(s);
     // The widest span each way: every span gets the cells the widest needs.
