@@ -110,3 +110,23 @@ fn the_comparison_catches_a_faceted_mesh_up_close() {
         "the mesh's facets went unseen: {failures:?}"
     );
 }
+
+/// A tessellated item (AP242) has no exact surface to cast: its pixels are reported as
+/// unverified and its id as uncast, never as disagreeing.
+#[test]
+fn tessellated_items_are_reported_unverified_not_wrong() {
+    let Some(dir) = corpus() else {
+        eprintln!("skipping: ../shared/corpus not found (the corpus exactness test needs it)");
+        return;
+    };
+    let result = verify(&dir.join("bug33410.step"), "trim", "1");
+    assert_ne!(result["uncast_faces"], serde_json::json!([]), "{result}");
+    assert!(disagreeing("bug33410.step", &result).is_empty(), "{result}");
+    let unverified: f64 = result["views"]
+        .as_array()
+        .expect("views")
+        .iter()
+        .map(|v| v["unverified_share"].as_f64().unwrap_or(0.0))
+        .sum();
+    assert!(unverified > 0.0, "{result}");
+}

@@ -45,7 +45,8 @@ pub struct RayCaster {
     faces: Vec<CastFace>,
     /// Per part instance: world → part transform, and the indices of its faces.
     instances: Vec<(Transform, Vec<usize>)>,
-    /// STEP ids of faces skipped (unsupported surface, or no trim).
+    /// STEP ids of faces skipped (unsupported surface, or no trim) and of tessellated items
+    /// (not cast).
     pub skipped: Vec<u64>,
     /// Refined cells kept by every face's tree, shared so their memory is bounded.
     cache: RefineCache,
@@ -101,6 +102,7 @@ impl RayCaster {
             }
         }
         let mut instances = Vec::new();
+        let mut tessellated = Vec::new();
         model.visit_instances(|visit| {
             let mut ids = Vec::new();
             for body in &model.part(visit.part).bodies {
@@ -123,6 +125,9 @@ impl RayCaster {
                         }
                     }
                     Body::Face(f) => push(*f),
+                    // A tessellated item (AP242) is not cast: its faces are reported as
+                    // skipped, so the pixels showing them count as unverified, not wrong.
+                    Body::Mesh(m) => tessellated.push(model.meshes[m.index()].step_id),
                     _ => {}
                 }
             }
@@ -130,6 +135,9 @@ impl RayCaster {
                 instances.push((visit.transform.inverse(), ids));
             }
         });
+        tessellated.sort_unstable();
+        tessellated.dedup();
+        skipped.extend(tessellated);
         RayCaster {
             faces,
             instances,
