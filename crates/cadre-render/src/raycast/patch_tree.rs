@@ -303,12 +303,14 @@ impl PatchTree {
         best
     }
 
-    /// The nearest kept hit in `(0, t_max)` within `cell`: Newton's method from its centre,
-    /// trusted when the ray meets the surface more steeply than the cell's normals spread
-    /// (`spread`), so that it cannot hold a second, nearer hit; otherwise, and when Newton fails, the cell is
-    /// halved and each half the ray enters solved in turn, nearest first, down to
-    /// [`REFINE_DEPTH`] more levels (a ray grazing the surface: near a silhouette), or
-    /// [`MISSED_REFINE_DEPTH`] where Newton found nothing, within the ray's `budget`.
+    /// The nearest kept hit in `(0, t_max)` within `node`'s cell: Newton's method from its
+    /// centre, trusted when the ray meets the surface more steeply than the cell's normals
+    /// spread, so that it cannot hold a second, nearer hit; otherwise, and when Newton fails
+    /// where the ray is that shallow, the cell is halved (the halves kept in `halves` for
+    /// later rays while the cache has room) and each half the ray enters solved in turn,
+    /// nearest first, down to [`REFINE_DEPTH`] more levels (a ray grazing the surface: near a
+    /// silhouette), or [`MISSED_REFINE_DEPTH`] where Newton found nothing, within the ray's
+    /// `budget`.
     fn solve(
         &self,
         surface: &Surface,
