@@ -1,8 +1,9 @@
 //! Picking from a viewport's last frame, without a full-size pass and without a stall: the
 //! pick pass draws the B-Rep edges and vertices of only the runs whose bounding sphere
 //! reaches the window around the cursor, into a target of the window's size through a
-//! projection cropped to it; the window of the visibility buffer's ids and the pass's
-//! output are copied into one buffer and mapped asynchronously. A hover asks
+//! projection cropped to it, after the window of the visibility buffer's ids (where the
+//! depth says something was drawn); both are copied into one buffer and mapped
+//! asynchronously. A hover asks
 //! ([`Renderer::request_pick`]) and takes the answer on a later frame ([`PendingPick::poll`]);
 //! a click waits for it ([`Renderer::pick`]).
 //!
@@ -235,16 +236,20 @@ impl Renderer {
             height: window.height,
             depth_or_array_layers: 1,
         };
-        let target = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("pick"),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: PICK,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let window_target = |label| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: PICK,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        };
+        let faces = window_target("pick faces");
+        let target = window_target("pick");
         let mut encoder = device.create_command_encoder(&Default::default());
         let inputs = PickInputs {
             frame: &frame,
@@ -259,7 +264,10 @@ impl Renderer {
             &mut encoder,
             &viewport.targets,
             &inputs,
-            &target.create_view(&Default::default()),
+            (
+                &faces.create_view(&Default::default()),
+                &target.create_view(&Default::default()),
+            ),
         );
         let padded = (16 * window.width).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
             * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
@@ -289,16 +297,7 @@ impl Renderer {
                 size,
             );
         };
-        copy(
-            &mut encoder,
-            &viewport.targets.ids_texture,
-            wgpu::Origin3d {
-                x: window.x,
-                y: window.y,
-                z: 0,
-            },
-            0,
-        );
+        copy(&mut encoder, &faces, wgpu::Origin3d::ZERO, 0);
         copy(&mut encoder, &target, wgpu::Origin3d::ZERO, bytes);
         gpu.queue.submit([encoder.finish()]);
         buffer

@@ -472,11 +472,19 @@ impl Renderer {
         let frame_buffer = buffers.frame.buffer();
         let mut encoder = device.create_command_encoder(&Default::default());
         let sections = frame.counts[2] > 0;
+        // The ids are left uncleared where only depth-tested passes and depth-aware picks
+        // read them (`VisibilityTargets`' rule: ids count only where the depth is not 0):
+        // on a CPU adapter, whose clears are memory traffic, with the read-only depth test
+        // (not GL: there the shade pass reads every pixel's ids), and when neither section
+        // caps (their outlines read neighbours' ids) nor an id readback need the background.
+        let clear_ids = !(gpu.is_cpu() && gpu.read_only_depth)
+            || sections
+            || matches!(readback, Readback::Ids);
         self.visibility.record(
             (device, &self.binds),
             &mut encoder,
             targets,
-            (frame_buffer, sections, self.proxy_depth),
+            (frame_buffer, sections, self.proxy_depth, clear_ids),
             &frame_scene,
         );
         let shading = Shading {

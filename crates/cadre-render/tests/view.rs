@@ -164,6 +164,50 @@ fn picking_finds_faces_edges_and_vertices_under_the_cursor() {
     );
 }
 
+/// A frame may leave the ids of pixels it does not cover as the last frame wrote them (on a
+/// CPU adapter: `VisibilityTargets`); picks must still see the background there.
+#[test]
+fn picks_see_the_background_where_the_last_frame_had_a_face() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let scene = pin_assembly();
+    let prepared = renderer.prepare(&gpu, &scene);
+    let fitted = camera(&scene);
+    // First a close-up (faces over most of the image), then the fitted view.
+    let close = fitted.zoomed_at(fitted.target, 4.0, scene.bounds().expect("geometry"));
+    let mut viewport = Viewport::new(&gpu, W, H);
+    let view = target(&gpu);
+    let state = ViewState::default();
+    for camera in [&close, &fitted] {
+        renderer
+            .draw(&gpu, &mut viewport, &prepared, camera, &options(), &state, &view)
+            .expect("frame");
+    }
+    let before = renderer
+        .ids_of(&gpu, &scene, &close, &options())
+        .expect("ids");
+    let now = renderer
+        .ids_of(&gpu, &scene, &fitted, &options())
+        .expect("ids");
+    let (mut uncovered, mut faces) = (0, 0);
+    for (i, (was, id)) in before.iter().zip(&now).enumerate().step_by(13) {
+        let (x, y) = (i as u32 % W, i as u32 / W);
+        let window = renderer
+            .pick(&gpu, &viewport, &prepared, (x, y), 0)
+            .expect("pick");
+        let expected = (id[1] != 0).then(|| Pick::Face {
+            instance: id[1] - 1,
+            face: id[0],
+        });
+        assert_eq!(window.face().map(|h| h.pick), expected, "pixel {x} {y}");
+        uncovered += usize::from(was[1] != 0 && id[1] == 0);
+        faces += usize::from(id[1] != 0);
+    }
+    // The case under test happens: background now where the close-up had faces.
+    assert!(uncovered > 50, "{uncovered} pixels uncovered by the second frame");
+    assert!(faces > 20, "{faces} face pixels checked");
+}
+
 #[test]
 fn a_hover_pick_answers_on_a_later_poll_what_a_click_finds() {
     let gpu = gpu();

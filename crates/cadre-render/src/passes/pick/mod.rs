@@ -10,12 +10,14 @@ use crate::layout::{Binding, FrameUniform, GpuStruct, PickRegion, Segment};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 
 /// Bind group 0: frame (its projection cropped to the pick window), segments, the
-/// visibility buffer's ids, where the window lies in them (group 1: the instances).
+/// visibility buffer's ids, where the window lies in them, its depth (group 1: the
+/// instances).
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(Segment::WGSL_NAME),
     Binding::UintTexture,
     Binding::Uniform(PickRegion::WGSL_NAME),
+    Binding::FloatTexture,
 ];
 
 /// The pass's whole WGSL: the shared declarations and its own source.
@@ -26,9 +28,10 @@ pub(crate) fn source() -> String {
 /// Edge or vertex id, instance + 1 (0 = nothing), kind (2 edge, 3 vertex), unused.
 pub(crate) const PICK: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
-/// The pass's pipeline and bind group layout.
+/// The pass's pipelines (edges and vertices; the faces' copy) and bind group layout.
 pub(crate) struct PickPass {
     pipeline: wgpu::RenderPipeline,
+    faces: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
 }
 
@@ -51,7 +54,7 @@ impl PickPass {
         let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let (layout, pipeline_layout) =
             layouts(device, "pick", &entries(BINDINGS, stages), Some(instances));
-        let pipeline = pipeline(
+        let lines = pipeline(
             device,
             PipelineSpec {
                 label: "pick",
@@ -66,17 +69,43 @@ impl PickPass {
                 constants: &[],
             },
         );
-        PickPass { pipeline, layout }
+        // The faces' copy binds group 0 alone (no instances).
+        let faces_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("pick faces"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let faces = pipeline(
+            device,
+            PipelineSpec {
+                label: "pick faces",
+                layout: &faces_layout,
+                module: &module,
+                vertex: "vs_faces",
+                cull: None,
+                fragment: "fs_faces",
+                buffers: &[],
+                depth: None,
+                targets: &[Some(PICK.into())],
+                constants: &[],
+            },
+        );
+        PickPass {
+            pipeline: lines,
+            faces,
+            layout,
+        }
     }
 
-    /// Records the pass into `target` (the pick window's size, cleared first).
+    /// Records the pass: the faces under the window into `faces`, the edges and vertices
+    /// into `lines` (both the pick window's size).
     pub fn record(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         visibility: &VisibilityTargets,
         inputs: &PickInputs<'_>,
-        target: &wgpu::TextureView,
+        (faces, lines): (&wgpu::TextureView, &wgpu::TextureView),
     ) {
         let bind = bind_group(
             device,
@@ -87,12 +116,20 @@ impl PickPass {
                 inputs.segments.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&visibility.ids),
                 inputs.region.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&visibility.depth),
             ],
         );
+        {
+            // Every pixel written: no clear.
+            let mut pass = colour_pass(encoder, "pick faces", (faces, None), None);
+            pass.set_pipeline(&self.faces);
+            pass.set_bind_group(0, &bind, &[]);
+            pass.draw(0..3, 0..1);
+        }
         let mut pass = colour_pass(
             encoder,
             "pick",
-            (target, Some(wgpu::Color::TRANSPARENT)),
+            (lines, Some(wgpu::Color::TRANSPARENT)),
             None,
         );
         pass.set_pipeline(&self.pipeline);

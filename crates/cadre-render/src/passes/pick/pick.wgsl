@@ -10,6 +10,9 @@
 // The target is the pick window alone (the frame's projection cropped to it): its pixel
 // (0, 0) is the frame's pixel `region.origin`.
 @group(0) @binding(3) var<uniform> region: PickRegion;
+// The visibility depth: a pixel's ids count only where it is not 0 (a frame may leave the
+// ids of uncovered pixels uncleared, `VisibilityTargets`).
+@group(0) @binding(4) var depth_tex: texture_2d<f32>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) draw_index: u32) -> LineOut {
@@ -31,11 +34,30 @@ fn fs_main(in: LineOut) -> @location(0) vec4<u32> {
     if abs(in.across) > select(0.5, 1.5, vertex) {
         discard;
     }
-    let ids = textureLoad(ids_tex, vec2<i32>(in.clip.xy) + vec2<i32>(region.origin), 0);
+    let p = vec2<i32>(in.clip.xy) + vec2<i32>(region.origin);
+    let ids = textureLoad(ids_tex, p, 0);
+    let drawn = textureLoad(depth_tex, p, 0).x > 0.0;
     // Reverse Z: nearer is larger; the tolerance keeps edges on their own faces.
-    if in.clip.z < scene_depth_at(ids) * (1.0 - frame.tolerances.x) {
+    if in.clip.z < select(0.0, scene_depth_at(ids), drawn) * (1.0 - frame.tolerances.x) {
         discard;
     }
     let kind = select(2u, 3u, vertex);
     return vec4<u32>(bitcast<u32>(seg.a.w), in.instance + 1u, kind, 0u);
+}
+
+// The faces under the window: the visibility buffer's ids, zero (nothing) where the depth is
+// 0. A frame may leave the ids of uncovered pixels as the last frame wrote them
+// (`VisibilityTargets`), so the viewer reads this copy, not the ids themselves. One
+// triangle covering the window.
+@vertex
+fn vs_faces(@builtin(vertex_index) vi: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((vi << 1u) & 2u), f32(vi & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+@fragment
+fn fs_faces(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<u32> {
+    let p = vec2<i32>(pos.xy) + vec2<i32>(region.origin);
+    let drawn = textureLoad(depth_tex, p, 0).x > 0.0;
+    return select(vec4<u32>(0u), textureLoad(ids_tex, p, 0), drawn);
 }

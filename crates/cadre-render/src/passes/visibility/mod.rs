@@ -228,13 +228,15 @@ impl VisibilityPass {
     /// Records the pass: opens it once on `targets` (cleared) and has every back-end draw
     /// `scene` into it; `sections` says whether the frame has section planes;
     /// `proxy_depth` has the analytic back-end write its proxies' depth (the tests' negative
-    /// control).
+    /// control). `clear_ids`: clear the ids target first; else it keeps the last frame's ids
+    /// where nothing is drawn now, and readers must take a pixel's ids only where its depth
+    /// is not 0 (see [`open`]).
     pub fn record(
         &self,
         recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
         encoder: &mut wgpu::CommandEncoder,
         targets: &VisibilityTargets,
-        (frame, sections, proxy_depth): (&wgpu::Buffer, bool, bool),
+        (frame, sections, proxy_depth, clear_ids): (&wgpu::Buffer, bool, bool, bool),
         scene: &FrameScene<'_>,
     ) {
         let inputs = PhaseInputs {
@@ -247,7 +249,7 @@ impl VisibilityPass {
         if let Some(trim) = &self.trim {
             trim.tessellate(recorder, encoder, &inputs);
         }
-        let mut pass = open(encoder, targets);
+        let mut pass = open(encoder, targets, clear_ids);
         self.draw(recorder, &mut pass, &inputs, Phase::Visibility);
     }
 
@@ -310,27 +312,40 @@ impl VisibilityPass {
     }
 }
 
-/// The visibility render pass over `targets`, cleared: background ids 0, depth 0 (far).
+/// The visibility render pass over `targets`, cleared: depth 0 (far), normal 0, and the ids
+/// to 0 (background) when `clear_ids`.
+///
+/// Every fragment drawn writes depth and ids together, so where the depth is not 0 the ids
+/// are this frame's whether cleared or not. On lavapipe clearing the 16-byte ids texel was
+/// 4 of a 21 ms frame at 1280×960 (pr2db, `cadre bench view`; BENCHMARKS.md, issue 15), and
+/// the shade pass, depth-tested, never reads an uncovered pixel's ids: a frame whose ids
+/// nothing else reads leaves them (see `Renderer::run`).
 fn open<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     targets: &VisibilityTargets,
+    clear_ids: bool,
 ) -> wgpu::RenderPass<'e> {
-    let clear = |view| {
+    let attach = |view, clear: bool| {
         Some(wgpu::RenderPassColorAttachment {
             view,
             depth_slice: None,
             resolve_target: None,
             ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                load: if clear {
+                    wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
+                } else {
+                    wgpu::LoadOp::Load
+                },
                 store: wgpu::StoreOp::Store,
             },
         })
     };
+    let clear = |view| attach(view, true);
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("visibility"),
         color_attachments: &[
             clear(&targets.normal),
-            clear(&targets.ids),
+            attach(&targets.ids, clear_ids),
             targets.uv.as_ref().and_then(|(uv, _)| clear(uv)),
         ],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
