@@ -477,9 +477,8 @@ impl Renderer {
         // on a CPU adapter, whose clears are memory traffic, with the read-only depth test
         // (not GL: there the shade pass reads every pixel's ids), and when neither section
         // caps (their outlines read neighbours' ids) nor an id readback need the background.
-        let clear_ids = !(gpu.is_cpu() && gpu.read_only_depth)
-            || sections
-            || matches!(readback, Readback::Ids);
+        let clear_ids =
+            !(gpu.is_cpu() && gpu.read_only_depth) || sections || matches!(readback, Readback::Ids);
         self.visibility.record(
             (device, &self.binds),
             &mut encoder,

@@ -180,7 +180,15 @@ fn picks_see_the_background_where_the_last_frame_had_a_face() {
     let state = ViewState::default();
     for camera in [&close, &fitted] {
         renderer
-            .draw(&gpu, &mut viewport, &prepared, camera, &options(), &state, &view)
+            .draw(
+                &gpu,
+                &mut viewport,
+                &prepared,
+                camera,
+                &options(),
+                &state,
+                &view,
+            )
             .expect("frame");
     }
     let before = renderer
@@ -204,7 +212,10 @@ fn picks_see_the_background_where_the_last_frame_had_a_face() {
         faces += usize::from(id[1] != 0);
     }
     // The case under test happens: background now where the close-up had faces.
-    assert!(uncovered > 50, "{uncovered} pixels uncovered by the second frame");
+    assert!(
+        uncovered > 50,
+        "{uncovered} pixels uncovered by the second frame"
+    );
     assert!(faces > 20, "{faces} face pixels checked");
 }
 

@@ -67,8 +67,36 @@ pub(crate) const UV: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 pub(crate) struct VisibilityPass {
     mesh: mesh::MeshBackend,
     /// `None` on adapters without compute shaders (their scenes keep every face's mesh).
-    trim: Option<trim::TrimBackend>,
+    trim: Option<LazyTrim>,
     analytic: analytic::AnalyticBackend,
+}
+
+/// The trim back-end, built on the first frame that draws trimmed faces: its shaders are the
+/// renderer's largest, and compiling them at start cost every process ≈ 40 ms on lavapipe
+/// (`cadre render` of pr2db: 0.16 s with them, 0.12 s without), meshes or not.
+struct LazyTrim {
+    instances: crate::passes::instances::InstanceLayout,
+    variant: trim::TrimVariant,
+    backend: std::sync::OnceLock<trim::TrimBackend>,
+}
+
+impl LazyTrim {
+    fn new(
+        instances: &crate::passes::instances::InstanceLayout,
+        variant: trim::TrimVariant,
+    ) -> Self {
+        LazyTrim {
+            instances: instances.clone(),
+            variant,
+            backend: std::sync::OnceLock::new(),
+        }
+    }
+
+    /// The back-end, built now if no frame has needed it yet.
+    fn get(&self, device: &wgpu::Device) -> &trim::TrimBackend {
+        self.backend
+            .get_or_init(|| trim::TrimBackend::new(device, &self.instances, self.variant))
+    }
 }
 
 /// Depth state of every back-end: reverse Z (nearer is larger), written.
@@ -179,7 +207,7 @@ impl VisibilityPass {
             mesh: mesh::MeshBackend::new(device, colour, instances),
             trim: (compute
                 && device.limits().max_storage_buffers_per_shader_stage >= trim::STORAGE_BUFFERS)
-                .then(|| trim::TrimBackend::new(device, instances, trim::TrimVariant::default())),
+                .then(|| LazyTrim::new(instances, trim::TrimVariant::default())),
             analytic: analytic::AnalyticBackend::new(device, colour),
         }
     }
@@ -189,6 +217,7 @@ impl VisibilityPass {
     pub fn last_trim_triangles(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> u64 {
         self.trim
             .as_ref()
+            .and_then(|t| t.backend.get())
             .map_or(0, |t| t.last_triangles(device, queue))
     }
 
@@ -206,7 +235,10 @@ impl VisibilityPass {
         variant: trim::TrimVariant,
     ) {
         if self.trim.is_some() {
-            self.trim = Some(trim::TrimBackend::new(device, instances, variant));
+            let lazy = LazyTrim::new(instances, variant);
+            // Built now: who asks for a variant draws with it.
+            lazy.get(device);
+            self.trim = Some(lazy);
         }
     }
 
@@ -219,8 +251,11 @@ impl VisibilityPass {
         phase: Phase,
     ) {
         self.mesh.draw(recorder, pass, inputs, phase);
-        if let Some(trim) = &self.trim {
-            trim.draw(recorder, pass, inputs, phase);
+        // Frames without trimmed faces leave the back-end unbuilt.
+        if let Some(trim) = &self.trim
+            && inputs.scene.trim.is_some()
+        {
+            trim.get(recorder.0).draw(recorder, pass, inputs, phase);
         }
         self.analytic.draw(recorder, pass, inputs, phase);
     }
@@ -246,8 +281,10 @@ impl VisibilityPass {
             with_uv: targets.uv.is_some(),
             proxy_depth,
         };
-        if let Some(trim) = &self.trim {
-            trim.tessellate(recorder, encoder, &inputs);
+        if let Some(trim) = &self.trim
+            && inputs.scene.trim.is_some()
+        {
+            trim.get(recorder.0).tessellate(recorder, encoder, &inputs);
         }
         let mut pass = open(encoder, targets, clear_ids);
         self.draw(recorder, &mut pass, &inputs, Phase::Visibility);
