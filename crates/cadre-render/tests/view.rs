@@ -44,6 +44,28 @@ fn pixel_of(camera: &Camera, p: DVec3) -> Option<(u32, u32)> {
         .then_some((px as u32, py as u32))
 }
 
+/// The face pick a visibility texel's ids name (none on the background).
+fn face_in(id: &[u32; 4]) -> Option<Pick> {
+    (id[1] != 0).then(|| Pick::Face {
+        instance: id[1] - 1,
+        face: id[0],
+    })
+}
+
+/// The face a pick at pixel `at` of the viewport's last frame finds under the cursor.
+fn face_picked(
+    renderer: &Renderer,
+    gpu: &Gpu,
+    (viewport, prepared): (&Viewport, &cadre_render::PreparedScene),
+    at: (u32, u32),
+) -> Option<Pick> {
+    renderer
+        .pick(gpu, viewport, prepared, at, 0)
+        .expect("pick")
+        .face()
+        .map(|h| h.pick)
+}
+
 /// A colour texture the viewport's frames are drawn into, as a window's surface texture.
 fn target(gpu: &Gpu) -> wgpu::TextureView {
     gpu.device
@@ -93,14 +115,9 @@ fn picking_finds_faces_edges_and_vertices_under_the_cursor() {
     let mut faces = 0;
     for (i, id) in ids.iter().enumerate().step_by(97) {
         let (x, y) = (i as u32 % W, i as u32 / W);
-        let window = renderer
-            .pick(&gpu, &viewport, &prepared, (x, y), 0)
-            .expect("pick");
-        let expected = (id[1] != 0).then(|| Pick::Face {
-            instance: id[1] - 1,
-            face: id[0],
-        });
-        assert_eq!(window.face().map(|h| h.pick), expected, "pixel {x} {y}");
+        let expected = face_in(id);
+        let picked = face_picked(&renderer, &gpu, (&viewport, &prepared), (x, y));
+        assert_eq!(picked, expected, "pixel {x} {y}");
         faces += usize::from(expected.is_some());
     }
     assert!(faces > 20, "{faces} face pixels checked");
@@ -200,14 +217,9 @@ fn picks_see_the_background_where_the_last_frame_had_a_face() {
     let (mut uncovered, mut faces) = (0, 0);
     for (i, (was, id)) in before.iter().zip(&now).enumerate().step_by(13) {
         let (x, y) = (i as u32 % W, i as u32 / W);
-        let window = renderer
-            .pick(&gpu, &viewport, &prepared, (x, y), 0)
-            .expect("pick");
-        let expected = (id[1] != 0).then(|| Pick::Face {
-            instance: id[1] - 1,
-            face: id[0],
-        });
-        assert_eq!(window.face().map(|h| h.pick), expected, "pixel {x} {y}");
+        let expected = face_in(id);
+        let picked = face_picked(&renderer, &gpu, (&viewport, &prepared), (x, y));
+        assert_eq!(picked, expected, "pixel {x} {y}");
         uncovered += usize::from(was[1] != 0 && id[1] == 0);
         faces += usize::from(id[1] != 0);
     }

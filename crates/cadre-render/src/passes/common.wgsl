@@ -276,3 +276,10 @@ fn place_vertex(d: Draw, position: vec3<f32>, normal: vec3<f32>) -> PlacedVertex
     out.normal = mat3x3<f32>(d.normal[0].xyz, d.normal[1].xyz, d.normal[2].xyz) * normal;
     return out;
 }
+
+// Corner `vi` (0..3) of one triangle covering the whole target, at depth 0: the full-screen
+// passes' vertex (edges composite, pick faces).
+fn screen_triangle(vi: u32) -> vec4<f32> {
+    let uv = vec2<f32>(f32((vi << 1u) & 2u), f32(vi & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}

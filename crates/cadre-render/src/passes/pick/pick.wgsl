@@ -51,8 +51,7 @@ fn fs_main(in: LineOut) -> @location(0) vec4<u32> {
 // triangle covering the window.
 @vertex
 fn vs_faces(@builtin(vertex_index) vi: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((vi << 1u) & 2u), f32(vi & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+    return screen_triangle(vi);
 }
 
 @fragment
