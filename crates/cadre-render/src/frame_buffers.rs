@@ -108,7 +108,7 @@ impl FrameBuffers {
             // Bound one call wide at a dynamic offset: only the buffer limit applies.
             calls: GrowingBuffer::new(device, "draw calls", U::UNIFORM).windowed(),
             materials: GrowingBuffer::new(device, "materials", U::STORAGE),
-            lights: GrowingBuffer::new(device, "lights", U::STORAGE),
+            lights: GrowingBuffer::new(device, "lights", U::UNIFORM),
             selection: GrowingBuffer::new(device, "selection", U::STORAGE),
             primitives: GrowingBuffer::new(device, "primitives", U::STORAGE),
             see_through_primitives: GrowingBuffer::new(

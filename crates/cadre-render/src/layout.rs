@@ -224,6 +224,22 @@ pub struct LightGpu {
     pub params: [f32; 4],
 }
 
+/// Lights a frame is lit by, at most (more are left out, with a warning).
+pub const MAX_LIGHTS: usize = 8;
+
+/// The frame's lights as the shade pass reads them: a uniform block, the first
+/// `FrameUniform::counts[0]` of them lit. Uniform, not a storage array: the index is the
+/// same for every pixel, which lavapipe then loads once for all lanes where a storage
+/// array's element was fetched lane by lane (pr2db at 1280×960, `cadre bench view`, the
+/// three-light CAD rig: 18.0–18.7 → 16 ms a frame with the lights as constants;
+/// BENCHMARKS.md, issue 15).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct LightRig {
+    /// The lights; those past the frame's count are zero.
+    pub lights: [LightGpu; MAX_LIGHTS],
+}
+
 /// A segment of a B-Rep edge or wire, or a B-Rep vertex (both ends equal), mesh-local.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
@@ -502,6 +518,7 @@ gpu_struct!(
     ]
 );
 gpu_struct!(LightGpu, "Light", [position, direction, colour, params]);
+gpu_struct!(LightRig, "LightRig", [lights]);
 gpu_struct!(Segment, "Segment", [a, b, faces, pad]);
 gpu_struct!(
     Draw,

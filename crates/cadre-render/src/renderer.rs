@@ -5,8 +5,8 @@ use image::RgbaImage;
 use crate::frame_buffers::{BindCache, FrameBuffers};
 use crate::gpu_scene::{FrameScene, PreparedScene};
 use crate::layout::{
-    EDGES_ALL, EDGES_VISIBLE, FrameUniform, LightGpu, PROJECTION_ORTHOGRAPHIC,
-    PROJECTION_PERSPECTIVE,
+    EDGES_ALL, EDGES_VISIBLE, FrameUniform, LightGpu, LightRig, MAX_LIGHTS,
+    PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE,
 };
 use crate::passes::edges::EdgesPass;
 use crate::passes::instances::InstanceLayout;
@@ -80,7 +80,8 @@ pub struct FrameOptions {
     pub mode: DisplayMode,
     /// Edge width in output pixels.
     pub edge_width: f32,
-    /// Lights (ambient light from the environment comes on top).
+    /// Lights (ambient light from the environment comes on top); the first
+    /// [`crate::layout::MAX_LIGHTS`] are lit, the rest left out with a warning.
     pub lights: Vec<Light>,
 }
 
@@ -461,12 +462,8 @@ impl Renderer {
         buffers
             .selection
             .write(gpu, bytemuck::cast_slice(&selection))?;
-        let mut lights: Vec<LightGpu> = options.lights.iter().map(|l| l.to_gpu(camera)).collect();
-        if lights.is_empty() {
-            // Storage bindings may not be empty; the count stays 0.
-            lights.push(LightGpu::default());
-        }
-        buffers.lights.write(gpu, bytemuck::cast_slice(&lights))?;
+        let lights = light_rig(options, camera);
+        buffers.lights.write(gpu, bytemuck::bytes_of(&lights))?;
         // Wire bodies are drawn in every mode; B-Rep edges only in the modes with edges.
         let draw_lines = readback.shaded() && !frame_scene.edge_calls.is_empty();
         let frame_buffer = buffers.frame.buffer();
@@ -494,7 +491,7 @@ impl Renderer {
             uniform: &frame,
             scene: &frame_scene,
             selection: buffers.selection.buffer(),
-            lights: (buffers.lights.buffer(), &lights),
+            lights: (buffers.lights.buffer(), &lights.lights),
             draw_lines,
         };
         let bytes = match readback {
@@ -538,6 +535,23 @@ impl Renderer {
         }
         Ok(bytes)
     }
+}
+
+/// The options' lights as the shade pass reads them (view space); past [`MAX_LIGHTS`] the
+/// rest are left out, with a warning.
+fn light_rig(options: &FrameOptions, camera: &Camera) -> LightRig {
+    if options.lights.len() > MAX_LIGHTS {
+        tracing::warn!(
+            lights = options.lights.len(),
+            lit = MAX_LIGHTS,
+            "more lights than the shade pass lights: the first {MAX_LIGHTS} are lit"
+        );
+    }
+    let mut rig = LightRig::default();
+    for (gpu, light) in rig.lights.iter_mut().zip(&options.lights) {
+        *gpu = light.to_gpu(camera);
+    }
+    rig
 }
 
 /// One frame's inputs.
@@ -606,7 +620,7 @@ fn frame_uniform(
         hidden_colour: [0.25, 0.25, 0.27, 1.0],
         sky_up: (rotation * glam::DVec3::Z).as_vec3().extend(0.0).to_array(),
         counts: [
-            options.lights.len() as u32,
+            options.lights.len().min(MAX_LIGHTS) as u32,
             state.selection.len().min(MAX_HIGHLIGHTED) as u32,
             state.sections.len().min(MAX_SECTIONS) as u32,
             0,
@@ -688,7 +702,7 @@ struct Shading<'a> {
     uniform: &'a FrameUniform,
     scene: &'a FrameScene<'a>,
     selection: &'a wgpu::Buffer,
-    /// The light buffer and the lights in it (one placeholder when there are none).
+    /// The light buffer and the lights in it (the frame's count of them lit, the rest zero).
     lights: (&'a wgpu::Buffer, &'a [LightGpu]),
     draw_lines: bool,
 }
@@ -899,6 +913,35 @@ fn downsample(full: &RgbaImage, factor: u32) -> RgbaImage {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_light_rig_holds_the_first_lights_and_zeros() {
+        let camera = Camera::fit(
+            glam::DVec3::ZERO,
+            glam::DVec3::ONE,
+            crate::ViewPreset::Iso,
+            false,
+            1.0,
+        );
+        let rig = light_rig(&FrameOptions::default(), &camera);
+        let lit = Light::cad_rig().len();
+        assert!(rig.lights[..lit].iter().all(|l| l.colour[0] > 0.0));
+        assert!(rig.lights[lit..].iter().all(|l| l.colour == [0.0; 4]));
+        // More than the rig holds: the first MAX_LIGHTS, and the frame lights that many.
+        let many = FrameOptions {
+            lights: (0..MAX_LIGHTS + 3)
+                .map(|i| Light::CameraDirectional {
+                    direction: glam::DVec3::Z,
+                    radiance: [1.0 + i as f32; 3],
+                })
+                .collect(),
+            ..FrameOptions::default()
+        };
+        let rig = light_rig(&many, &camera);
+        assert_eq!(rig.lights[MAX_LIGHTS - 1].colour[0], MAX_LIGHTS as f32);
+        let frame = frame_uniform(&camera, &many, &ViewState::default(), (8, 8));
+        assert_eq!(frame.counts[0], MAX_LIGHTS as u32);
+    }
 
     #[test]
     fn every_srgb_byte_survives_linear_light() {

@@ -7,8 +7,8 @@ use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders}
 use cadre_render::layout::{
     Call, DRAW_ATTRIBUTES, DRAW_CLOSED, DRAW_FIRST_LOCATION, DRAW_INSIDE_OUT, Draw, EDGES_ALL,
     EDGES_HIDDEN_DASHED, EDGES_VISIBLE, FILL_BACKGROUND, FILL_NONE, FILL_SHADED, FrameUniform,
-    GpuStruct, LightGpu, Local, Material, Member, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE,
-    PickRegion, Primitive, Segment, TrimSurface, TrimTask,
+    GpuStruct, LightGpu, LightRig, Local, Material, Member, PROJECTION_ORTHOGRAPHIC,
+    PROJECTION_PERSPECTIVE, PickRegion, Primitive, Segment, TrimSurface, TrimTask,
 };
 
 /// The renderer's shader named `name`, as it compiles it.
@@ -123,6 +123,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
             "Material",
             "Segment",
             "Light",
+            "LightRig",
             "Local",
             "Call",
             "PickRegion",
@@ -147,6 +148,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
             ("Material", check::<Material>(pass, &m)),
             ("Segment", check::<Segment>(pass, &m)),
             ("Light", check::<LightGpu>(pass, &m)),
+            ("LightRig", check::<LightRig>(pass, &m)),
             ("Local", check::<Local>(pass, &m)),
             ("Call", check::<Call>(pass, &m)),
             ("PickRegion", check::<PickRegion>(pass, &m)),
@@ -160,7 +162,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         }
     }
     // Every layout was really compared somewhere (naga drops nothing we rely on).
-    assert_eq!(found.len(), 11, "{found:?}");
+    assert_eq!(found.len(), 12, "{found:?}");
 }
 
 #[test]

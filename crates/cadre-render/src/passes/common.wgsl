@@ -89,6 +89,11 @@ struct Light {
     params: vec4<f32>,
 }
 
+// `layout::MAX_LIGHTS` lights.
+struct LightRig {
+    lights: array<Light, 8>,
+}
+
 @group(0) @binding(0) var<uniform> frame: FrameUniform;
 
 // What the visibility texel writer needs of the instance a surface point belongs to

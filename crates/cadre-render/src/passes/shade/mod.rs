@@ -3,18 +3,18 @@
 use super::common::{PipelineSpec, colour_pass, entries, layouts, pipeline, shader, wgsl};
 use super::visibility::{DEPTH, VisibilityTargets};
 use crate::frame_buffers::BindCache;
-use crate::layout::{Binding, FrameUniform, GpuStruct, LightGpu, Material};
+use crate::layout::{Binding, FrameUniform, GpuStruct, LightGpu, LightRig, Material};
 use std::collections::BTreeMap;
 use std::sync::Mutex;
 
-/// Bind group 0: frame, materials, the normal and id targets, lights, selection, the depth
+/// Bind group 0: frame, materials, the normal and id targets, the light rig, selection, the depth
 /// target (read by the silhouettes: 4 bytes a neighbour where the ids are 16).
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(Material::WGSL_NAME),
     Binding::FloatTexture,
     Binding::UintTexture,
-    Binding::Storage(LightGpu::WGSL_NAME),
+    Binding::Uniform(LightRig::WGSL_NAME),
     Binding::Storage("vec4<u32>"),
     Binding::FloatTexture,
 ];

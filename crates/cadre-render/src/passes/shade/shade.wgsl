@@ -30,7 +30,7 @@ override SELECTION: bool = true;
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
 @group(0) @binding(2) var normal_tex: texture_2d<f32>;
 @group(0) @binding(3) var ids_tex: texture_2d<u32>;
-@group(0) @binding(4) var<storage, read> lights: array<Light>;
+@group(0) @binding(4) var<uniform> lights: LightRig;
 @group(0) @binding(5) var<storage, read> selection: array<vec4<u32>>;
 // The visibility depth (also the pass's read-only depth attachment): 0 where nothing is.
 @group(0) @binding(6) var depth_tex: texture_2d<f32>;
@@ -91,26 +91,24 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let lit = surface(n, v, base, metallic, roughness);
     var colour = vec3<f32>(0.0);
     for (var i = 0u; i < LIGHTS; i++) {
-        let li = lights[i];
+        let li = lights.lights[i];
         let kind = u32(li.position.w + 0.5);
         // Unit already (`Light::to_gpu`).
         var l = li.direction.xyz;
         var radiance = li.colour.rgb;
-        if POSITIONAL_LIGHTS && kind != 0u {
+        if POSITIONAL_LIGHTS {
+            // Chosen without branches: the light's values are uniform, and lavapipe compiles a
+            // shader again for every new uniform value a branch depends on.
+            let positional = kind != 0u;
             let to_light = li.position.xyz - view_pos;
             let d = max(length(to_light), 1e-6);
-            l = to_light / d;
-            var falloff = 1.0 / (d * d);
+            l = select(l, to_light / d, positional);
             let range = li.direction.w;
-            if range > 0.0 {
-                let x = d / range;
-                let w = clamp(1.0 - x * x * x * x, 0.0, 1.0);
-                falloff *= w * w;
-            }
-            radiance *= falloff;
-            if kind == 2u {
-                radiance *= smoothstep(li.colour.w, li.params.x, dot(-l, normalize(li.direction.xyz)));
-            }
+            let x = d / max(range, 1e-30);
+            let w = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+            let falloff = select(1.0, w * w, range > 0.0) / (d * d);
+            let cone = smoothstep(li.colour.w, li.params.x, dot(-l, normalize(li.direction.xyz)));
+            radiance *= select(1.0, falloff * select(1.0, cone, kind == 2u), positional);
         }
         colour += light(lit, l, radiance);
     }
