@@ -59,6 +59,7 @@ fn main() -> std::process::ExitCode {
 fn run() -> Result<()> {
     quiet_on_broken_pipe();
     quiet_device_selection();
+    keep_freed_memory();
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_env("CADRE_LOG")
@@ -94,6 +95,32 @@ fn quiet_device_selection() {
     #[allow(unsafe_code)]
     unsafe {
         std::env::set_var("NODEVICE_SELECT", "1");
+    }
+}
+
+/// Freed memory above this much at the top of a glibc heap goes back to the system (glibc's
+/// default: 128 KiB, adjusted by the allocation sizes it sees).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+const TRIM_THRESHOLD: i32 = 64 << 20;
+
+/// lavapipe (Mesa's CPU Vulkan) allocates and frees megabytes of vertex and binning data at
+/// every draw; with glibc's default trim threshold each frame's frees were handed back to
+/// the kernel and the next frame faulted the pages in again, zeroed: 3,000 page faults a
+/// frame for trj4_pm2-ec-214 at 1280×960 (40 k triangles, 8 k edge segments), its frame
+/// 29–30 → 21–23 ms with the memory kept (`cadre bench view`; BENCHMARKS.md, issue 15).
+/// The process keeps up to [`TRIM_THRESHOLD`] of freed memory per heap for reuse instead.
+/// Applications that embed cadre-render choose their own allocator settings.
+fn keep_freed_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: `mallopt` only sets one of glibc's allocator parameters; it is called first
+    // thing in `main`, before any thread starts.
+    #[allow(unsafe_code)]
+    unsafe {
+        // 0 when glibc refuses the value; the allocator then keeps its defaults, which are
+        // slower for software rendering but correct.
+        if libc::mallopt(libc::M_TRIM_THRESHOLD, TRIM_THRESHOLD) == 0 {
+            tracing::debug!("glibc kept its default trim threshold");
+        }
     }
 }
 
