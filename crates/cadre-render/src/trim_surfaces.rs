@@ -375,9 +375,14 @@ pub fn packed_bspline_point(data: &[f32], at: u32, u: f64, v: f64) -> DVec3 {
         .collect();
     let cp = kv_at + nv + q + 1;
     let basis = |knots: &[f64], n: usize, p: usize, t: f64| -> (usize, Vec<f64>) {
-        let span = cadre_geom::nurbs::basis::find_span(knots, n, p, t);
-        let funs = cadre_geom::nurbs::basis::basis_funs(span, t, p, knots)
-            .map_or_else(Vec::new, |f| f[..=p].to_vec());
+        use cadre_geom::nurbs::basis::{BasisDers, basis_funs, find_span};
+        let span = find_span(knots, n, p, t);
+        // The stack-only basis stops at degree 8; files hold degree 11 (corpus
+        // trj7_b1-ec-214), whose points were NaN here and whose faces were culled.
+        let funs = match basis_funs(span, t, p, knots) {
+            Some(f) => f[..=p].to_vec(),
+            None => BasisDers::new(span, t, p, 0, knots).row(0).to_vec(),
+        };
         (span, funs)
     };
     let (su, bu) = basis(&ku, nu, p, u);
@@ -545,7 +550,18 @@ pub(crate) fn surface_record(
             face_point(s, data, u, v).as_vec3().to_array()
         })
         .collect();
-    let (centre, radius) = crate::coverage::bounding_sphere(samples.into_iter());
+    // A box whose points cannot all be evaluated gets no bound, so it is never culled
+    // (rather than a zero sphere at the origin, culled whenever the origin is off screen).
+    let finite = samples.iter().flatten().all(|x| x.is_finite());
+    let (centre, radius) = if finite {
+        crate::coverage::bounding_sphere(samples.into_iter())
+    } else {
+        tracing::warn!(
+            face_id,
+            "face surface not finite over its box: never culled"
+        );
+        (DVec3::ZERO, f64::from(f32::MAX))
+    };
     let h = [s.uv_size[0] / n as f64, s.uv_size[1] / n as f64];
     let [muu, muv, mvv] = s.curvature;
     let chord = (h[0] * h[0] * muu + 2.0 * h[0] * h[1] * muv + h[1] * h[1] * mvv) / 8.0;
@@ -566,7 +582,7 @@ pub(crate) fn surface_record(
             centre.x as f32,
             centre.y as f32,
             centre.z as f32,
-            (radius + chord) as f32 * (1.0 + 1e-5),
+            ((radius + chord) * (1.0 + 1e-5)).min(f64::from(f32::MAX)) as f32,
         ],
         curvature: [muu as f32, muv as f32, mvv as f32, f32::from_bits(s.breaks)],
         ids: [s.kind, face_id, s.tree, s.data],
@@ -600,6 +616,60 @@ mod tests {
         assert!(kinds.contains(&SURFACE_BSPLINE), "{kinds:?}");
         assert!(kinds.contains(&SURFACE_SPHERE), "{kinds:?}");
         assert!(kinds.contains(&SURFACE_CONE), "{kinds:?}");
+    }
+
+    /// A B-spline of degree 11 (files hold them; the stack-only basis stops at 8): the CPU
+    /// evaluator of its packed form is the model's surface, and its record's bounding
+    /// sphere holds the face and is tight (it was a zero sphere at the origin, so the face
+    /// was culled whenever the origin was off screen: corpus trj7_b1-ec-214 at 10×).
+    #[test]
+    fn high_degree_bsplines_are_bounded_where_they_are() {
+        use cadre_geom::Vec3;
+        let (p, q) = (1, 11);
+        let knots = |d: usize| [vec![0.0; d + 1], vec![1.0; d + 1]].concat();
+        let net: Vec<Vec<Vec3>> = (0..=p)
+            .map(|i| {
+                (0..=q)
+                    .map(|j| {
+                        let t = j as f64 / q as f64;
+                        Vec3::new(100.0 + 5.0 * i as f64, 50.0 + 20.0 * t, (3.0 * t).sin())
+                    })
+                    .collect()
+            })
+            .collect();
+        let b = cadre_geom::bspline::BSplineSurface::try_new(p, q, knots(p), knots(q), net, None)
+            .expect("well formed");
+        let mut data = Vec::new();
+        let (kind, frame, params, curvature, at) =
+            packed_bspline(&b, [0.0, -1e-6], [1.0, 1.0 + 2e-6], &mut data).expect("packs");
+        let s = TrimFaceSurface {
+            kind,
+            frame,
+            params,
+            tree: 0,
+            uv_origin: [0.0, -1e-6],
+            uv_size: [1.0, 1.0 + 2e-6],
+            curvature,
+            data: at,
+            breaks: NO_BREAKS,
+        };
+        let record = surface_record(&s, &data, 1, std::iter::empty());
+        let [x, y, z, r] = record.sphere.map(f64::from);
+        let (centre, radius) = (DVec3::new(x, y, z), r);
+        let mut farthest: f64 = 0.0;
+        for k in 0..=32 {
+            for l in 0..=32 {
+                let (u, v) = (f64::from(k) / 32.0, f64::from(l) / 32.0);
+                let ours = face_point(&s, &data, u, v);
+                assert!((ours - b.point_at(u, v)).length() < 1e-3, "({u}, {v}): {ours}");
+                farthest = farthest.max((ours - centre).length());
+            }
+        }
+        assert!(farthest <= radius, "{farthest} > {radius}");
+        // Tight: about half the 20 × 5 box's diagonal, not an unbounded fallback.
+        assert!(radius < 15.0, "{radius}");
+        // Negative control: the origin, where the old record put it, is far outside.
+        assert!(centre.length() > radius, "{centre} {radius}");
     }
 
     fn check_surfaces(model: &Model, kinds: &mut std::collections::BTreeSet<u32>) {

@@ -25,6 +25,8 @@ const FILES: &[&str] = &[
     "bug25415_part_of_hdrv8w64p254_4x2_1016x502h838p.stp",
     "bug28345_30338.stp",
     "PRO10363.stp",
+    // Degree-11 B-spline faces (culled by a zero bounding sphere until 2026-12-06).
+    "trj7_b1-ec-214.stp",
 ];
 
 const ZOOMS: &str = "1,10,100,1000";

@@ -52,7 +52,7 @@ fn in_frustum(c: vec3<f32>, r: f32) -> bool {
     for (var k = 0u; k < 4u; k++) {
         let side = select(1.0, -1.0, (k & 1u) != 0u);
         let plane = row3 + side * select(row0, row1, k >= 2u);
-        inside = inside & (dot(plane, p) >= -r * length(plane.xyz));
+        inside = inside & (dot(plane, p) >= -4.0 * r * length(plane.xyz));
     }
     return inside;
 }
