@@ -112,8 +112,14 @@ impl Gpu {
         required_limits.max_storage_buffers_per_shader_stage = required_limits
             .max_storage_buffers_per_shader_stage
             .max(storage_buffers);
+        // Timestamps between a frame's stages, for the benchmarks' per-pass timings
+        // (`Renderer::with_pass_timings`), where the adapter has them.
+        let timestamps =
+            wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
+        let required_features = adapter.features() & timestamps;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("cadre"),
+            required_features,
             required_limits,
             ..Default::default()
         }))

@@ -116,6 +116,8 @@ pub struct Renderer {
     proxy_depth: bool,
     /// Bind groups kept between frames while their resources stay.
     binds: BindCache,
+    /// Per-stage GPU timings of each frame ([`Renderer::with_pass_timings`]).
+    timer: Option<crate::pass_timer::PassTimer>,
 }
 
 impl Renderer {
@@ -139,6 +141,7 @@ impl Renderer {
             colour: format,
             proxy_depth: false,
             binds: BindCache::default(),
+            timer: None,
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e)),
@@ -155,6 +158,21 @@ impl Renderer {
             crate::FLAT_LIMIT,
             self.visibility.draws_trims(),
         )
+    }
+
+    /// This renderer timing each frame's stages on the GPU (timestamps between them, where
+    /// the adapter writes them on command encoders; nothing is timed elsewhere): for the
+    /// benchmarks, since reading the timings back waits for every frame.
+    pub fn with_pass_timings(mut self, gpu: &Gpu) -> Renderer {
+        self.timer = crate::pass_timer::PassTimer::new(gpu);
+        self
+    }
+
+    /// The last frame's GPU time per stage in milliseconds, in the order drawn — `trim
+    /// tessellation`, `visibility`, `shade` (edges, shading and overlays) — when
+    /// [`Renderer::with_pass_timings`] found timestamps on the adapter; empty otherwise.
+    pub fn last_pass_timings(&self) -> Vec<(&'static str, f64)> {
+        self.timer.as_ref().map_or_else(Vec::new, |t| t.last())
     }
 
     /// This renderer with its analytic back-end writing each proxy's depth instead of the
@@ -468,6 +486,10 @@ impl Renderer {
         let draw_lines = readback.shaded() && !frame_scene.edge_calls.is_empty();
         let frame_buffer = buffers.frame.buffer();
         let mut encoder = device.create_command_encoder(&Default::default());
+        let timer = self.timer.as_ref();
+        if let Some(t) = timer {
+            t.start(&mut encoder);
+        }
         let sections = frame.counts[2] > 0;
         // The ids are left uncleared where only depth-tested passes and depth-aware picks
         // read them (`VisibilityTargets`' rule: ids count only where the depth is not 0):
@@ -482,7 +504,14 @@ impl Renderer {
             targets,
             (frame_buffer, sections, self.proxy_depth, clear_ids),
             &frame_scene,
+            timer,
         );
+        let mark = |encoder: &mut wgpu::CommandEncoder, stage| {
+            if let Some(t) = timer {
+                t.mark(encoder, stage);
+                t.resolve(encoder);
+            }
+        };
         let shading = Shading {
             device,
             options,
@@ -495,13 +524,23 @@ impl Renderer {
             draw_lines,
         };
         let bytes = match readback {
-            Readback::Ids => read_region(gpu, encoder, &targets.ids_texture, (0, 0), (w, h), 16)?,
-            Readback::Uv => match &targets.uv {
-                Some((_, uv)) => read_region(gpu, encoder, uv, (0, 0), (w, h), 8)?,
-                None => Vec::new(),
-            },
+            Readback::Ids => {
+                mark(&mut encoder, "visibility");
+                read_region(gpu, encoder, &targets.ids_texture, (0, 0), (w, h), 16)?
+            }
+            Readback::Uv => {
+                mark(&mut encoder, "visibility");
+                match &targets.uv {
+                    Some((_, uv)) => read_region(gpu, encoder, uv, (0, 0), (w, h), 8)?,
+                    None => Vec::new(),
+                }
+            }
             Readback::Into(view) => {
+                if let Some(t) = timer {
+                    t.mark(&mut encoder, "visibility");
+                }
                 self.shade_into(&shading, &mut encoder, view);
+                mark(&mut encoder, "shade");
                 gpu.queue.submit([encoder.finish()]);
                 Vec::new()
             }
@@ -521,10 +560,19 @@ impl Renderer {
                     view_formats: &[],
                 });
                 let colour_view = colour.create_view(&Default::default());
+                if let Some(t) = timer {
+                    t.mark(&mut encoder, "visibility");
+                }
                 self.shade_into(&shading, &mut encoder, &colour_view);
+                mark(&mut encoder, "shade");
                 read_region(gpu, encoder, &colour, (0, 0), (w, h), 4)?
             }
         };
+        // The frame has run (a readback waits for it; a viewer's frame is waited for here,
+        // only when timed).
+        if let Some(t) = timer {
+            t.read(gpu);
+        }
         if let Some(v) = viewport {
             let aspect = f64::from(w) / f64::from(h);
             v.last = Some(LastFrame {

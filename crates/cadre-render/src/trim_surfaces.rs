@@ -22,6 +22,13 @@ pub const SURFACE_TORUS: u32 = 4;
 /// [`TrimFaceSurface::kind`]: a (rational) B-spline, evaluated from its packed knots and
 /// homogeneous control points ([`TrimScene::bspline_data`] at [`TrimFaceSurface::data`]).
 pub const SURFACE_BSPLINE: u32 = 5;
+/// [`TrimFaceSurface::kind`]: `C(u) + v d`, a surface of linear extrusion: its profile `C`
+/// packed at [`TrimFaceSurface::data`] (`trim_sweeps`), `d` the frame's z (not unit).
+pub const SURFACE_EXTRUSION: u32 = 6;
+/// [`TrimFaceSurface::kind`]: `c + R_a(u) (C(v) − c)`, a surface of revolution: its profile
+/// `C` packed at [`TrimFaceSurface::data`] (`trim_sweeps`), `c` the frame's origin and the
+/// unit axis `a` its z.
+pub const SURFACE_REVOLUTION: u32 = 7;
 
 /// The highest B-spline degree the trim back-end draws (its WGSL's basis tables hold 16
 /// functions); higher-degree faces keep their meshes.
@@ -46,7 +53,8 @@ pub struct TrimFaceSurface {
     /// Bounds of the surface's second derivatives over the box: |S_uu|, |S_uv|, |S_vv| (model
     /// units per parameter unit²), from which a tessellation's chord error follows.
     pub curvature: [f64; 3],
-    /// A B-spline's packed record in [`TrimScene::bspline_data`] (0 for the other kinds).
+    /// A B-spline's packed record, or a sweep's packed profile, in
+    /// [`TrimScene::bspline_data`] (0 for the closed forms).
     pub data: u32,
     /// Where the face's grid lines must fall ([`NO_BREAKS`] for one span each way): its
     /// record in [`TrimScene::bspline_data`], the number of spans along u and v (as `u32`
@@ -82,9 +90,10 @@ pub struct TrimScene {
 
 impl TrimScene {
     /// The trees of `model`'s faces within `tolerance` model units of the exact trims, and
-    /// the faces the trim back-end can draw: planes, cylinders, cones, spheres and tori (a
-    /// rectangular trim of one counts as it); faces on other surfaces or without a tree keep
-    /// their meshes.
+    /// the faces the trim back-end can draw: planes, cylinders, cones, spheres, tori,
+    /// B-splines up to [`MAX_BSPLINE_DEGREE`] and sweeps of B-spline, line and conic profiles
+    /// (a rectangular trim of one counts as it); faces on other surfaces or without a tree
+    /// keep their meshes.
     pub fn build(model: &Model, tolerance: f64) -> TrimScene {
         let trees = model_trees(model, tolerance);
         let mut fallback: Vec<(u64, String)> = trees.failures.clone();
@@ -101,8 +110,27 @@ impl TrimScene {
                 let exact = match basis(surface) {
                     Surface::BSpline(b) => packed_bspline(b, origin, size, &mut bspline_data)
                         .inspect(|_| {
-                            breaks = pack_breaks(b, origin, size, &mut bspline_data);
+                            breaks = pack_breaks(
+                                (&b.u_knots, &b.v_knots),
+                                origin,
+                                size,
+                                &mut bspline_data,
+                            );
                         }),
+                    sweep @ (Surface::Extrusion { .. } | Surface::Revolution { .. }) => {
+                        match crate::trim_sweeps::sweep_surface(
+                            sweep,
+                            tree,
+                            (origin, size),
+                            &mut bspline_data,
+                        ) {
+                            Ok(record) => return Some(record),
+                            Err(why) => {
+                                fallback.push((face.step_id, why));
+                                return None;
+                            }
+                        }
+                    }
                     other => closed_form(other, origin, size).ok_or_else(|| {
                         format!(
                             "{} surface: no GPU evaluator yet",
@@ -164,6 +192,7 @@ pub fn surface_wgsl() -> String {
     [
         include_str!("passes/visibility/trim/surface.wgsl"),
         include_str!("passes/visibility/trim/bspline.wgsl"),
+        include_str!("passes/visibility/trim/sweep.wgsl"),
     ]
     .join("\n")
 }
@@ -200,10 +229,10 @@ pub fn pack_bspline(
     Ok(at as u32)
 }
 
-/// The knot lines of `b` within the box `origin + [0, size]` packed at the end of `data` as
+/// The knot lines `u_knots`, `v_knots` within the box `origin + [0, size]` packed at the end of `data` as
 /// [`TrimFaceSurface::breaks`] reads them; returns their offset.
-fn pack_breaks(
-    b: &cadre_geom::bspline::BSplineSurface,
+pub(crate) fn pack_breaks(
+    (u_knots, v_knots): (&[f64], &[f64]),
     origin: [f64; 2],
     size: [f64; 2],
     data: &mut Vec<f32>,
@@ -225,8 +254,8 @@ fn pack_breaks(
         }
         out
     };
-    let u = breaks(&b.u_knots, origin[0], size[0]);
-    let v = breaks(&b.v_knots, origin[1], size[1]);
+    let u = breaks(u_knots, origin[0], size[0]);
+    let v = breaks(v_knots, origin[1], size[1]);
     let at = data.len() as u32;
     data.extend([u.len() - 1, v.len() - 1].map(|n| f32::from_bits(n as u32)));
     data.extend(u.iter().chain(&v).map(|&t| t as f32));
@@ -499,16 +528,19 @@ pub fn closed_form_normal(s: &TrimFaceSurface, u: f64, v: f64) -> DVec3 {
 /// The point of a face's surface at (u, v) as the GPU evaluates it: its closed form, or its
 /// packed B-spline in `data`.
 pub fn face_point(s: &TrimFaceSurface, data: &[f32], u: f64, v: f64) -> DVec3 {
-    if s.kind == SURFACE_BSPLINE {
-        packed_bspline_point(data, s.data, u, v)
-    } else {
-        closed_form_point(s, u, v)
+    match s.kind {
+        SURFACE_BSPLINE => packed_bspline_point(data, s.data, u, v),
+        SURFACE_EXTRUSION | SURFACE_REVOLUTION => crate::trim_sweeps::sweep_point(s, data, u, v).0,
+        _ => closed_form_point(s, u, v),
     }
 }
 
 /// The direction of S_u × S_v of a face's surface at (u, v) (a B-spline's by central
 /// differences a ten-thousandth of its box wide).
 fn face_normal(s: &TrimFaceSurface, data: &[f32], u: f64, v: f64) -> DVec3 {
+    if matches!(s.kind, SURFACE_EXTRUSION | SURFACE_REVOLUTION) {
+        return crate::trim_sweeps::sweep_point(s, data, u, v).1;
+    }
     if s.kind != SURFACE_BSPLINE {
         return closed_form_normal(s, u, v);
     }
@@ -525,7 +557,7 @@ const SPHERE_SAMPLES: usize = 9;
 /// The GPU record of face id `face_id` drawn from `s`. `points` are its mesh's vertices
 /// (position, normal, (u, v)), which say which side of the surface is the face's outside
 /// (the mesh's normals follow the shell's orientation).
-pub(crate) fn surface_record(
+pub fn surface_record(
     s: &TrimFaceSurface,
     data: &[f32],
     face_id: u32,
@@ -661,7 +693,10 @@ mod tests {
             for l in 0..=32 {
                 let (u, v) = (f64::from(k) / 32.0, f64::from(l) / 32.0);
                 let ours = face_point(&s, &data, u, v);
-                assert!((ours - b.point_at(u, v)).length() < 1e-3, "({u}, {v}): {ours}");
+                assert!(
+                    (ours - b.point_at(u, v)).length() < 1e-3,
+                    "({u}, {v}): {ours}"
+                );
                 farthest = farthest.max((ours - centre).length());
             }
         }

@@ -27,6 +27,10 @@ const FILES: &[&str] = &[
     "PRO10363.stp",
     // Degree-11 B-spline faces (culled by a zero bounding sphere until 2026-12-06).
     "trj7_b1-ec-214.stp",
+    // Surfaces of revolution and extrusion (B-spline, rational B-spline, ellipse profiles).
+    "trj3_s1-ec-214.stp",
+    "trj4_s1-tu-214.stp",
+    "trj5_k1-md-203.stp",
 ];
 
 const ZOOMS: &str = "1,10,100,1000";

@@ -459,7 +459,9 @@ fn bench_render(
         f64::from(width) / f64::from(height),
     );
     let gpu = Gpu::headless()?;
-    let renderer = Renderer::new(&gpu)?;
+    // Each frame's stages timed on the GPU where the adapter writes timestamps (a readback
+    // waits for the frame anyway).
+    let renderer = Renderer::new(&gpu)?.with_pass_timings(&gpu);
     let options = FrameOptions {
         width,
         height,
@@ -476,13 +478,29 @@ fn bench_render(
     };
     render()?;
     let mut ms: Vec<f64> = Vec::new();
+    let mut passes: Vec<(&'static str, Vec<f64>)> = Vec::new();
     for _ in 0..frames.max(1) {
         let t0 = Instant::now();
         render()?;
         ms.push(t0.elapsed().as_secs_f64() * 1e3);
+        for (stage, t) in renderer.last_pass_timings() {
+            match passes.iter_mut().find(|(s, _)| *s == stage) {
+                Some((_, times)) => times.push(t),
+                None => passes.push((stage, vec![t])),
+            }
+        }
     }
-    let mut sorted = ms.clone();
-    sorted.sort_by(f64::total_cmp);
+    let median = |v: &[f64]| {
+        let mut sorted = v.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        sorted[sorted.len() / 2]
+    };
+    // GPU milliseconds per stage (median over the frames), empty where the adapter has no
+    // timestamps.
+    let pass_median: serde_json::Map<String, serde_json::Value> = passes
+        .iter()
+        .map(|(stage, times)| (stage.to_string(), json!(median(times))))
+        .collect();
     println!(
         "{}",
         json!({
@@ -496,7 +514,8 @@ fn bench_render(
             "width": width,
             "height": height,
             "frame_ms": ms,
-            "median_ms": sorted[sorted.len() / 2],
+            "median_ms": median(&ms),
+            "pass_median_ms": pass_median,
         })
     );
     Ok(())

@@ -265,7 +265,7 @@ impl VisibilityPass {
     /// `proxy_depth` has the analytic back-end write its proxies' depth (the tests' negative
     /// control). `clear_ids`: clear the ids target first; else it keeps the last frame's ids
     /// where nothing is drawn now, and readers must take a pixel's ids only where its depth
-    /// is not 0 (see [`open`]).
+    /// is not 0 (see [`open`]). `timer` marks the end of the trim back-end's tessellation.
     pub fn record(
         &self,
         recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
@@ -273,6 +273,7 @@ impl VisibilityPass {
         targets: &VisibilityTargets,
         (frame, sections, proxy_depth, clear_ids): (&wgpu::Buffer, bool, bool, bool),
         scene: &FrameScene<'_>,
+        timer: Option<&crate::pass_timer::PassTimer>,
     ) {
         let inputs = PhaseInputs {
             frame,
@@ -285,6 +286,9 @@ impl VisibilityPass {
             && inputs.scene.trim.is_some()
         {
             trim.get(recorder.0).tessellate(recorder, encoder, &inputs);
+            if let Some(t) = timer {
+                t.mark(encoder, "trim tessellation");
+            }
         }
         let mut pass = open(encoder, targets, clear_ids);
         self.draw(recorder, &mut pass, &inputs, Phase::Visibility);

@@ -135,10 +135,13 @@ fn bspline_point(at: u32, uv: vec2<f32>) -> SurfacePoint {
     return out;
 }
 
-// The point of face record `s`'s surface at `uv`: its closed form or its B-spline.
+// The point of face record `s`'s surface at `uv`: its closed form, its B-spline or its sweep.
 fn face_point(s: TrimSurface, uv: vec2<f32>) -> SurfacePoint {
     if s.ids.x == SURFACE_BSPLINE {
         return bspline_point(s.ids.w, uv);
+    }
+    if (s.ids.x == SURFACE_EXTRUSION) | (s.ids.x == SURFACE_REVOLUTION) {
+        return sweep_point(s, uv);
     }
     return surface_point(s, uv);
 }

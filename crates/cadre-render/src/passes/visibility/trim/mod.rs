@@ -74,6 +74,15 @@ pub const TOLERANCE_PX: f64 = 0.5;
 /// just behind it (a thin wall's other side).
 pub const TOLERANCE_REL: f64 = 0.002;
 
+/// Workgroups evaluating one task's grid points (`POINT_CHUNKS` in tessellate.wgsl): 1,024
+/// invocations share a grid, so none evaluates more than 65 points of the largest (257²).
+/// Mesa's llvmpipe ends a shader's loops after 65,535 iterations in all, inner loops
+/// counted: with one workgroup a task, a degree-8 × 11 B-spline point (≈ 360 iterations)
+/// stopped each lane after 180 points and left the rest of a 257 × 256 grid unwritten —
+/// an earlier frame's points, drawn as triangles across the view (trj7_b1-ec-214 at 1000×,
+/// 2026-12-06); 65 points of a degree-15 × 15 point's ≈ 600 iterations stay within it.
+const POINT_CHUNKS: u32 = 16;
+
 /// The shared declarations: the face record and the surfaces' closed forms.
 const SURFACE_WGSL: &str = include_str!("surface.wgsl");
 
@@ -84,6 +93,7 @@ pub(crate) fn source() -> String {
         TEXEL_WGSL,
         SURFACE_WGSL,
         include_str!("bspline.wgsl"),
+        include_str!("sweep.wgsl"),
         include_str!("trim.wgsl"),
         cadre_trim::TRIM_WGSL,
     ])
@@ -95,6 +105,7 @@ pub(crate) fn tessellate_source() -> String {
         INSTANCES_WGSL,
         SURFACE_WGSL,
         include_str!("bspline.wgsl"),
+        include_str!("sweep.wgsl"),
         include_str!("tessellate.wgsl"),
     ])
 }
@@ -382,9 +393,13 @@ impl TrimBackend {
         pass.set_bind_group(0, &bind, &[]);
         pass.set_bind_group(1, &inputs.scene.instances.bind, &[0]);
         pass.dispatch_workgroups(trim.count.div_ceil(64), 1, 1);
-        // One workgroup a task, in rows of at most 65,535.
+        // POINT_CHUNKS workgroups a task (z), the tasks in rows of at most 65,535.
         pass.set_pipeline(&self.points);
-        pass.dispatch_workgroups(trim.count.min(65_535), trim.count.div_ceil(65_535), 1);
+        pass.dispatch_workgroups(
+            trim.count.min(65_535),
+            trim.count.div_ceil(65_535),
+            POINT_CHUNKS,
+        );
     }
 
     /// The grid points' buffer for a frame of `tasks` tasks: the kept one, or a larger one

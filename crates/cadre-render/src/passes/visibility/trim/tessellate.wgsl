@@ -36,6 +36,9 @@ override MAX_LEVEL: f32 = 256.0;
 // Grid lines a face has each way at least: cells wholly on the face skip the per-fragment
 // trim test, so even a plane is cut into a few (its 2 triangles would all be crossed).
 override MIN_LEVEL: f32 = 4.0;
+// Workgroups sharing a task's grid points (`trim::POINT_CHUNKS`: a CPU rasterizer ends long
+// shader loops, so no invocation evaluates many).
+const POINT_CHUNKS: u32 = 16u;
 // Calls with more instances than this are not walked one by one: their nearest distance is
 // the task's `near` (from the runs' bounding spheres), and they are not culled here.
 const WALK: u32 = 64u;
@@ -132,8 +135,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     levels[2u * t + 1u] = base;
 }
 
-// The grid points of task `wg.x + 65535 wg.y`, 64 invocations each: position and (u, v)
-// from the box's corner, as (x, y, z, u) then (normal, v).
+// The grid points of task `wg.x + 65535 wg.y`, POINT_CHUNKS workgroups of 64 invocations
+// each (chunk `wg.z`): position and (u, v) from the box's corner, as (x, y, z, u) then
+// (normal, v).
 @compute @workgroup_size(64)
 fn cs_points(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
     let t = wg.x + 65535u * wg.y;
@@ -150,7 +154,7 @@ fn cs_points(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_ind
     let spans = grid_spans(s);
     let row = per.x * spans.x + 1u;
     let count = row * (per.y * spans.y + 1u);
-    for (var i = lane; i < count; i += 64u) {
+    for (var i = lane + 64u * wg.z; i < count; i += 64u * POINT_CHUNKS) {
         let g = vec2<u32>(i % row, i / row);
         let local = vec2<f32>(grid_param(s, spans, 0u, g.x, per.x), grid_param(s, spans, 1u, g.y, per.y));
         let p = face_point(s, s.uv.xy + local);
