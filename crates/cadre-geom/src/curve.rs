@@ -114,3 +114,21 @@ pub struct CompositeSegment<P> {
     /// Whether the segment is traversed in its own direction.
     pub same_sense: bool,
 }
+
+impl<P> Curve<P> {
+    /// The STEP-style type name of the curve's kind, as reports show it.
+    pub fn type_name(&self) -> &'static str {
+        match self {
+            Curve::Line { .. } => "Line",
+            Curve::Circle { .. } => "Circle",
+            Curve::Ellipse { .. } => "Ellipse",
+            Curve::Parabola { .. } => "Parabola",
+            Curve::Hyperbola { .. } => "Hyperbola",
+            Curve::Polyline(_) => "Polyline",
+            Curve::BSpline(_) => "BSplineCurve",
+            Curve::Trimmed { .. } => "TrimmedCurve",
+            Curve::Composite(_) => "CompositeCurve",
+            Curve::Offset { .. } => "OffsetCurve",
+        }
+    }
+}

@@ -143,27 +143,11 @@ fn pack_profile(curve: &Curve3, data: &mut Vec<f32>) -> Result<(u32, Vec<f64>), 
         other => {
             return Err(format!(
                 "surface swept from a {} profile: no GPU evaluator yet",
-                curve_name(other)
+                other.type_name().to_lowercase()
             ));
         }
     }
     Ok((at, Vec::new()))
-}
-
-/// A curve's kind, for the faces left to their meshes.
-fn curve_name(curve: &Curve3) -> &'static str {
-    match curve {
-        Curve3::Line { .. } => "line",
-        Curve3::Circle { .. } => "circle",
-        Curve3::Ellipse { .. } => "ellipse",
-        Curve3::Parabola { .. } => "parabola",
-        Curve3::Hyperbola { .. } => "hyperbola",
-        Curve3::Polyline(_) => "polyline",
-        Curve3::BSpline(_) => "B-spline",
-        Curve3::Trimmed { .. } => "trimmed curve",
-        Curve3::Composite(_) => "composite curve",
-        Curve3::Offset { .. } => "offset curve",
-    }
 }
 
 /// The point and first derivative of the profile packed at `at`, at `t`, as `sweep.wgsl`

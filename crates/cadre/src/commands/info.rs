@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use cadre_brep::{Model, PartId};
-use cadre_geom::{Accuracy, Curve3};
+use cadre_geom::Accuracy;
 use cadre_step::syntax::StepFile;
 use serde_json::json;
 
@@ -43,22 +43,6 @@ fn protocol(schema: &str) -> &'static str {
         "AP209"
     } else {
         "unknown protocol"
-    }
-}
-
-/// A curve's type name as reports show it.
-fn curve_type(c: &Curve3) -> &'static str {
-    match c {
-        Curve3::Line { .. } => "Line",
-        Curve3::Circle { .. } => "Circle",
-        Curve3::Ellipse { .. } => "Ellipse",
-        Curve3::Parabola { .. } => "Parabola",
-        Curve3::Hyperbola { .. } => "Hyperbola",
-        Curve3::Polyline(_) => "Polyline",
-        Curve3::BSpline(_) => "BSplineCurve",
-        Curve3::Trimmed { .. } => "TrimmedCurve",
-        Curve3::Composite(_) => "CompositeCurve",
-        Curve3::Offset { .. } => "OffsetCurve",
     }
 }
 
@@ -166,7 +150,7 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     let bbox = model.bbox(Accuracy::default());
     let mut curve_types: BTreeMap<&str, u64> = BTreeMap::new();
     for c in &model.curves {
-        *curve_types.entry(curve_type(c)).or_default() += 1;
+        *curve_types.entry(c.type_name()).or_default() += 1;
     }
     let schema = model.schemas.first().cloned().unwrap_or_default();
     let warnings: Vec<String> = model.warnings.iter().map(|w| w.to_string()).collect();
