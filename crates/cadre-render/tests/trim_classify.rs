@@ -100,6 +100,17 @@ fn the_gpu_trim_test_answers_as_the_cpu_oracle() {
         sliver().fallback_leaves() > 0,
         "the sliver has no fallback leaf"
     );
+    // Both kinds of root are asked: a whole-face parity root and a tree.
+    let roots: Vec<u32> = buffers
+        .faces
+        .iter()
+        .map(|f| buffers.nodes[f.nodes as usize] >> 29)
+        .collect();
+    assert!(
+        roots.contains(&cadre_trim::layout::KIND_ALL),
+        "no whole-face root"
+    );
+    assert!(roots.contains(&cadre_trim::layout::KIND_SPLIT), "no tree");
     let mut random = common::xorshift(0x2545_f491_4f6c_dd1d);
     let mut queries = Vec::new();
     for (face, record) in buffers.faces.iter().enumerate() {

@@ -9,16 +9,20 @@
 //! A node is one word: kind in bits 29–31 ([`KIND_SPLIT`] …), the coverage bit in bit 28,
 //! a payload in bits 0–27 (a split's first child, relative to the face's first node; a
 //! constant's value; a piece, relative to the face's first piece; a two-piece record's offset
-//! in `floats`). A piece is its three control points, [`PIECE_FLOATS`] floats: its implicit
-//! form is worked out from them where it is read (a 2 × 2 solve), not stored, and its offset
-//! word in `piece_offsets` carries whether it is straight ([`PIECE_LINE`]) and whether its
-//! form's sign is turned over ([`PIECE_NEGATIVE`]).
+//! in `floats`; an [`KIND_ALL`] root's piece count). A piece is its three control points
+//! from its offset, [`PIECE_FLOATS`] floats — two, its ends, where it is straight
+//! ([`PIECE_LINE`]: its control point is the chord's middle, 62 % of the corpus' pieces) — and
+//! a piece that starts where the one before it ends (bit for bit, in `f32`: the pieces of a
+//! loop, in order) shares that point, so a loop of n curved pieces takes 2n + 1 points, not
+//! 3n. Its implicit form is worked out from the points where it is read (a 2 × 2 solve), not
+//! stored, and its offset word in `piece_offsets` carries whether it is straight and whether
+//! its form's sign is turned over ([`PIECE_NEGATIVE`]).
 //! A two-piece record is the line (nx, ny, d) and the two pieces' indices as `f32` bits. A
-//! fallback leaf's payload is its record's offset in `lists`: its piece count, its corner's
-//! answer (0 or 1), then its pieces.
+//! fallback leaf's payload is its record's offset in `lists`: a word of its piece count with
+//! its corner's answer in bit 31 ([`LIST_CORNER`]), then its pieces.
 
 use crate::Uv;
-use crate::quadtree::{Leaf, Node, TrimTree};
+use crate::quadtree::{GENERIC, Leaf, Node, TrimTree};
 
 /// Node kinds (bits 29–31).
 pub const KIND_SPLIT: u32 = 0;
@@ -28,8 +32,11 @@ pub const KIND_CONSTANT: u32 = 1;
 pub const KIND_ONE: u32 = 2;
 /// Two pieces and a line.
 pub const KIND_TWO: u32 = 3;
-/// The crossing parity over the face's pieces.
+/// The crossing parity over a cell's pieces.
 pub const KIND_FALLBACK: u32 = 4;
+/// A root that is the whole tree ([`crate::quadtree::Leaf::All`]): the parity of the face's
+/// pieces (the payload: how many) crossed towards +u.
+pub const KIND_ALL: u32 = 5;
 /// The coverage bit.
 pub const COVERAGE: u32 = 1 << 28;
 /// The payload's mask.
@@ -44,6 +51,10 @@ pub const PIECE_LINE: u32 = 1 << 31;
 pub const PIECE_NEGATIVE: u32 = 1 << 30;
 /// A piece's offset word: the offset itself.
 pub const PIECE_OFFSET: u32 = (1 << 30) - 1;
+/// A fallback record's first word: the corner's answer (the count in the other bits).
+pub const LIST_CORNER: u32 = 1 << 31;
+/// Words per face record on the GPU ([`TrimBuffers::face_words`]).
+pub const FACE_WORDS: usize = 4;
 /// Floats per two-piece record.
 pub const TWO_FLOATS: usize = 5;
 
@@ -118,11 +129,32 @@ impl TrimBuffers {
             }
         };
         fits(self.floats.len() + tree.pieces.len() * PIECE_FLOATS + tree.nodes.len() * 5)?;
+        // Where the last point written starts, if this face wrote one.
+        let mut last: Option<usize> = None;
         for (piece, form) in tree.pieces.iter().zip(&tree.forms) {
-            let at = self.floats.len();
+            let local = piece.p.map(|p| {
+                let l = p - origin;
+                [l.x as f32, l.y as f32]
+            });
+            let shared = last.filter(|&at| {
+                self.floats[at].to_bits() == local[0][0].to_bits()
+                    && self.floats[at + 1].to_bits() == local[0][1].to_bits()
+            });
+            let at = match shared {
+                Some(at) => at,
+                None => {
+                    self.floats.extend(local[0]);
+                    self.floats.len() - 2
+                }
+            };
             if at as u64 > u64::from(PIECE_OFFSET) {
                 return Err(LayoutError::TooLarge(at));
             }
+            if !form.line {
+                self.floats.extend(local[1]);
+            }
+            self.floats.extend(local[2]);
+            last = Some(self.floats.len() - 2);
             let mut word = at as u32;
             if form.line {
                 word |= PIECE_LINE;
@@ -131,13 +163,24 @@ impl TrimBuffers {
                 word |= PIECE_NEGATIVE;
             }
             self.piece_offsets.push(word);
-            for p in piece.p {
-                let local = p - origin;
-                self.floats.push(local.x as f32);
-                self.floats.push(local.y as f32);
+        }
+        // The cells as the GPU walks them (halved in `f32` from the root), for the fallback
+        // leaves' corner answers.
+        let mut cells = vec![([0.0f32; 2], record.size); tree.nodes.len()];
+        for (i, node) in tree.nodes.iter().enumerate() {
+            if let Node::Split { first, .. } = *node {
+                let (lo, hi) = cells[i];
+                let mid = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+                for k in 0..4usize {
+                    let (right, up) = (k & 1 != 0, k & 2 != 0);
+                    cells[first as usize + k] = (
+                        [if right { mid[0] } else { lo[0] }, if up { mid[1] } else { lo[1] }],
+                        [if right { hi[0] } else { mid[0] }, if up { hi[1] } else { mid[1] }],
+                    );
+                }
             }
         }
-        for node in &tree.nodes {
+        for (i, node) in tree.nodes.iter().enumerate() {
             let word = match *node {
                 Node::Split { first, coverage } => {
                     KIND_SPLIT << 29 | u32::from(coverage) << 28 | fits(first as usize)?
@@ -146,6 +189,7 @@ impl TrimBuffers {
                     let (kind, payload) = match leaf {
                         Leaf::Constant(on) => (KIND_CONSTANT, u32::from(on)),
                         Leaf::One(k) => (KIND_ONE, fits(k as usize)?),
+                        Leaf::All => (KIND_ALL, fits(tree.pieces.len())?),
                         Leaf::Two { line, pieces } => {
                             let at = fits(self.floats.len())?;
                             let d = line.1 - line.0.dot(origin);
@@ -158,17 +202,23 @@ impl TrimBuffers {
                             ]);
                             (KIND_TWO, at)
                         }
-                        Leaf::Fallback {
-                            corner,
-                            first,
-                            count,
-                        } => {
+                        Leaf::Fallback { first, count, .. } => {
                             let at = fits(self.lists.len())?;
-                            self.lists.push(count);
-                            self.lists.push(u32::from(corner));
-                            self.lists.extend_from_slice(
-                                &tree.lists[first as usize..(first + count) as usize],
-                            );
+                            let pieces = &tree.lists[first as usize..(first + count) as usize];
+                            // The tree's corner answer, worked out again with the words'
+                            // `f32` crossings (a piece through the corner may count otherwise
+                            // there than in `f64`).
+                            let (lo, hi) = cells[i];
+                            let q = [
+                                lo[0] + GENERIC[0] as f32 * (hi[0] - lo[0]),
+                                lo[1] + GENERIC[1] as f32 * (hi[1] - lo[1]),
+                            ];
+                            let at_q = tree.parity(origin + Uv::new(f64::from(q[0]), f64::from(q[1])));
+                            let corner = at_q
+                                ^ self.crossings_to_corner(record, pieces.iter().copied(), q, hi);
+                            self.lists
+                                .push(count | if corner { LIST_CORNER } else { 0 });
+                            self.lists.extend_from_slice(pieces);
                             (KIND_FALLBACK, at)
                         }
                     };
@@ -182,29 +232,19 @@ impl TrimBuffers {
     }
 
     /// The face records as the GPU reads them (`TrimFace` in trim.wgsl: size as `f32` bits,
-    /// first node, first piece, piece count, padding).
-    pub fn face_words(&self) -> Vec<[u32; 8]> {
+    /// first node, first piece).
+    pub fn face_words(&self) -> Vec<[u32; FACE_WORDS]> {
         self.faces
             .iter()
-            .map(|f| {
-                [
-                    f.size[0].to_bits(),
-                    f.size[1].to_bits(),
-                    f.nodes,
-                    f.pieces,
-                    f.piece_count,
-                    0,
-                    0,
-                    0,
-                ]
-            })
+            .map(|f| [f.size[0].to_bits(), f.size[1].to_bits(), f.nodes, f.pieces])
             .collect()
     }
 
-    /// Bytes of the trees: nodes, floats, fallback records and the face records (32 bytes
-    /// each on the GPU).
+    /// Bytes of the trees as the GPU holds them: nodes, floats, pieces' offset words,
+    /// fallback records and the face records.
     pub fn bytes(&self) -> usize {
-        4 * (self.nodes.len() + self.floats.len() + self.lists.len()) + 32 * self.faces.len()
+        4 * (self.nodes.len() + self.floats.len() + self.piece_offsets.len() + self.lists.len())
+            + 4 * FACE_WORDS * self.faces.len()
     }
 
     /// What the tree of face `face` says of the face-local cell `lo`..`hi` as a whole (as
@@ -235,10 +275,11 @@ impl TrimBuffers {
                     let r = payload as usize;
                     vec![self.floats[r + 3].to_bits(), self.floats[r + 4].to_bits()]
                 }
+                KIND_ALL => (0..payload).collect(),
                 _ => {
                     let at = payload as usize;
-                    let count = self.lists[at] as usize;
-                    self.lists[at + 2..at + 2 + count].to_vec()
+                    let count = (self.lists[at] & !LIST_CORNER) as usize;
+                    self.lists[at + 1..at + 1 + count].to_vec()
                 }
             };
             if word >> 29 != KIND_SPLIT {
@@ -281,8 +322,7 @@ impl TrimBuffers {
     /// triangle does (no separating axis among the box's two and the triangle's three edge
     /// normals; a straight piece's triangle is its chord).
     fn piece_meets(&self, f: FaceRecord, k: u32, lo: [f32; 2], hi: [f32; 2]) -> bool {
-        let at = (self.piece_offsets[(f.pieces + k) as usize] & PIECE_OFFSET) as usize;
-        let c = &self.floats[at..at + PIECE_FLOATS];
+        let (_, c) = self.piece_points(f, k);
         let boxes = (0..2).all(|a| {
             let (x0, x1, x2) = (c[a], c[2 + a], c[4 + a]);
             x0.min(x1).min(x2) <= hi[a] && x0.max(x1).max(x2) >= lo[a]
@@ -343,6 +383,11 @@ impl TrimBuffers {
                 }
                 KIND_CONSTANT => return payload != 0,
                 KIND_ONE => return self.value(f, payload, q) >= 0.0,
+                KIND_ALL => {
+                    // The root's corner is off the face and no piece reaches its edge: the
+                    // crossings towards +u alone.
+                    return self.crossings_to_corner(f, 0..payload, q, hi);
+                }
                 KIND_TWO => {
                     let r = &self.floats[payload as usize..payload as usize + TWO_FLOATS];
                     let positive = r[0] * q[0] + r[1] * q[1] >= r[2];
@@ -351,20 +396,33 @@ impl TrimBuffers {
                 }
                 _ => {
                     let at = payload as usize;
-                    let (count, corner) = (self.lists[at] as usize, self.lists[at + 1] != 0);
-                    let pieces = &self.lists[at + 2..at + 2 + count];
-                    return corner ^ self.crossings_to_corner(f, pieces, q, hi);
+                    let head = self.lists[at];
+                    let (count, corner) = ((head & !LIST_CORNER) as usize, head & LIST_CORNER != 0);
+                    let pieces = &self.lists[at + 1..at + 1 + count];
+                    return corner ^ self.crossings_to_corner(f, pieces.iter().copied(), q, hi);
                 }
             }
+        }
+    }
+
+    /// Piece `k` of face `f`: its offset word and its three control points (x, y each; a
+    /// straight piece's middle one is its chord's middle), as `trim_piece` in trim.wgsl.
+    fn piece_points(&self, f: FaceRecord, k: u32) -> (u32, [f32; PIECE_FLOATS]) {
+        let word = self.piece_offsets[(f.pieces + k) as usize];
+        let at = (word & PIECE_OFFSET) as usize;
+        let c = &self.floats[at..];
+        if word & PIECE_LINE != 0 {
+            let mid = [0.5 * (c[0] + c[2]), 0.5 * (c[1] + c[3])];
+            (word, [c[0], c[1], mid[0], mid[1], c[2], c[3]])
+        } else {
+            (word, [c[0], c[1], c[2], c[3], c[4], c[5]])
         }
     }
 
     /// Piece `k` of face `f`'s implicit value at the face-local point `q`, from its control
     /// points (`Implicit::of`'s map, in `f32`).
     fn value(&self, f: FaceRecord, k: u32, q: [f32; 2]) -> f32 {
-        let word = self.piece_offsets[(f.pieces + k) as usize];
-        let at = (word & PIECE_OFFSET) as usize;
-        let c = &self.floats[at..at + PIECE_FLOATS];
+        let (word, c) = self.piece_points(f, k);
         let (e1, e2) = ([c[2] - c[0], c[3] - c[1]], [c[4] - c[0], c[5] - c[1]]);
         let d = [q[0] - c[0], q[1] - c[1]];
         let value = if word & PIECE_LINE != 0 {
@@ -390,23 +448,45 @@ impl TrimBuffers {
     fn crossings_to_corner(
         &self,
         f: FaceRecord,
-        pieces: &[u32],
+        pieces: impl IntoIterator<Item = u32>,
         q: [f32; 2],
         hi: [f32; 2],
     ) -> bool {
-        let mut odd = false;
-        for &k in pieces {
-            let at = (self.piece_offsets[(f.pieces + k) as usize] & PIECE_OFFSET) as usize;
-            let c = &self.floats[at..at + PIECE_FLOATS];
-            let points = [[c[0], c[1]], [c[2], c[3]], [c[4], c[5]]];
-            if crossing(points, 1, q[1]).is_some_and(|u| u > q[0] && u <= hi[0]) {
-                odd = !odd;
-            }
-            if crossing(points, 0, hi[0]).is_some_and(|v| v >= q[1] && v < hi[1]) {
-                odd = !odd;
+        pieces
+            .into_iter()
+            .fold(false, |odd, k| odd ^ self.piece_flips(f, k, q, hi))
+    }
+
+    /// Whether piece `k` of face `f` turns the answer over on the way from `q` right to the
+    /// cell's edge `hi[0]`, then up that edge to the corner `hi`: it crosses one leg and not
+    /// the other (`trim_piece_flips` in trim.wgsl, its GPU twin, step for step). A leg that
+    /// misses the piece's box, or passes all of it, answers without the bisection.
+    fn piece_flips(&self, f: FaceRecord, k: u32, q: [f32; 2], hi: [f32; 2]) -> bool {
+        let (_, c) = self.piece_points(f, k);
+        let points = [[c[0], c[1]], [c[2], c[3]], [c[4], c[5]]];
+        let box_lo = [c[0].min(c[2]).min(c[4]), c[1].min(c[3]).min(c[5])];
+        let box_hi = [c[0].max(c[2]).max(c[4]), c[1].max(c[3]).max(c[5])];
+        let mut flips = false;
+        // Right along v = q[1], from q[0] to hi[0].
+        if c[1].min(c[5]) <= q[1] && q[1] < c[1].max(c[5]) {
+            if q[0] < box_lo[0] && box_hi[0] <= hi[0] {
+                flips = true;
+            } else if q[0] < box_hi[0] && box_lo[0] <= hi[0] {
+                flips = crossing(points, 1, q[1]).is_some_and(|u| u > q[0] && u <= hi[0]);
             }
         }
-        odd
+        // Up along u = hi[0], from q[1] to hi[1].
+        if c[0].min(c[4]) <= hi[0] && hi[0] < c[0].max(c[4]) {
+            let up = if q[1] <= box_lo[1] && box_hi[1] < hi[1] {
+                true
+            } else if q[1] <= box_hi[1] && box_lo[1] < hi[1] {
+                crossing(points, 0, hi[0]).is_some_and(|v| v >= q[1] && v < hi[1])
+            } else {
+                false
+            };
+            flips ^= up;
+        }
+        flips
     }
 }
 

@@ -32,6 +32,10 @@ pub struct TrimStats {
     pub fallback_faces: usize,
     /// Fallback leaves in all.
     pub fallback_leaves: usize,
+    /// Those the depth cap made ([`TrimTree::capped_leaves`]).
+    pub capped_leaves: usize,
+    /// Faces whose tree is its root alone ([`crate::Leaf::All`]).
+    pub root_only_faces: usize,
     /// Bytes of the packed trees.
     pub bytes: usize,
 }
@@ -74,17 +78,13 @@ pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
             let face = FaceId(i as u32);
             let trim = face_trim(model, face, &edges, &tol).map_err(|e| e.to_string())?;
             let surface = face_surface(model, face);
-            let (mut runs, gaps) = loop_runs(&trim);
-            if runs.is_empty() {
+            let loops = loop_segments(&trim);
+            let curves = loops.iter().map(Vec::len).sum();
+            if curves == 0 {
                 return Err("no trim loop".to_string());
             }
-            let uv_tol = uv_tolerance(surface, &runs, half);
-            let curves = runs.len();
-            runs.extend(
-                gaps.into_iter()
-                    .filter(|(a, b)| uv_tol.scaled(*b - *a) > 1e-3)
-                    .map(|(a, b)| vec![a, b]),
-            );
+            let uv_tol = uv_tolerance(surface, loops.iter().flatten(), half);
+            let runs = closed_runs(loops, uv_tol);
             let pieces: Vec<QuadPiece> = runs.iter().flat_map(|r| fit_points(r, uv_tol)).collect();
             Ok((TrimTree::build(&pieces), curves, uv_tol))
         })
@@ -109,6 +109,14 @@ pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
                     let fallback = tree.fallback_leaves();
                     s.fallback_leaves += fallback;
                     s.fallback_faces += usize::from(fallback > 0);
+                    s.capped_leaves += tree.capped_leaves();
+                    s.root_only_faces += usize::from(matches!(
+                        tree.nodes[0],
+                        crate::Node::Leaf {
+                            leaf: crate::Leaf::All,
+                            ..
+                        }
+                    ));
                 }
                 Err(e @ LayoutError::TooLarge(_)) => out.failures.push((step_id, e.to_string())),
             },
@@ -119,38 +127,62 @@ pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
     out
 }
 
-/// A face's trim as runs of (u, v) points to fit: each segment's points (one edge's trace,
-/// smooth; the trim curves), then a straight run across each gap between a segment's end and
-/// the next one's start wider than a thousandth of `tol` (a loop closes as its polygon does;
-/// a narrower gap would only add a sliver piece meeting two others in every cell down the
-/// tree), so that every loop of pieces is closed.
-fn loop_runs(trim: &cadre_brep::trim::FaceTrim) -> (Vec<Vec<Uv>>, Vec<(Uv, Uv)>) {
+/// A face's trim loops, each as its segments' (u, v) points (one edge's trace each, smooth:
+/// the trim curves) with at least two points.
+fn loop_segments(trim: &cadre_brep::trim::FaceTrim) -> Vec<Vec<Vec<Uv>>> {
+    trim.loops
+        .iter()
+        .map(|l| {
+            l.segments
+                .iter()
+                .map(|s| s.points.iter().map(|p| p.uv).collect::<Vec<Uv>>())
+                .filter(|r| r.len() >= 2)
+                .collect::<Vec<_>>()
+        })
+        .filter(|l| !l.is_empty())
+        .collect()
+}
+
+/// The runs of (u, v) points to fit, loop by loop and in order, so that each loop's pieces
+/// close exactly (the even-odd rule that [`crate::Leaf::All`] and fallback leaves count
+/// leaves a row through a gap crossed once too few) and follow each other (the layout
+/// shares their joints): between a segment's end and the next one's start, a straight run
+/// where they are farther apart than a thousandth of `tol`, else the next start moved onto
+/// the end (a narrower gap would only add a sliver piece meeting two others in every cell
+/// down the tree).
+fn closed_runs(loops: Vec<Vec<Vec<Uv>>>, tol: UvTolerance) -> Vec<Vec<Uv>> {
     let mut runs = Vec::new();
-    let mut gaps = Vec::new();
-    for l in &trim.loops {
-        let segments: Vec<Vec<Uv>> = l
-            .segments
-            .iter()
-            .map(|s| s.points.iter().map(|p| p.uv).collect::<Vec<Uv>>())
-            .filter(|r| !r.is_empty())
-            .collect();
-        for (k, run) in segments.iter().enumerate() {
-            if run.len() >= 2 {
-                runs.push(run.clone());
+    for mut segments in loops {
+        let n = segments.len();
+        let mut bridges = vec![None; n];
+        for k in 0..n {
+            let end = segments[k][segments[k].len() - 1];
+            let next = (k + 1) % n;
+            let start = segments[next][0];
+            if end == start {
+                continue;
             }
-            let next = &segments[(k + 1) % segments.len()];
-            let (end, start) = (run[run.len() - 1], next[0]);
-            if end != start {
-                gaps.push((end, start));
+            if tol.scaled(start - end) > 1e-3 {
+                bridges[k] = Some(vec![end, start]);
+            } else {
+                segments[next][0] = end;
             }
         }
+        for (segment, bridge) in segments.into_iter().zip(bridges) {
+            runs.push(segment);
+            runs.extend(bridge);
+        }
     }
-    (runs, gaps)
+    runs
 }
 
 /// The (u, v) tolerances of a face: `eps` over the largest speeds `|∂S/∂u|`, `|∂S/∂v|` met at
 /// its trim points and on a 5 × 5 grid over their box.
-fn uv_tolerance(surface: &Surface, runs: &[Vec<Uv>], eps: f64) -> UvTolerance {
+fn uv_tolerance<'a>(
+    surface: &Surface,
+    runs: impl Iterator<Item = &'a Vec<Uv>>,
+    eps: f64,
+) -> UvTolerance {
     let (mut lo, mut hi) = (Uv::splat(f64::INFINITY), Uv::splat(f64::NEG_INFINITY));
     let mut speed = (0.0f64, 0.0f64);
     let mut at = |p: Uv| {
@@ -160,7 +192,7 @@ fn uv_tolerance(surface: &Surface, runs: &[Vec<Uv>], eps: f64) -> UvTolerance {
             speed = (speed.0.max(su), speed.1.max(sv));
         }
     };
-    for p in runs.iter().flatten() {
+    for p in runs.flatten() {
         lo = lo.min(*p);
         hi = hi.max(*p);
         at(*p);

@@ -11,9 +11,12 @@
 //! top-right corner is on the face, and a point's answer is the corner's, turned over at each
 //! of the cell's pieces crossed on the way from the point right to the cell's edge, then up
 //! the edge to the corner (the even-odd rule, counted within the cell).
-//! [`TrimTree::fallback_leaves`] counts them (the thesis gave up there instead). Without them
-//! a sliver face, two trim curves a micron apart, split every cell along its length down to
-//! the depth cap (97,861 nodes for 16 pieces in trj6_b1-ec-214).
+//! [`TrimTree::fallback_leaves`] counts them, [`TrimTree::capped_leaves`] those the depth cap
+//! made (where the thesis gave up instead). Without them a sliver face, two trim curves a
+//! micron apart, split every cell along its length down to the depth cap (97,861 nodes for
+//! 16 pieces in trj6_b1-ec-214). They are also what keeps the trees small: a cell of at most
+//! [`FALLBACK_PIECES`] pieces from [`FALLBACK_DEPTH`] stops there, and a face of at most
+//! [`ALL_PIECES`] pieces has no tree beyond its root ([`Leaf::All`]).
 
 use crate::Uv;
 use crate::quad::{Implicit, QuadPiece};
@@ -22,9 +25,28 @@ use crate::quad::{Implicit, QuadPiece};
 pub const MAX_DEPTH: u32 = 13;
 /// Depth from which a cell that one or two implicit forms cannot decide becomes a fallback
 /// leaf when it holds at most [`FALLBACK_PIECES`] pieces, rather than being split further.
-pub const FALLBACK_DEPTH: u32 = 8;
-/// Most pieces a fallback leaf takes before the depth cap.
-pub const FALLBACK_PIECES: usize = 8;
+/// Bytes against per-fragment work: the corpus' trees take 45 B a trim curve with fallbacks
+/// from depth 2 and 4 pieces, 61 B from depth 3, 91 B from depth 8 with 8 pieces and no
+/// [`Leaf::All`] roots (BENCHMARKS.md, "Trim trees of the corpus"); a fallback fragment
+/// reads at most four pieces, most rejected by their boxes.
+pub const FALLBACK_DEPTH: u32 = 2;
+/// Most pieces a fallback leaf takes from [`FALLBACK_DEPTH`].
+pub const FALLBACK_PIECES: usize = 4;
+/// Depth from which a fallback leaf takes up to [`DEEP_FALLBACK_PIECES`] pieces: where many
+/// pieces meet (a vertex of many edges, a sliver face), splitting further only multiplies
+/// cells that all hold the same pieces.
+pub const DEEP_FALLBACK_DEPTH: u32 = 8;
+/// Most pieces a fallback leaf takes from [`DEEP_FALLBACK_DEPTH`] until the depth cap.
+pub const DEEP_FALLBACK_PIECES: usize = 8;
+/// Where in a fallback cell its corner answer is worked out from (a fraction of the cell
+/// along u and v): a point no trim feature is likely to meet.
+pub const GENERIC: [f64; 2] = [0.618_033_988_749_894_9, 0.381_966_011_250_105_1];
+/// Most pieces of a face whose tree is its root alone, a [`Leaf::All`]: the even-odd rule
+/// over all its pieces. Most CAD faces are bounded by a handful of curves (a rectangle, a
+/// cylinder's two circles and seam: 82 % of the corpus' faces), and their trees cost more
+/// bytes than their pieces; a fragment reads at most this many pieces, each rejected by its
+/// box but the one or two its row meets.
+pub const ALL_PIECES: usize = 8;
 
 /// How a leaf classifies its points.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,9 +63,13 @@ pub enum Leaf {
         /// The pieces on the line's positive and negative sides.
         pieces: [u32; 2],
     },
+    /// The root of a face of at most [`ALL_PIECES`] pieces: the parity of all the pieces
+    /// crossed by the ray from the point towards +u (the even-odd rule, [`TrimTree::parity`]).
+    All,
     /// Pieces no line parts: the corner's answer and the crossings within the cell.
     Fallback {
-        /// Whether the cell's top-right corner is on the face.
+        /// The answer at the cell's top-right corner as the crossings count it (turned over
+        /// by them, it gives each point's; [`TrimTree::corner_answer`]).
         corner: bool,
         /// The cell's pieces: `count` entries of [`TrimTree::lists`] from `first`.
         first: u32,
@@ -92,7 +118,8 @@ impl TrimTree {
     /// outer loops counter-clockwise, holes clockwise; the face is what they enclose by the
     /// even-odd rule). Pieces are cut into monotone parts first.
     pub fn build(pieces: &[QuadPiece]) -> TrimTree {
-        let pieces: Vec<QuadPiece> = pieces.iter().flat_map(|p| p.monotone_parts()).collect();
+        let mut pieces: Vec<QuadPiece> = pieces.iter().flat_map(|p| p.monotone_parts()).collect();
+        close_joints(&mut pieces);
         let forms = pieces.iter().map(QuadPiece::implicit).collect();
         let (mut lo, mut hi) = (Uv::splat(f64::INFINITY), Uv::splat(f64::NEG_INFINITY));
         for p in &pieces {
@@ -131,19 +158,26 @@ impl TrimTree {
         let leaf = match inside.len() {
             0 => Some(Leaf::Constant(self.parity(0.5 * (cell.0 + cell.1)))),
             1 => Some(Leaf::One(inside[0])),
+            n if depth == 0 && n <= ALL_PIECES => Some(Leaf::All),
             2 => self.separating_line(inside[0], inside[1], cell),
             _ => None,
         };
-        let few = depth >= FALLBACK_DEPTH && inside.len() <= FALLBACK_PIECES;
+        let few = (depth >= FALLBACK_DEPTH && inside.len() <= FALLBACK_PIECES)
+            || (depth >= DEEP_FALLBACK_DEPTH && inside.len() <= DEEP_FALLBACK_PIECES);
         let leaf = match leaf {
             Some(leaf) => leaf,
             None if few || depth >= MAX_DEPTH => {
+                // Every piece near the cell, not only those crossing it: the GPU walks the
+                // cells in `f32`, whose edges lie up to a few 10⁻⁸ of the root off these,
+                // and a piece along an edge (a seam, a line at a round parameter) missed
+                // here would be crossed there by the way to the corner.
+                let near = self.pieces_near(cell);
                 let first = self.lists.len() as u32;
-                self.lists.extend_from_slice(&inside);
+                self.lists.extend_from_slice(&near);
                 Leaf::Fallback {
-                    corner: self.parity(cell.1),
+                    corner: self.corner_answer(&near, cell),
                     first,
-                    count: inside.len() as u32,
+                    count: near.len() as u32,
                 }
             }
             None => {
@@ -294,6 +328,30 @@ impl TrimTree {
         odd
     }
 
+    /// The pieces that meet `cell` grown by 10⁻⁶ of the root's size.
+    fn pieces_near(&self, cell: (Uv, Uv)) -> Vec<u32> {
+        let margin = 1e-6 * (self.bounds.1 - self.bounds.0).max_element();
+        let grown = (cell.0 - margin, cell.1 + margin);
+        (0..self.pieces.len() as u32)
+            .filter(|&k| {
+                let (lo, hi) = self.pieces[k as usize].bounds();
+                lo.cmple(grown.1).all()
+                    && hi.cmpge(grown.0).all()
+                    && crosses(&self.pieces[k as usize], grown)
+            })
+            .collect()
+    }
+
+    /// A fallback leaf's corner answer: not the even-odd rule at the corner itself, which
+    /// may lie on a piece (quadtree corners fall on symmetric features: a hole's top, an
+    /// edge along a cell's side), but the answer at a generic point of the cell turned over
+    /// by its crossings on the way to the corner — so that every point of the cell, counted
+    /// the same way, gets its own answer whatever the rules decide at the corner.
+    fn corner_answer(&self, pieces: &[u32], cell: (Uv, Uv)) -> bool {
+        let q = cell.0 + Uv::from(GENERIC) * (cell.1 - cell.0);
+        self.parity(q) ^ self.crossings_to_corner(pieces, q, cell.1)
+    }
+
     /// Whether `p` is on the face, read from the tree.
     pub fn classify(&self, p: Uv) -> bool {
         let (mut lo, mut hi) = self.bounds;
@@ -328,6 +386,7 @@ impl TrimTree {
                 };
                 self.forms[k as usize].value(p) >= 0.0
             }
+            Leaf::All => self.parity(p),
             Leaf::Fallback {
                 corner,
                 first,
@@ -337,6 +396,23 @@ impl TrimTree {
                 corner ^ self.crossings_to_corner(pieces, p, cell.1)
             }
         }
+    }
+
+    /// How many fallback leaves the depth cap made (more than [`DEEP_FALLBACK_PIECES`]
+    /// pieces still meeting in a cell of the deepest level: where the thesis gave up).
+    pub fn capped_leaves(&self) -> usize {
+        self.nodes
+            .iter()
+            .filter(|n| {
+                matches!(
+                    n,
+                    Node::Leaf {
+                        leaf: Leaf::Fallback { count, .. },
+                        ..
+                    } if *count as usize > DEEP_FALLBACK_PIECES
+                )
+            })
+            .count()
     }
 
     /// How many leaves fell back to the crossing parity.
@@ -420,6 +496,40 @@ fn param_range(piece: &QuadPiece, axis: usize, lo: f64, hi: f64) -> Option<(f64,
     };
     let (t0, t1) = (at(lo), at(hi));
     Some((t0.min(t1), t0.max(t1)))
+}
+
+/// Makes each piece's end equal to the start of a piece within a hair of it (10⁻⁹ of the
+/// pieces' box): a loop whose closing point differs from its first by rounding (a circle's
+/// sin 2π) would otherwise leave the row through that joint crossed by neither piece, as the
+/// even-odd rule counts a piece over [its lower end's v, its upper end's v), and every
+/// point of that row would be answered the wrong way by [`Leaf::All`] and fallback leaves.
+fn close_joints(pieces: &mut [QuadPiece]) {
+    let (mut lo, mut hi) = (Uv::splat(f64::INFINITY), Uv::splat(f64::NEG_INFINITY));
+    for p in pieces.iter() {
+        for q in p.p {
+            lo = lo.min(q);
+            hi = hi.max(q);
+        }
+    }
+    let hair = 1e-9 * (hi - lo).max_element();
+    if hair.is_nan() || hair <= 0.0 {
+        return;
+    }
+    // The starts sorted by u: an end's candidates lie within a hair of it along u.
+    let mut starts: Vec<(f64, usize)> = pieces.iter().map(|p| p.p[0].x).zip(0..).collect();
+    starts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for k in 0..pieces.len() {
+        let end = pieces[k].p[2];
+        let first = starts.partition_point(|s| s.0 < end.x - hair);
+        let near = starts[first..]
+            .iter()
+            .take_while(|s| s.0 <= end.x + hair)
+            .map(|&(_, j)| pieces[j].p[0])
+            .find(|start| *start != end && (*start - end).length() <= hair);
+        if let Some(start) = near {
+            pieces[k].p[2] = start;
+        }
+    }
 }
 
 /// The four quarters of `cell` about `mid`, in child order.

@@ -10,16 +10,15 @@ struct TrimFace {
     size: vec2<f32>,
     nodes: u32,
     pieces: u32,
-    piece_count: u32,
-    pad0: u32,
-    pad1: u32,
-    pad2: u32,
 }
 
 const TRIM_KIND_SPLIT: u32 = 0u;
 const TRIM_KIND_CONSTANT: u32 = 1u;
 const TRIM_KIND_ONE: u32 = 2u;
 const TRIM_KIND_TWO: u32 = 3u;
+const TRIM_KIND_FALLBACK: u32 = 4u;
+// A root that is the whole tree: the parity of the face's pieces (the payload: how many).
+const TRIM_KIND_ALL: u32 = 5u;
 const TRIM_PAYLOAD: u32 = 0x0fffffffu;
 // A node's coverage bit: most of its cell lies on the face.
 const TRIM_COVERAGE: u32 = 0x10000000u;
@@ -30,15 +29,38 @@ const TRIM_MAX_STEPS: u32 = 14u;
 const TRIM_PIECE_LINE: u32 = 0x80000000u;
 const TRIM_PIECE_NEGATIVE: u32 = 0x40000000u;
 const TRIM_PIECE_OFFSET: u32 = 0x3fffffffu;
+// A fallback record's first word: its corner's answer in bit 31, its piece count below.
+const TRIM_LIST_CORNER: u32 = 0x80000000u;
+
+// A piece's control points and its offset word.
+struct TrimPiece {
+    c0: vec2<f32>,
+    c1: vec2<f32>,
+    c2: vec2<f32>,
+    word: u32,
+}
+
+// Piece `k` of `f`: a straight piece stores its ends alone, its control point is their middle
+// (`TrimBuffers::piece_points` is the CPU twin).
+fn trim_piece(f: TrimFace, k: u32) -> TrimPiece {
+    let word = trim_piece_offsets[f.pieces + k];
+    let at = word & TRIM_PIECE_OFFSET;
+    let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
+    let next = vec2<f32>(trim_floats[at + 2u], trim_floats[at + 3u]);
+    if (word & TRIM_PIECE_LINE) != 0u {
+        return TrimPiece(c0, 0.5 * (c0 + next), next, word);
+    }
+    return TrimPiece(c0, next, vec2<f32>(trim_floats[at + 4u], trim_floats[at + 5u]), word);
+}
 
 // Piece `k` of `f`: its implicit value at `q`, positive on the face's side, worked out from
 // its control points (the Loop–Blinn map: p0, p1, p2 to (0, 0), (1/2, 0), (1, 1)).
 fn trim_value(f: TrimFace, k: u32, q: vec2<f32>) -> f32 {
-    let word = trim_piece_offsets[f.pieces + k];
-    let at = word & TRIM_PIECE_OFFSET;
-    let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
-    let e1 = vec2<f32>(trim_floats[at + 2u], trim_floats[at + 3u]) - c0;
-    let e2 = vec2<f32>(trim_floats[at + 4u], trim_floats[at + 5u]) - c0;
+    let piece = trim_piece(f, k);
+    let word = piece.word;
+    let c0 = piece.c0;
+    let e1 = piece.c1 - c0;
+    let e2 = piece.c2 - c0;
     let d = q - c0;
     let chord = (e2.x * d.y - e2.y * d.x) / length(e2);
     let det = e1.x * e2.y - e1.y * e2.x;
@@ -75,21 +97,58 @@ fn trim_crossing(c0: vec2<f32>, c1: vec2<f32>, c2: vec2<f32>, axis: u32, value: 
     return vec2<f32>(select(0.0, 1.0, (lo <= value) & (value < hi)), other);
 }
 
+// Whether piece `k` of `f` turns the answer over on the way from `q` right to the cell's edge
+// `hi.x`, then up that edge to the corner `hi`: it crosses one leg and not the other. Pieces
+// whose box the leg misses (or wholly passes) answer without the bisection: most of a face's
+// pieces where a fragment reads them all (`TrimBuffers::piece_flips` is the CPU twin).
+fn trim_piece_flips(f: TrimFace, k: u32, q: vec2<f32>, hi: vec2<f32>) -> bool {
+    let piece = trim_piece(f, k);
+    let c0 = piece.c0;
+    let c1 = piece.c1;
+    let c2 = piece.c2;
+    let box_lo = min(c0, min(c1, c2));
+    let box_hi = max(c0, max(c1, c2));
+    var flips = false;
+    // Right along v = q.y, from q.x to hi.x.
+    if (min(c0.y, c2.y) <= q.y) & (q.y < max(c0.y, c2.y)) {
+        if (q.x < box_lo.x) & (box_hi.x <= hi.x) {
+            flips = true;
+        } else if (q.x < box_hi.x) & (box_lo.x <= hi.x) {
+            let h = trim_crossing(c0, c1, c2, 1u, q.y);
+            flips = (h.y > q.x) & (h.y <= hi.x);
+        }
+    }
+    // Up along u = hi.x, from q.y to hi.y.
+    if (min(c0.x, c2.x) <= hi.x) & (hi.x < max(c0.x, c2.x)) {
+        var up = false;
+        if (q.y <= box_lo.y) & (box_hi.y < hi.y) {
+            up = true;
+        } else if (q.y <= box_hi.y) & (box_lo.y < hi.y) {
+            let v = trim_crossing(c0, c1, c2, 0u, hi.x);
+            up = (v.y >= q.y) & (v.y < hi.y);
+        }
+        flips = flips != up;
+    }
+    return flips;
+}
+
 // The parity of the fallback leaf's pieces crossed from `q` right to the cell's edge, then up
 // to its corner `hi`.
 fn trim_crossings(f: TrimFace, record: u32, q: vec2<f32>, hi: vec2<f32>) -> bool {
-    let count = trim_lists[record];
+    let count = trim_lists[record] & ~TRIM_LIST_CORNER;
     var odd = false;
     for (var i = 0u; i < min(count, arrayLength(&trim_lists)); i++) {
-        let k = trim_lists[record + 2u + i];
-        let at = trim_piece_offsets[f.pieces + k] & TRIM_PIECE_OFFSET;
-        let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
-        let c1 = vec2<f32>(trim_floats[at + 2u], trim_floats[at + 3u]);
-        let c2 = vec2<f32>(trim_floats[at + 4u], trim_floats[at + 5u]);
-        let h = trim_crossing(c0, c1, c2, 1u, q.y);
-        odd = odd != ((h.x > 0.5) & (h.y > q.x) & (h.y <= hi.x));
-        let v = trim_crossing(c0, c1, c2, 0u, hi.x);
-        odd = odd != ((v.x > 0.5) & (v.y >= q.y) & (v.y < hi.y));
+        odd = odd != trim_piece_flips(f, trim_lists[record + 1u + i], q, hi);
+    }
+    return odd;
+}
+
+// The parity of the first `count` pieces of `f` crossed from `q` towards +u (a
+// TRIM_KIND_ALL root: its corner is off the face and no piece reaches its edge).
+fn trim_all_crossings(f: TrimFace, count: u32, q: vec2<f32>) -> bool {
+    var odd = false;
+    for (var k = 0u; k < min(count, arrayLength(&trim_piece_offsets)); k++) {
+        odd = odd != trim_piece_flips(f, k, q, f.size);
     }
     return odd;
 }
@@ -129,10 +188,14 @@ fn trim_cell(face: u32, cell_lo: vec2<f32>, cell_hi: vec2<f32>) -> u32 {
             } else if kind == TRIM_KIND_TWO {
                 meets = trim_piece_meets(f, bitcast<u32>(trim_floats[payload + 3u]), cell_lo, cell_hi)
                     || trim_piece_meets(f, bitcast<u32>(trim_floats[payload + 4u]), cell_lo, cell_hi);
+            } else if kind == TRIM_KIND_ALL {
+                for (var k = 0u; k < min(payload, arrayLength(&trim_piece_offsets)); k++) {
+                    meets = meets || trim_piece_meets(f, k, cell_lo, cell_hi);
+                }
             } else {
-                let count = trim_lists[payload];
+                let count = trim_lists[payload] & ~TRIM_LIST_CORNER;
                 for (var i = 0u; i < min(count, arrayLength(&trim_lists)); i++) {
-                    meets = meets || trim_piece_meets(f, trim_lists[payload + 2u + i], cell_lo, cell_hi);
+                    meets = meets || trim_piece_meets(f, trim_lists[payload + 1u + i], cell_lo, cell_hi);
                 }
             }
             if meets {
@@ -157,10 +220,10 @@ fn trim_cell(face: u32, cell_lo: vec2<f32>, cell_hi: vec2<f32>) -> u32 {
 // Whether piece `k` of `f` may meet the cell `lo`..`hi`: its control triangle does (no
 // separating axis among the box's two and the triangle's three edge normals).
 fn trim_piece_meets(f: TrimFace, k: u32, lo: vec2<f32>, hi: vec2<f32>) -> bool {
-    let at = trim_piece_offsets[f.pieces + k] & TRIM_PIECE_OFFSET;
-    let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
-    let c1 = vec2<f32>(trim_floats[at + 2u], trim_floats[at + 3u]);
-    let c2 = vec2<f32>(trim_floats[at + 4u], trim_floats[at + 5u]);
+    let piece = trim_piece(f, k);
+    let c0 = piece.c0;
+    let c1 = piece.c1;
+    let c2 = piece.c2;
     let box_lo = min(c0, min(c1, c2));
     let box_hi = max(c0, max(c1, c2));
     var meets = all(box_lo <= hi) & all(box_hi >= lo);
@@ -223,8 +286,11 @@ fn trim_classify_within(face: u32, q: vec2<f32>, footprint: vec2<f32>) -> bool {
             let k = bitcast<u32>(select(trim_floats[payload + 4u], trim_floats[payload + 3u], positive));
             return trim_value(f, k, q) >= 0.0;
         }
+        if kind == TRIM_KIND_ALL {
+            return trim_all_crossings(f, payload, q);
+        }
         // Fallback: the corner's answer and the crossings within the cell.
-        return (trim_lists[payload + 1u] != 0u) != trim_crossings(f, payload, q, hi);
+        return ((trim_lists[payload] & TRIM_LIST_CORNER) != 0u) != trim_crossings(f, payload, q, hi);
     }
     return false;
 }

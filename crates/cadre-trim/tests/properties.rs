@@ -12,29 +12,39 @@ fn distance(pieces: &[QuadPiece], p: Uv, tol: UvTolerance) -> f64 {
     let mut best = f64::INFINITY;
     for piece in pieces {
         let n = 512;
-        let (mut t, mut d) = (0.0, f64::INFINITY);
-        for k in 0..=n {
-            let s = f64::from(k) / f64::from(n);
-            let e = tol.scaled(piece.eval(s) - p);
-            if e < d {
-                (t, d) = (s, e);
-            }
-        }
-        // Refine by ternary search around the best sample.
-        let (mut lo, mut hi) = (
-            (t - 1.0 / f64::from(n)).max(0.0),
-            (t + 1.0 / f64::from(n)).min(1.0),
-        );
-        for _ in 0..60 {
-            let a = lo + (hi - lo) / 3.0;
-            let b = hi - (hi - lo) / 3.0;
-            if tol.scaled(piece.eval(a) - p) < tol.scaled(piece.eval(b) - p) {
-                hi = b;
+        let d: Vec<f64> = (0..=n)
+            .map(|k| tol.scaled(piece.eval(f64::from(k) / f64::from(n)) - p))
+            .collect();
+        // Refine each sampled local minimum by ternary search around it: near a sharp turn
+        // the two branches of a piece lie close, and the best sample may sit on the wrong one.
+        for k in 0..=n as usize {
+            let left = if k > 0 { d[k - 1] } else { f64::INFINITY };
+            let right = if k < n as usize {
+                d[k + 1]
             } else {
-                lo = a;
+                f64::INFINITY
+            };
+            if d[k] > left || d[k] > right {
+                continue;
             }
+            let t = k as f64 / f64::from(n);
+            let (mut lo, mut hi) = (
+                (t - 1.0 / f64::from(n)).max(0.0),
+                (t + 1.0 / f64::from(n)).min(1.0),
+            );
+            for _ in 0..60 {
+                let a = lo + (hi - lo) / 3.0;
+                let b = hi - (hi - lo) / 3.0;
+                if tol.scaled(piece.eval(a) - p) < tol.scaled(piece.eval(b) - p) {
+                    hi = b;
+                } else {
+                    lo = a;
+                }
+            }
+            best = best
+                .min(d[k])
+                .min(tol.scaled(piece.eval(0.5 * (lo + hi)) - p));
         }
-        best = best.min(d).min(tol.scaled(piece.eval(0.5 * (lo + hi)) - p));
     }
     best
 }
@@ -146,10 +156,12 @@ proptest! {
         let size = (p1 - p0).length().max((p2 - p0).length());
         let tangent = piece.derivative(t);
         prop_assume!(tangent.length() > 1e-3 * size && size > 1e-3);
-        // A step small against the curvature radius: |B''| bounds how fast it turns.
+        // A step small against the curvature radius at t and against the width of the
+        // control triangle (a nearly folded piece's two branches lie that close).
         let second = 2.0 * (p0 - 2.0 * p1 + p2);
-        let radius = tangent.length_squared() / second.length().max(1e-12);
-        let step = 1e-3 * radius.min(size);
+        let radius = tangent.length().powi(3) / tangent.perp_dot(second).abs().max(1e-300);
+        let width = (p1 - p0).perp_dot(p2 - p0).abs() / size;
+        let step = 1e-3 * radius.min(size).min(width.max(1e-9 * size));
         let left = tangent.normalize().perp();
         let on = piece.eval(t);
         let f = piece.implicit();

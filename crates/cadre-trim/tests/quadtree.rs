@@ -7,7 +7,8 @@
 
 mod common;
 
-use cadre_trim::layout::{KIND_CONSTANT, PAYLOAD, PIECE_NEGATIVE};
+use cadre_trim::layout::{KIND_CONSTANT, PAYLOAD, PIECE_LINE, PIECE_NEGATIVE, PIECE_OFFSET};
+use cadre_trim::quadtree::{Leaf, Node};
 use cadre_trim::{CellClass, QuadPiece, TrimBuffers, TrimTree, Uv, UvTolerance, fit_points};
 use common::{even_odd, to_boundary};
 use proptest::prelude::*;
@@ -182,13 +183,28 @@ proptest! {
             flipped.piece_offsets[k as usize] ^= PIECE_NEGATIVE;
         }
         let inside_box = |p: &&Uv| p.x > lo.x && p.y > lo.y && p.x < hi.x && p.y < hi.y;
-        let fallback_free = tree.fallback_leaves() == 0;
+        let all_root = matches!(tree.nodes[0], Node::Leaf { leaf: Leaf::All, .. });
+        let forms_only = tree.fallback_leaves() == 0 && !all_root;
         let inside: Vec<&Uv> = points.iter().filter(inside_box).collect();
         let kept = inside.iter().filter(|p| flipped.classify(at, ***p) == tree.classify(***p)).count();
-        // Fallback leaves read control points, which the flip leaves alone.
-        if fallback_free {
+        // Fallback leaves and a whole-face root read control points, which the flip leaves
+        // alone.
+        if forms_only {
             prop_assert_eq!(kept, 0, "{} of {} answers survived the flip", kept, inside.len());
         }
+        // Their negative control: with this face's points moved off its box, no crossing
+        // is counted and the points on the face are lost.
+        let mut moved = buffers.clone();
+        let offsets = &buffers.piece_offsets[record.pieces as usize..(record.pieces + record.piece_count) as usize];
+        let first_float = (offsets[0] & PIECE_OFFSET) as usize;
+        let end = offsets.iter().map(|w| (w & PIECE_OFFSET) as usize + if w & PIECE_LINE != 0 { 4 } else { 6 }).max().unwrap_or(first_float);
+        let size = record.size;
+        for (k, x) in moved.floats[first_float..end].iter_mut().enumerate() {
+            *x += 4.0 * size[k % 2];
+        }
+        let on: Vec<&&Uv> = inside.iter().filter(|p| tree.classify(***p)).collect();
+        let lost = on.iter().filter(|p| !moved.classify(at, ****p)).count();
+        prop_assert!(on.is_empty() || lost > 0, "moving the pieces changed none of {} answers", on.len());
         // Negative control: without its first hole, the tree puts that hole's centre on
         // the face.
         if !f.holes.is_empty() {
@@ -200,12 +216,12 @@ proptest! {
             let wrong = TrimTree::build(&pieces(&without, tol));
             prop_assert!(wrong.classify(f.holes[0]) != even_odd(&f.loops, f.holes[0]));
         }
-        // The exact fallback stays a small share of the leaves (where a tiny monotone part
-        // meets its neighbours in a deep cell).
+        // The depth cap's fallback stays a small share of the leaves (where a tiny monotone
+        // part meets its neighbours in a deep cell).
         prop_assert!(
-            tree.fallback_leaves() * 8 <= tree.nodes.len(),
-            "{} fallback leaves of {} nodes",
-            tree.fallback_leaves(),
+            tree.capped_leaves() * 8 <= tree.nodes.len(),
+            "{} leaves at the depth cap of {} nodes",
+            tree.capped_leaves(),
             tree.nodes.len()
         );
     }

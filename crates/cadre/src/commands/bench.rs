@@ -232,6 +232,8 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
         "nodes": s.nodes,
         "fallback_faces": s.fallback_faces,
         "fallback_leaves": s.fallback_leaves,
+        "capped_leaves": s.capped_leaves,
+        "root_only_faces": s.root_only_faces,
         "bytes": s.bytes,
         "bytes_per_curve": per(s.curves),
         "bytes_per_face": per(s.built),
