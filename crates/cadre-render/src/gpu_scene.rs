@@ -317,9 +317,10 @@ impl PreparedScene {
                 let first = surfaces.len() as u32;
                 surfaces.extend(ids.iter().filter_map(|&id| {
                     let exact = trimmed(id)?;
+                    let trim = trim_scene?;
                     Some(crate::trim_surfaces::surface_record(
                         exact,
-                        &trim_scene?.bspline_data,
+                        (&trim.bspline_data, trim.depth_tolerance),
                         id,
                         face_points(&verts, &all, range, id),
                     ))

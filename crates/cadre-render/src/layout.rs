@@ -171,7 +171,7 @@ pub struct FrameUniform {
     /// World up in view space (the environment's zenith), w unused.
     pub sky_up: [f32; 4],
     /// Number of lights, number of selected items, number of section planes (at most 3),
-    /// unused.
+    /// whether trimmed edges carry their coverage (1) or not (0).
     pub counts: [u32; 4],
     /// What the cursor is over: kind (0 nothing, 1 face, 2 edge, 3 vertex, 4 part),
     /// instance + 1, model id, unused.
@@ -400,7 +400,8 @@ pub struct TrimSurface {
     /// The frame's y axis and the sign that turns the surface's normal S_u × S_v into the
     /// face's outward one (±1).
     pub axis_y: [f32; 4],
-    /// The frame's z axis, w unused.
+    /// The frame's z axis and the least bound the tessellation keeps in depth (model units,
+    /// `TrimScene::depth_tolerance`).
     pub axis_z: [f32; 4],
     /// The trim tree's box: lower corner (u₀, v₀) and size.
     pub uv: [f32; 4],

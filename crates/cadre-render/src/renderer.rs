@@ -74,6 +74,11 @@ pub struct FrameOptions {
     /// style ([`crate::smooth_edges`]): anti-aliasing at the cost of one pass over the
     /// image on the CPU, for CPU adapters where supersampling multiplies every pass's cost.
     pub smooth: bool,
+    /// Anti-alias the edges of faces trimmed per pixel by their analytic coverage (the
+    /// distance to the trim boundary in pixels, F / |∇F|): a pixel on such an edge is
+    /// blended with what its neighbours across the edge show. Beside supersampling and
+    /// smoothing, not instead; off, trimmed edges are as sharp as the trim test.
+    pub analytic_coverage: bool,
     /// Background colour, sRGB components in [0, 1] and alpha.
     pub background: [f32; 4],
     /// Display mode.
@@ -93,6 +98,7 @@ impl Default for FrameOptions {
             height: 600,
             supersample: 2,
             smooth: false,
+            analytic_coverage: true,
             background: [1.0, 1.0, 1.0, 1.0],
             mode: DisplayMode::Shaded,
             edge_width: 1.5,
@@ -456,7 +462,10 @@ impl Renderer {
             }
         };
         let (_, edge_mode) = options.mode.fill_and_edges();
-        let frame = frame_uniform(camera, options, state, (w, h));
+        let mut frame = frame_uniform(camera, options, state, (w, h));
+        // Trimmed edges carry their coverage only where faces are trimmed per pixel.
+        let coverage = options.analytic_coverage && scene.trim.is_some() && self.draws_trims();
+        frame.counts[3] = u32::from(coverage);
         buffers.frame.write(gpu, bytemuck::bytes_of(&frame))?;
         let with_edges = edge_mode.is_some() && readback.shaded();
         let frame_scene = FrameScene::new(
@@ -502,7 +511,13 @@ impl Renderer {
             (device, &self.binds),
             &mut encoder,
             targets,
-            (frame_buffer, sections, self.proxy_depth, clear_ids),
+            (
+                frame_buffer,
+                sections,
+                self.proxy_depth,
+                clear_ids,
+                coverage,
+            ),
             &frame_scene,
             timer,
         );

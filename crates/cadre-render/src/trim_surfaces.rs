@@ -82,6 +82,9 @@ pub struct TrimScene {
     pub fallback: Vec<(u64, String)>,
     /// The object-space tolerance the trims were fitted within (model units).
     pub tolerance: f64,
+    /// The least bound the tessellation needs keep in depth (model units, [`DEPTH_REL`] of
+    /// the model's diagonal): each face's record carries it.
+    pub depth_tolerance: f64,
     /// The B-spline faces' surfaces, packed as the GPU reads them: per surface its degrees
     /// and control-net size (as `u32` bits), its u and v knots, then its control points
     /// row by row (along u) as homogeneous (x w, y w, z w, w), all `f32`.
@@ -163,6 +166,7 @@ impl TrimScene {
             faces,
             fallback,
             tolerance,
+            depth_tolerance: DEPTH_REL * cadre_mesh::deflection_diagonal(model),
             bspline_data,
         }
     }
@@ -554,12 +558,21 @@ fn face_normal(s: &TrimFaceSurface, data: &[f32], u: f64, v: f64) -> DVec3 {
 /// Samples per side of the (u, v) box when bounding a face's surface.
 const SPHERE_SAMPLES: usize = 9;
 
-/// The GPU record of face id `face_id` drawn from `s`. `points` are its mesh's vertices
-/// (position, normal, (u, v)), which say which side of the surface is the face's outside
-/// (the mesh's normals follow the shell's orientation).
+/// The tessellation's bound in depth relative to the model's diagonal: a face's grid is
+/// refined to within `TOLERANCE_REL` of its radius (a thin wall's far side must not show
+/// through its sagging near side) only down to this. A quarter of the static mesh's
+/// deflection (10⁻³ of the diagonal), which lets walls as thin show through the same way;
+/// below it the radius bound over-tessellated small faces tens of times over their
+/// half-pixel bound (trj7_b1-ec-214 at 640 × 480: 480 k triangles against the mesh's 14 k).
+pub const DEPTH_REL: f64 = 2.5e-4;
+
+/// The GPU record of face id `face_id` drawn from `s`, its tessellation kept within `depth`
+/// model units of the surface at least ([`TrimScene::depth_tolerance`]). `points` are its
+/// mesh's vertices (position, normal, (u, v)), which say which side of the surface is the
+/// face's outside (the mesh's normals follow the shell's orientation).
 pub fn surface_record(
     s: &TrimFaceSurface,
-    data: &[f32],
+    (data, depth): (&[f32], f64),
     face_id: u32,
     points: impl Iterator<Item = ([f32; 3], [f32; 3], [f32; 2])>,
 ) -> crate::layout::TrimSurface {
@@ -603,7 +616,7 @@ pub fn surface_record(
         origin: f(o, s.params[0]),
         axis_x: f(x, s.params[1]),
         axis_y: f(y, sign),
-        axis_z: f(z, 0.0),
+        axis_z: f(z, depth),
         uv: [
             s.uv_origin[0] as f32,
             s.uv_origin[1] as f32,
@@ -685,7 +698,7 @@ mod tests {
             data: at,
             breaks: NO_BREAKS,
         };
-        let record = surface_record(&s, &data, 1, std::iter::empty());
+        let record = surface_record(&s, (&data, 0.0), 1, std::iter::empty());
         let [x, y, z, r] = record.sphere.map(f64::from);
         let (centre, radius) = (DVec3::new(x, y, z), r);
         let mut farthest: f64 = 0.0;

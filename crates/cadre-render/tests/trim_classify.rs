@@ -222,3 +222,108 @@ fn the_gpu_cell_test_answers_as_the_cpu_oracle() {
         "another tree agreed on all but {other}"
     );
 }
+
+/// The GPU's distance to the trim boundary in pixels (`trim_edge_pixels`, what the trimmed
+/// edges' analytic coverage is made of) is its CPU twin's (`TrimBuffers::edge_pixels`) on
+/// random points and pixel steps of every face of the bundled assembly and of the sliver,
+/// within `f32` rounding. Negative control: the next face's tree gives other distances.
+#[test]
+fn the_gpu_edge_distance_is_the_cpu_ones() {
+    let gpu = common::gpu();
+    let (model, _) = common::model_and_scene("pin-assembly.step");
+    let mut buffers = model_trees(&model, 0.01).buffers;
+    buffers.push(&sliver()).expect("packs");
+    let mut random = common::xorshift(0x51_7cc1_b727_220a);
+    let mut queries: Vec<(u32, [f32; 2], [f32; 4])> = Vec::new();
+    for (face, record) in buffers.faces.iter().enumerate() {
+        for _ in 0..1000 {
+            let q = [random() * record.size[0], random() * record.size[1]];
+            // Pixels of 1/50 to 1/2000 of the face, turned.
+            let pixel = record.size[0].max(record.size[1]) / (50.0 + 1950.0 * random());
+            let turn = std::f32::consts::TAU * random();
+            let (c, s) = (turn.cos(), turn.sin());
+            queries.push((
+                face as u32,
+                q,
+                [pixel * c, pixel * s, -pixel * s, pixel * c],
+            ));
+        }
+    }
+    let shader = format!(
+        "@group(0) @binding(0) var<storage, read> trim_faces: array<TrimFace>;
+         @group(0) @binding(1) var<storage, read> trim_nodes: array<u32>;
+         @group(0) @binding(2) var<storage, read> trim_floats: array<f32>;
+         @group(0) @binding(3) var<storage, read> trim_piece_offsets: array<u32>;
+         @group(0) @binding(4) var<storage, read> trim_lists: array<u32>;
+         @group(0) @binding(5) var<storage, read> queries: array<vec4<f32>>;
+         @group(0) @binding(6) var<storage, read_write> answers: array<f32>;
+         {}
+         @compute @workgroup_size(64)
+         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+             if 2u * id.x >= arrayLength(&queries) {{ return; }}
+             let a = queries[2u * id.x];
+             let j = queries[2u * id.x + 1u];
+             answers[id.x] = trim_edge_pixels(bitcast<u32>(a.x), a.yz, j.xy, j.zw);
+         }}",
+        cadre_trim::TRIM_WGSL
+    );
+    let run = |shift: u32| -> Vec<f32> {
+        let faces_count = buffers.faces.len() as u32;
+        let words: Vec<f32> = queries
+            .iter()
+            .flat_map(|(f, q, j)| {
+                let face = f32::from_bits((f + shift) % faces_count);
+                [face, q[0], q[1], 0.0, j[0], j[1], j[2], j[3]]
+            })
+            .collect();
+        let faces = buffers.face_words();
+        let inputs: [&[u8]; 6] = [
+            bytemuck::cast_slice(&faces),
+            bytemuck::cast_slice(&buffers.nodes),
+            bytemuck::cast_slice(&buffers.floats),
+            bytemuck::cast_slice(&buffers.piece_offsets),
+            bytemuck::cast_slice(&buffers.lists),
+            bytemuck::cast_slice(&words),
+        ];
+        let count = queries.len() as u32;
+        let bytes = common::run_compute(&gpu, &shader, &inputs, (count, 4 * u64::from(count)));
+        bytemuck::cast_slice(&bytes).to_vec()
+    };
+    let cpu: Vec<f32> = queries
+        .iter()
+        .map(|(f, q, j)| {
+            let origin = buffers.faces[*f as usize].origin;
+            let p = origin + Uv::new(f64::from(q[0]), f64::from(q[1]));
+            buffers.edge_pixels(*f as usize, p, [j[0], j[1]], [j[2], j[3]])
+        })
+        .collect();
+    let near = cpu.iter().filter(|&&d| d < 2.0).count();
+    assert!(
+        near > queries.len() / 50,
+        "only {near} of {} points near a boundary",
+        queries.len()
+    );
+    let same = |a: f32, b: f32| (a >= 2.0 && b >= 2.0) || (a - b).abs() <= 1e-3 * (1.0 + a.abs());
+    let gpu_out = run(0);
+    let differ = cpu
+        .iter()
+        .zip(&gpu_out)
+        .filter(|(a, b)| !same(**a, **b))
+        .count();
+    assert!(
+        differ * 1_000 <= queries.len(),
+        "{}: the GPU's distances differ from the CPU's at {differ} of {} points",
+        gpu.info.name,
+        queries.len()
+    );
+    let wrong = run(1);
+    let differ = cpu
+        .iter()
+        .zip(&wrong)
+        .filter(|(a, b)| !same(**a, **b))
+        .count();
+    assert!(
+        differ * 20 > near,
+        "the next face's tree differs at {differ} only"
+    );
+}

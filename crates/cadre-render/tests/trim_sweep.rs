@@ -85,7 +85,7 @@ fn gpu_sweep_points_are_the_exact_surfaces() {
         .enumerate()
         .map(|(k, (s, o, z))| {
             let face = sweep_surface(s, 0, (*o, *z), &mut data).expect("drawn");
-            surface_record(&face, &data, k as u32, std::iter::empty())
+            surface_record(&face, (&data, 0.0), k as u32, std::iter::empty())
         })
         .collect();
     let n = 12;

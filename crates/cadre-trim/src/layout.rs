@@ -174,8 +174,14 @@ impl TrimBuffers {
                 for k in 0..4usize {
                     let (right, up) = (k & 1 != 0, k & 2 != 0);
                     cells[first as usize + k] = (
-                        [if right { mid[0] } else { lo[0] }, if up { mid[1] } else { lo[1] }],
-                        [if right { hi[0] } else { mid[0] }, if up { hi[1] } else { mid[1] }],
+                        [
+                            if right { mid[0] } else { lo[0] },
+                            if up { mid[1] } else { lo[1] },
+                        ],
+                        [
+                            if right { hi[0] } else { mid[0] },
+                            if up { hi[1] } else { mid[1] },
+                        ],
                     );
                 }
             }
@@ -213,7 +219,8 @@ impl TrimBuffers {
                                 lo[0] + GENERIC[0] as f32 * (hi[0] - lo[0]),
                                 lo[1] + GENERIC[1] as f32 * (hi[1] - lo[1]),
                             ];
-                            let at_q = tree.parity(origin + Uv::new(f64::from(q[0]), f64::from(q[1])));
+                            let at_q =
+                                tree.parity(origin + Uv::new(f64::from(q[0]), f64::from(q[1])));
                             let corner = at_q
                                 ^ self.crossings_to_corner(record, pieces.iter().copied(), q, hi);
                             self.lists
@@ -403,6 +410,166 @@ impl TrimBuffers {
                 }
             }
         }
+    }
+
+    /// How far, in pixels, `p` lies from the trim boundary of face `face` near it, to first
+    /// order: the least |F| / |∇F| (the gradient taken to the screen through the pixel's
+    /// (u, v) steps `jx`, `jy`) over the pieces of the leaves at the four corners of the
+    /// pixel's (u, v) reach about `p` whose box, grown by that reach, holds `p` (a one-piece
+    /// leaf's piece whatever its box); `1e30` where none is near (`trim_edge_pixels` in
+    /// trim.wgsl, its GPU twin). A trimmed edge's pixel is covered 0.5 + this.
+    pub fn edge_pixels(&self, face: usize, p: Uv, jx: [f32; 2], jy: [f32; 2]) -> f32 {
+        let f = self.faces[face];
+        let local = p - f.origin;
+        let q = [local.x as f32, local.y as f32];
+        let reach = [jx[0].abs() + jy[0].abs(), jx[1].abs() + jy[1].abs()];
+        let mut best = 1e30f32;
+        let mut last = u32::MAX;
+        for corner in 0..4 {
+            let side = [
+                if corner & 1 != 0 { 1.0 } else { -1.0 },
+                if corner & 2 != 0 { 1.0 } else { -1.0 },
+            ];
+            let at = [q[0] + side[0] * reach[0], q[1] + side[1] * reach[1]];
+            let word = self.leaf_at(f, at);
+            if word != last {
+                best = best.min(self.leaf_pixels(f, word, q, (jx, jy), reach));
+            }
+            last = word;
+        }
+        best
+    }
+
+    /// The leaf word of face `f`'s tree at the face-local point `point` (clamped to the
+    /// root; `trim_leaf_at`).
+    fn leaf_at(&self, f: FaceRecord, point: [f32; 2]) -> u32 {
+        let q = [
+            point[0].clamp(0.0, f.size[0]),
+            point[1].clamp(0.0, f.size[1]),
+        ];
+        let (mut lo, mut hi) = ([0.0f32; 2], f.size);
+        let mut index = f.nodes as usize;
+        for _ in 0..=crate::quadtree::MAX_DEPTH {
+            let word = self.nodes[index];
+            if word >> 29 != KIND_SPLIT {
+                return word;
+            }
+            let mid = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+            let right = q[0] >= mid[0];
+            let up = q[1] >= mid[1];
+            index = f.nodes as usize
+                + (word & PAYLOAD) as usize
+                + usize::from(right)
+                + 2 * usize::from(up);
+            if right {
+                lo[0] = mid[0]
+            } else {
+                hi[0] = mid[0]
+            }
+            if up { lo[1] = mid[1] } else { hi[1] = mid[1] }
+        }
+        KIND_CONSTANT << 29
+    }
+
+    /// The least distance in pixels from `q` to the pieces of the leaf `word` of `f`
+    /// (`trim_leaf_pixels`).
+    fn leaf_pixels(
+        &self,
+        f: FaceRecord,
+        word: u32,
+        q: [f32; 2],
+        steps: ([f32; 2], [f32; 2]),
+        reach: [f32; 2],
+    ) -> f32 {
+        let payload = word & PAYLOAD;
+        let near = |k: u32, reach: [f32; 2]| self.piece_pixels(f, k, q, steps, reach);
+        match word >> 29 {
+            KIND_ONE => near(payload, [1e30; 2]),
+            KIND_TWO => {
+                let r = payload as usize;
+                near(self.floats[r + 3].to_bits(), reach)
+                    .min(near(self.floats[r + 4].to_bits(), reach))
+            }
+            KIND_ALL => (0..payload).map(|k| near(k, reach)).fold(1e30, f32::min),
+            KIND_FALLBACK => {
+                let at = payload as usize;
+                let count = (self.lists[at] & !LIST_CORNER) as usize;
+                self.lists[at + 1..at + 1 + count]
+                    .iter()
+                    .map(|&k| near(k, reach))
+                    .fold(1e30, f32::min)
+            }
+            _ => 1e30,
+        }
+    }
+
+    /// Piece `k`'s distance from `q` in pixels when `q` lies within its box grown by
+    /// `reach`, else `1e30`: beside the piece to first order, past its ends the distance to
+    /// the end (`trim_piece_pixels` in trim.wgsl).
+    fn piece_pixels(
+        &self,
+        f: FaceRecord,
+        k: u32,
+        q: [f32; 2],
+        (jx, jy): ([f32; 2], [f32; 2]),
+        reach: [f32; 2],
+    ) -> f32 {
+        let (_, c) = self.piece_points(f, k);
+        for a in 0..2 {
+            let lo = c[a].min(c[2 + a]).min(c[4 + a]) - reach[a];
+            let hi = c[a].max(c[2 + a]).max(c[4 + a]) + reach[a];
+            if q[a] < lo || q[a] > hi {
+                return 1e30;
+            }
+        }
+        let (value, g, along) = self.value_gradient(f, k, q);
+        if !(0.0..=1.0).contains(&along) {
+            let end = if along < 0.0 {
+                [c[0], c[1]]
+            } else {
+                [c[4], c[5]]
+            };
+            let delta = [q[0] - end[0], q[1] - end[1]];
+            let det = jx[0] * jy[1] - jx[1] * jy[0];
+            let det = if det.abs() < 1e-30 { 1e-30 } else { det };
+            let pixels = [
+                (jy[1] * delta[0] - jy[0] * delta[1]) / det,
+                (jx[0] * delta[1] - jx[1] * delta[0]) / det,
+            ];
+            return (pixels[0] * pixels[0] + pixels[1] * pixels[1]).sqrt();
+        }
+        let screen = [g[0] * jx[0] + g[1] * jx[1], g[0] * jy[0] + g[1] * jy[1]];
+        value.abs()
+            / (screen[0] * screen[0] + screen[1] * screen[1])
+                .sqrt()
+                .max(1e-30)
+    }
+
+    /// Piece `k` of face `f` at `q`: its implicit value (either sign), that value's gradient
+    /// in (u, v), and where along the piece `q` lies (0 at its start, 1 at its end: the
+    /// Loop–Blinn x, or the projection on the chord), from [`TrimBuffers::classify`]'s form
+    /// (`trim_value_gradient` in trim.wgsl).
+    pub fn value_gradient(&self, f: FaceRecord, k: u32, q: [f32; 2]) -> (f32, [f32; 2], f32) {
+        let (word, c) = self.piece_points(f, k);
+        let (e1, e2) = ([c[2] - c[0], c[3] - c[1]], [c[4] - c[0], c[5] - c[1]]);
+        let d = [q[0] - c[0], q[1] - c[1]];
+        let dot = |a: [f32; 2], b: [f32; 2]| a[0] * b[0] + a[1] * b[1];
+        if word & PIECE_LINE != 0 {
+            let len = (e2[0] * e2[0] + e2[1] * e2[1]).sqrt();
+            let n = [-e2[1] / len, e2[0] / len];
+            return (dot(n, d), n, dot(d, e2) / dot(e2, e2));
+        }
+        let det = e1[0] * e2[1] - e1[1] * e2[0];
+        let ga = [e2[1] / det, -e2[0] / det];
+        let gb = [-e1[1] / det, e1[0] / det];
+        let beta = dot(gb, d);
+        let x = 0.5 * dot(ga, d) + beta;
+        let gx = [0.5 * ga[0] + gb[0], 0.5 * ga[1] + gb[1]];
+        (
+            x * x - beta,
+            [2.0 * x * gx[0] - gb[0], 2.0 * x * gx[1] - gb[1]],
+            x,
+        )
     }
 
     /// Piece `k` of face `f`: its offset word and its three control points (x, y each; a

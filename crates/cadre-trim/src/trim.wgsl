@@ -294,3 +294,129 @@ fn trim_classify_within(face: u32, q: vec2<f32>, footprint: vec2<f32>) -> bool {
     }
     return false;
 }
+
+// Piece `k` of `f` at `q`: its implicit value (either sign), that value's gradient in
+// (u, v), and where along the piece `q` lies (0 at its start, 1 at its end: the Loop–Blinn
+// x, or the projection on the chord), from `trim_value`'s form. `TrimBuffers::
+// value_gradient` is the CPU twin.
+struct TrimValueGradient {
+    value: f32,
+    gradient: vec2<f32>,
+    along: f32,
+}
+
+fn trim_value_gradient(f: TrimFace, k: u32, q: vec2<f32>) -> TrimValueGradient {
+    let piece = trim_piece(f, k);
+    let c0 = piece.c0;
+    let e1 = piece.c1 - c0;
+    let e2 = piece.c2 - c0;
+    let d = q - c0;
+    if (piece.word & TRIM_PIECE_LINE) != 0u {
+        let n = vec2<f32>(-e2.y, e2.x) / length(e2);
+        return TrimValueGradient(dot(n, d), n, dot(d, e2) / dot(e2, e2));
+    }
+    let det = e1.x * e2.y - e1.y * e2.x;
+    let ga = vec2<f32>(e2.y, -e2.x) / det;
+    let gb = vec2<f32>(-e1.y, e1.x) / det;
+    let beta = dot(gb, d);
+    let x = 0.5 * dot(ga, d) + beta;
+    let gx = 0.5 * ga + gb;
+    return TrimValueGradient(x * x - beta, 2.0 * x * gx - gb, x);
+}
+
+// Piece `k`'s distance from `q` in pixels, when `q` lies within its box grown by `reach`
+// (1e30 otherwise: an implicit form says nothing far from its piece): beside the piece,
+// to first order (|F| / |∇F|, the gradient taken to the screen through the pixel's (u, v)
+// steps `jx`, `jy`); past its ends, the distance to the end (the form there would measure
+// to the parabola or the chord beyond the piece, which a neighbouring piece's end does not
+// follow).
+fn trim_piece_pixels(f: TrimFace, k: u32, q: vec2<f32>, jx: vec2<f32>, jy: vec2<f32>, reach: vec2<f32>) -> f32 {
+    let piece = trim_piece(f, k);
+    let lo = min(piece.c0, min(piece.c1, piece.c2)) - reach;
+    let hi = max(piece.c0, max(piece.c1, piece.c2)) + reach;
+    if any(q < lo) || any(q > hi) {
+        return 1e30;
+    }
+    let vg = trim_value_gradient(f, k, q);
+    if (vg.along < 0.0) || (vg.along > 1.0) {
+        // (u, v) to pixels: the inverse of the steps' matrix.
+        let end = select(piece.c2, piece.c0, vg.along < 0.0);
+        let delta = q - end;
+        let det = jx.x * jy.y - jx.y * jy.x;
+        let pixels = vec2<f32>(jy.y * delta.x - jy.x * delta.y, jx.x * delta.y - jx.y * delta.x)
+            / select(det, 1e-30, abs(det) < 1e-30);
+        return length(pixels);
+    }
+    let g = vec2<f32>(dot(vg.gradient, jx), dot(vg.gradient, jy));
+    return abs(vg.value) / max(length(g), 1e-30);
+}
+
+// The leaf word of face `f`'s tree at the face-local point `q` (clamped to the root).
+fn trim_leaf_at(f: TrimFace, point: vec2<f32>) -> u32 {
+    let q = clamp(point, vec2<f32>(0.0), f.size);
+    var lo = vec2<f32>(0.0);
+    var hi = f.size;
+    var index = f.nodes;
+    for (var step = 0u; step < TRIM_MAX_STEPS; step++) {
+        let word = trim_nodes[index];
+        if (word >> 29u) != TRIM_KIND_SPLIT {
+            return word;
+        }
+        let mid = 0.5 * (lo + hi);
+        let right = q.x >= mid.x;
+        let up = q.y >= mid.y;
+        index = f.nodes + (word & TRIM_PAYLOAD) + select(0u, 1u, right) + select(0u, 2u, up);
+        lo = select(lo, mid, vec2<bool>(right, up));
+        hi = select(mid, hi, vec2<bool>(right, up));
+    }
+    return TRIM_KIND_CONSTANT << 29u;
+}
+
+// The least distance in pixels from `q` to the pieces of the leaf `word` of `f` (those whose
+// box, grown by `reach`, holds `q`; a one-piece leaf's piece whatever its box).
+fn trim_leaf_pixels(f: TrimFace, word: u32, q: vec2<f32>, jx: vec2<f32>, jy: vec2<f32>, reach: vec2<f32>) -> f32 {
+    let payload = word & TRIM_PAYLOAD;
+    let kind = word >> 29u;
+    var best = 1e30;
+    if kind == TRIM_KIND_ONE {
+        best = trim_piece_pixels(f, payload, q, jx, jy, vec2<f32>(1e30));
+    } else if kind == TRIM_KIND_TWO {
+        best = min(
+            trim_piece_pixels(f, bitcast<u32>(trim_floats[payload + 3u]), q, jx, jy, reach),
+            trim_piece_pixels(f, bitcast<u32>(trim_floats[payload + 4u]), q, jx, jy, reach),
+        );
+    } else if kind == TRIM_KIND_ALL {
+        for (var k = 0u; k < min(payload, arrayLength(&trim_piece_offsets)); k++) {
+            best = min(best, trim_piece_pixels(f, k, q, jx, jy, reach));
+        }
+    } else if kind == TRIM_KIND_FALLBACK {
+        let count = trim_lists[payload] & ~TRIM_LIST_CORNER;
+        for (var i = 0u; i < min(count, arrayLength(&trim_lists)); i++) {
+            best = min(best, trim_piece_pixels(f, trim_lists[payload + 1u + i], q, jx, jy, reach));
+        }
+    }
+    return best;
+}
+
+// How far, in pixels, the face-local point `q` of face `face` lies from the trim boundary
+// near it, to first order: the least distance to the pieces of the leaves at the four
+// corners of the pixel's (u, v) reach about `q` (a boundary within a pixel lies in one of
+// them where the leaves are no smaller than the reach), 1e30 where none has a piece near.
+// `jx`, `jy`: the (u, v) change over a pixel step in x and in y. The analytic coverage of a
+// trimmed edge's pixels is 0.5 + this (`TrimBuffers::edge_pixels` is the CPU twin).
+fn trim_edge_pixels(face: u32, q: vec2<f32>, jx: vec2<f32>, jy: vec2<f32>) -> f32 {
+    let f = trim_faces[face];
+    let reach = abs(jx) + abs(jy);
+    var best = 1e30;
+    var last = 0xffffffffu;
+    for (var corner = 0u; corner < 4u; corner++) {
+        let side = vec2<f32>(select(-1.0, 1.0, (corner & 1u) != 0u), select(-1.0, 1.0, (corner & 2u) != 0u));
+        let word = trim_leaf_at(f, q + side * reach);
+        // The same leaf as the corner before: nothing new (most pixels).
+        if word != last {
+            best = min(best, trim_leaf_pixels(f, word, q, jx, jy, reach));
+        }
+        last = word;
+    }
+    return best;
+}

@@ -107,6 +107,26 @@ struct InstanceIds {
 
 // Whether the item (kind: 1 face, 2 edge, 3 vertex; instance + 1; model id) is `wanted`
 // itself or, for a whole part (kind 4), belongs to its instance.
+// A unit normal in the visibility buffer's normal target: its octahedral map into [0, 1]²
+// (x, y; 10 bits each, about 0.1° apart), so that the third channel is free for the texel's
+// coverage (`encode_normal`, texel.wgsl).
+fn octahedral(n: vec3<f32>) -> vec2<f32> {
+    let p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    let sign = select(vec2<f32>(-1.0), vec2<f32>(1.0), p >= vec2<f32>(0.0));
+    let folded = select(p, (1.0 - abs(p.yx)) * sign, n.z < 0.0);
+    return 0.5 * folded + 0.5;
+}
+
+// The unit normal of an `octahedral` map.
+fn from_octahedral(e: vec2<f32>) -> vec3<f32> {
+    let f = 2.0 * e - 1.0;
+    var n = vec3<f32>(f, 1.0 - abs(f.x) - abs(f.y));
+    let t = max(-n.z, 0.0);
+    n.x += select(t, -t, n.x >= 0.0);
+    n.y += select(t, -t, n.y >= 0.0);
+    return normalize(n);
+}
+
 fn is_target(wanted: vec4<u32>, kind: u32, instance1: u32, id: u32) -> bool {
     if wanted.x == 0u || wanted.y != instance1 {
         return false;

@@ -23,7 +23,8 @@ pub enum Antialias {
     Supersample,
     /// Edge smoothing of a 1× image (FXAA style, after the readback).
     Smooth,
-    /// Neither.
+    /// Neither, nor the analytic coverage of trimmed edges (`--method trim` blends their
+    /// pixels by their distance to the trim boundary in every other mode).
     None,
 }
 
@@ -447,6 +448,8 @@ fn draw_file(
         height: h,
         supersample,
         smooth,
+        // Trimmed edges' analytic coverage comes on top of either (`--method trim`).
+        analytic_coverage: args.antialias != Antialias::None,
         background: args.background,
         mode: args.mode,
         edge_width: args.edge_width,

@@ -78,6 +78,9 @@ pub(crate) struct ShadeVariant {
     pub lights: u32,
     /// Something is selected (`SELECTION`, the frame's `counts[1] > 0`).
     pub selection: bool,
+    /// Trimmed edges' pixels are blended by their coverage (`COVERAGE`, the frame's
+    /// `counts[3] > 0`).
+    pub coverage: bool,
 }
 
 impl ShadeVariant {
@@ -94,11 +97,12 @@ impl ShadeVariant {
                 .any(|l| l.position[3] != 0.0),
             lights: frame.counts[0],
             selection: frame.counts[1] > 0,
+            coverage: frame.counts[3] > 0,
         }
     }
 
     /// The pipeline constants of `shade.wgsl` for this variant.
-    fn constants(self) -> [(&'static str, f64); 5] {
+    fn constants(self) -> [(&'static str, f64); 6] {
         [
             ("SECTIONS", f64::from(u8::from(self.sections))),
             ("SILHOUETTES", f64::from(u8::from(self.silhouettes))),
@@ -108,6 +112,7 @@ impl ShadeVariant {
             ),
             ("LIGHTS", f64::from(self.lights)),
             ("SELECTION", f64::from(u8::from(self.selection))),
+            ("COVERAGE", f64::from(u8::from(self.coverage))),
         ]
     }
 }
@@ -153,6 +158,7 @@ impl ShadePass {
                     positional_lights: false,
                     lights: rig_lights,
                     selection: false,
+                    coverage: false,
                 },
             );
         }
@@ -246,15 +252,17 @@ mod tests {
                 positional_lights: false,
                 lights: 0,
                 selection: false,
+                coverage: false,
             }
         );
-        frame.counts = [2, 1, 1, 0];
+        frame.counts = [2, 1, 1, 1];
         frame.modes[3] = 1;
         let all = ShadeVariant::of(&frame, &[directional, point]);
         assert!(all.sections && all.silhouettes && all.positional_lights && all.selection);
+        assert!(all.coverage);
         assert_eq!(
             all.constants().map(|(_, v)| v),
-            [1.0, 1.0, 1.0, 2.0, 1.0],
+            [1.0, 1.0, 1.0, 2.0, 1.0, 1.0],
             "every part compiled in, two lights"
         );
         // A light past the frame's count is not lit: it does not ask for positional code.

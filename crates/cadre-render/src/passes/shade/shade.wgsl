@@ -26,6 +26,9 @@ override POSITIONAL_LIGHTS: bool = true;
 override LIGHTS: u32 = 1u;
 // Selected entities to tint (`counts.y > 0`).
 override SELECTION: bool = true;
+// Trimmed edges' pixels blended by their coverage (`counts.w > 0`: the frame draws faces
+// trimmed per pixel and asks for analytic anti-aliasing).
+override COVERAGE: bool = true;
 
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
 @group(0) @binding(2) var normal_tex: texture_2d<f32>;
@@ -47,6 +50,38 @@ fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
 @fragment
 fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(pos.xy);
+    let own = shade_pixel(p, pos.xy);
+    if COVERAGE {
+        // A pixel on a trimmed edge, covered `covered` (≥ ½) by its face: the rest of it is
+        // what its neighbours across the edge show (those of the four with another face or
+        // part, or nothing), shaded as they are.
+        let covered = textureLoad(normal_tex, p, 0).z;
+        let ids = textureLoad(ids_tex, p, 0);
+        if (covered < 0.999) & (ids.y != 0u) {
+            let size = vec2<i32>(textureDimensions(ids_tex));
+            var across = vec4<f32>(0.0);
+            var count = 0.0;
+            for (var k = 0u; k < 4u; k++) {
+                let offset = vec2<i32>(select(select(1, -1, k == 1u), 0, k >= 2u), select(0, select(1, -1, k == 3u), k >= 2u));
+                let q = p + offset;
+                if all(q >= vec2<i32>(0)) && all(q < size) {
+                    let other = textureLoad(ids_tex, q, 0);
+                    if (other.x != ids.x) || (other.y != ids.y) {
+                        across += shade_pixel(q, pos.xy + vec2<f32>(offset));
+                        count += 1.0;
+                    }
+                }
+            }
+            if count > 0.0 {
+                return mix(across / count, own, covered);
+            }
+        }
+    }
+    return own;
+}
+
+// The colour of the visibility texel at `p` (whose centre is `pos`).
+fn shade_pixel(p: vec2<i32>, pos: vec2<f32>) -> vec4<f32> {
     let ids = textureLoad(ids_tex, p, 0);
     let depth = bitcast<f32>(ids.w);
     if SILHOUETTES {
@@ -66,7 +101,7 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     // hidden-line drawings keep the caps' hatching.
     if ids.y == 0u || frame.modes.y != FILL_SHADED {
         if cap && frame.modes.y != FILL_NONE {
-            let h = hatch(pos.xy, ids);
+            let h = hatch(pos, ids);
             return vec4<f32>(mix(frame.background.rgb, frame.edge_colour.rgb, h), frame.background.a);
         }
         return frame.background;
@@ -82,8 +117,8 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     let view_pos = view_h.xyz / view_h.w;
     let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
     let v = select(normalize(-view_pos), vec3<f32>(0.0, 0.0, 1.0), ortho);
-    // The normal target holds 0.5 n + 0.5 (`encode_normal`, texel.wgsl).
-    var n = normalize(2.0 * textureLoad(normal_tex, p, 0).xyz - 1.0);
+    // The normal target holds its octahedral map (`encode_normal`, texel.wgsl).
+    var n = from_octahedral(textureLoad(normal_tex, p, 0).xy);
     // Both sides of a face are lit alike (open shells, views from inside).
     if dot(n, v) < 0.0 {
         n = -n;
@@ -116,7 +151,7 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
     var mapped = aces(colour);
     if cap {
         // Dark lines in the cap's own hue.
-        mapped = mix(mapped, 0.1 * mapped, hatch(pos.xy, ids));
+        mapped = mix(mapped, 0.1 * mapped, hatch(pos, ids));
     }
     return vec4<f32>(highlighted(mapped, ids), 1.0);
 }

@@ -48,6 +48,8 @@ pub(crate) struct PhaseInputs<'a> {
     pub with_uv: bool,
     /// The analytic back-end writes its proxies' depth (the tests' negative control).
     pub proxy_depth: bool,
+    /// The trim back-end writes its trimmed edges' coverage (the frame blends them).
+    pub coverage: bool,
 }
 
 /// Formats of the visibility buffer.
@@ -263,7 +265,8 @@ impl VisibilityPass {
     /// Records the pass: opens it once on `targets` (cleared) and has every back-end draw
     /// `scene` into it; `sections` says whether the frame has section planes;
     /// `proxy_depth` has the analytic back-end write its proxies' depth (the tests' negative
-    /// control). `clear_ids`: clear the ids target first; else it keeps the last frame's ids
+    /// control). `coverage`: the trim back-end writes its trimmed edges' coverage.
+    /// `clear_ids`: clear the ids target first; else it keeps the last frame's ids
     /// where nothing is drawn now, and readers must take a pixel's ids only where its depth
     /// is not 0 (see [`open`]). `timer` marks the end of the trim back-end's tessellation.
     pub fn record(
@@ -271,7 +274,13 @@ impl VisibilityPass {
         recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
         encoder: &mut wgpu::CommandEncoder,
         targets: &VisibilityTargets,
-        (frame, sections, proxy_depth, clear_ids): (&wgpu::Buffer, bool, bool, bool),
+        (frame, sections, proxy_depth, clear_ids, coverage): (
+            &wgpu::Buffer,
+            bool,
+            bool,
+            bool,
+            bool,
+        ),
         scene: &FrameScene<'_>,
         timer: Option<&crate::pass_timer::PassTimer>,
     ) {
@@ -281,6 +290,7 @@ impl VisibilityPass {
             sections,
             with_uv: targets.uv.is_some(),
             proxy_depth,
+            coverage,
         };
         if let Some(trim) = &self.trim
             && inputs.scene.trim.is_some()
@@ -348,6 +358,7 @@ impl VisibilityPass {
             sections: false,
             with_uv: false,
             proxy_depth: false,
+            coverage: false,
         };
         self.draw(recorder, &mut pass, &inputs, phase);
     }

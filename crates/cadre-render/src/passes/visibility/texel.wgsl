@@ -31,10 +31,11 @@ struct Cap {
     point: vec3<f32>,
 }
 
-// The normal target's texel of the unit normal `n` (`visibility::NORMAL`: [−1, 1] to [0, 1];
-// `decode_normal` in common.wgsl undoes it).
+// The normal target's texel of the unit normal `n`: its octahedral map (common.wgsl), then
+// the texel's coverage — 1, but for the trim back-end's pixels on a trimmed edge (the
+// shade pass blends those with their neighbours across the edge) — and 1.
 fn encode_normal(n: vec3<f32>) -> vec4<f32> {
-    return vec4<f32>(0.5 * n + 0.5, 1.0);
+    return vec4<f32>(octahedral(n), 1.0, 1.0);
 }
 
 fn cap_of(p: vec3<f32>) -> Cap {

@@ -251,8 +251,8 @@ pub(crate) struct TrimBackend {
     /// count of points taken (cleared each frame).
     grid: std::sync::Mutex<Option<(wgpu::Buffer, u64)>>,
     points_used: wgpu::Buffer,
-    /// Indexed by `sections + 2 × with_uv`.
-    pipelines: [OnceLock<wgpu::RenderPipeline>; 4],
+    /// Indexed by `sections + 2 × with_uv + 4 × coverage`.
+    pipelines: [OnceLock<wgpu::RenderPipeline>; 8],
     /// Whether fragments are trimmed (off only for the tests' negative control).
     trim_test: bool,
     /// Whether the tessellation pass evaluates grid points ([`TrimVariant::grid_points`]).
@@ -442,7 +442,9 @@ impl TrimBackend {
         if phase != Phase::Visibility {
             return;
         }
-        let k = usize::from(inputs.sections) + 2 * usize::from(inputs.with_uv);
+        let k = usize::from(inputs.sections)
+            + 2 * usize::from(inputs.with_uv)
+            + 4 * usize::from(inputs.coverage);
         let pipeline = self.pipelines[k].get_or_init(|| {
             pipeline(
                 device,
@@ -464,6 +466,7 @@ impl TrimBackend {
                     constants: &[
                         ("SECTIONS", if inputs.sections { 1.0 } else { 0.0 }),
                         ("TRIM_TEST", if self.trim_test { 1.0 } else { 0.0 }),
+                        ("COVERAGE", if inputs.coverage { 1.0 } else { 0.0 }),
                     ],
                 },
             )

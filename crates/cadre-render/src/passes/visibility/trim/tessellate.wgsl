@@ -15,7 +15,9 @@
 // (perspective), or the view's constant one (orthographic) — and within `TOLERANCE_REL` of
 // the face's bounding radius: the pixel bound alone lets a small or distant curved face sag
 // through whatever lies just behind it (a pipe's bore through its 2 mm wall at 20 mm a pixel),
-// since it bounds the error across the screen, not in depth. Faces outside the view frustum
+// since it bounds the error across the screen, not in depth — down to the model's depth bound
+// (`TrimScene::depth_tolerance`, a quarter of the static mesh's deflection), below which that
+// share over-tessellated small faces. Faces outside the view frustum
 // in all the call's instances get no cells.
 
 @group(0) @binding(1) var<storage, read> surfaces: array<TrimSurface>;
@@ -90,7 +92,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
     let distance = select(max(near, z_near), 1.0, ortho);
     let pixel = distance * 2.0 * frame.inv_proj[1][1] / frame.viewport.y;
-    let eps = max(min(TOLERANCE_PX * pixel, TOLERANCE_REL * s.sphere.w * scale), 1e-30);
+    // Half a pixel, and in depth a share of the face's radius, but no finer than the model's
+    // depth bound (`TrimScene::depth_tolerance`, the record's axis_z.w).
+    let depth = max(TOLERANCE_REL * s.sphere.w, s.axis_z.w) * scale;
+    let eps = max(min(TOLERANCE_PX * pixel, depth), 1e-30);
     let m = s.curvature.xyz * scale;
     let spans = grid_spans(s);
     // The widest span each way: every span gets the cells the widest needs.

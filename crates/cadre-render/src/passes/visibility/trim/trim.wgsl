@@ -16,6 +16,8 @@
 
 // The trim test, off only for the tests' negative control (the surfaces' whole boxes).
 override TRIM_TEST: bool = true;
+// Trimmed edges' pixels carry their analytic coverage (the frame's shade pass blends them).
+override COVERAGE: bool = true;
 
 struct TrimOut {
     @builtin(position) clip: vec4<f32>,
@@ -105,7 +107,9 @@ fn fs_main(in: TrimOut) -> VisibilityOut {
     // quarter of it keeps that within half a pixel where the face is not seen edge-on
     // (with the whole fwidth, pixels two away from a face were drawn on it), while the
     // cells of a distant perforated face still merge into their majority (no moiré).
-    let footprint = 0.25 * fwidth(in.local);
+    let jx = dpdx(in.local);
+    let jy = dpdy(in.local);
+    let footprint = 0.25 * (abs(jx) + abs(jy));
     let s = surfaces[in.surface];
     if TRIM_TEST && (in.crossed != 0u) && !trim_classify_within(s.ids.z, in.local, footprint) {
         discard;
@@ -115,5 +119,11 @@ fn fs_main(in: TrimOut) -> VisibilityOut {
     }
     let ids = unpack_instance(in.instance);
     let uv = s.uv.xy + in.local;
-    return visibility_texel(in.world, in.normal, s.ids.y, ids, in.clip.z, uv, in.facing < 0.0);
+    var out = visibility_texel(in.world, in.normal, s.ids.y, ids, in.clip.z, uv, in.facing < 0.0);
+    // Analytic coverage of a pixel on a trimmed edge (kept: its centre is on the face): ½ at
+    // the boundary, whole from half a pixel in (F / |∇F| in pixels; caps keep theirs).
+    if COVERAGE && TRIM_TEST && (in.crossed != 0u) && ((out.ids.z & SECTION_CAP) == 0u) {
+        out.normal.z = clamp(0.5 + trim_edge_pixels(s.ids.z, in.local, jx, jy), 0.5, 1.0);
+    }
+    return out;
 }
