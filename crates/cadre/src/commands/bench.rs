@@ -58,6 +58,10 @@ enum BenchWhat {
         /// How faces are drawn (as `cadre render --method`).
         #[arg(long, default_value = "mesh", value_enum)]
         method: crate::commands::render::Method,
+        /// Trimmed edges without their analytic coverage (`cadre render --antialias none`
+        /// leaves it out too): what it costs.
+        #[arg(long)]
+        no_coverage: bool,
     },
     /// The viewer's frame on the same heavy scene: the scene uploaded once, then each frame
     /// orbits the camera by 2°, draws into a kept viewport (the window's path, no readback)
@@ -128,7 +132,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             frames,
             mode,
             method,
-        } => bench_render(file, (*grid, *method), *size, *frames, *mode),
+            no_coverage,
+        } => bench_render(file, (*grid, *method), *size, *frames, (*mode, !*no_coverage)),
         BenchWhat::View {
             file,
             grid,
@@ -448,7 +453,7 @@ fn bench_render(
     grid: (u32, crate::commands::render::Method),
     (width, height): (u32, u32),
     frames: u32,
-    mode: cadre_render::DisplayMode,
+    (mode, analytic_coverage): (cadre_render::DisplayMode, bool),
 ) -> Result<()> {
     use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset, ViewState};
 
@@ -470,6 +475,7 @@ fn bench_render(
         supersample: 1,
         background: [1.0; 4],
         mode,
+        analytic_coverage,
         ..FrameOptions::default()
     };
     let trimmed_faces = renderer.prepare(&gpu, &scene).trimmed_faces();
