@@ -133,7 +133,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             mode,
             method,
             no_coverage,
-        } => bench_render(file, (*grid, *method), *size, *frames, (*mode, !*no_coverage)),
+        } => bench_render(
+            file,
+            (*grid, *method),
+            *size,
+            *frames,
+            (*mode, !*no_coverage),
+        ),
         BenchWhat::View {
             file,
             grid,
