@@ -99,7 +99,7 @@ impl Gpu {
         let read_only_depth = downlevel.contains(wgpu::DownlevelFlags::READ_ONLY_DEPTH_STENCIL);
         // The edges' compute rasterizer binds five storage buffers (segments, selection,
         // coverage, records, locals): one more than the downlevel default; the trim
-        // back-end's vertex stage ten (`passes::visibility::trim::STORAGE_BUFFERS`;
+        // back-end's tessellation fourteen (`passes::visibility::trim::STORAGE_BUFFERS`;
         // lavapipe allows 32).
         let storage_buffers = adapter
             .limits()

@@ -429,7 +429,10 @@ fn draw_file(
     };
     let scene = match args.method {
         Method::Mesh => scene,
-        Method::Trim => with_trims(renderer, scene, model, args.trim_tolerance_rel, input),
+        Method::Trim => {
+            let relative = view_trim_tolerance(args.trim_tolerance_rel, (w, h), args.zoom);
+            with_trims(renderer, scene, model, relative, input)
+        }
     };
     let fitted = match args.camera {
         Some(c) => Camera::looking((c.eye, c.target, c.up), c.fov_y, (lo, hi)),
@@ -463,6 +466,16 @@ fn draw_file(
 
 /// `scene` with `model`'s faces drawn from their exact surfaces (trims within `relative` of
 /// the diagonal), printing how many keep their meshes and why.
+/// The trims' tolerance relative to the diagonal for a `w` × `h` view magnified `zoom` times
+/// from the fitted one (which spans about the diagonal): `relative`, or a quarter of the
+/// view's pixel where that is finer — at 1000× a 1920-pixel view's pixel is 5·10⁻⁷ of the
+/// model, and trims fitted within 10⁻⁵ of it put trimmed edges 20 pixels off — but no finer
+/// than 10⁻⁷ (a face's `f32` local coordinates resolve about 6·10⁻⁸ of it).
+pub(crate) fn view_trim_tolerance(relative: f64, (w, h): (u32, u32), zoom: f64) -> f64 {
+    let pixel = 1.0 / (f64::from(w.max(h).max(1)) * zoom.max(1.0));
+    relative.min((0.25 * pixel).max(1e-7))
+}
+
 pub(crate) fn with_trims(
     renderer: &Renderer,
     scene: RenderScene,
@@ -517,4 +530,23 @@ pub(crate) fn centre_point(
         })
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .map_or(0.5 * (lo + hi), |(_, p)| p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::view_trim_tolerance;
+
+    #[test]
+    fn trims_are_fitted_within_a_quarter_pixel_of_the_view() {
+        // A fitted 1920-pixel view: the given tolerance (far under its pixel) stands.
+        assert_eq!(view_trim_tolerance(1e-5, (1920, 1080), 1.0), 1e-5);
+        // At 1000× a pixel is 1 / 1,920,000 of the model: a quarter of it.
+        let at_1000 = view_trim_tolerance(1e-5, (1920, 1080), 1000.0);
+        assert!((at_1000 - 0.25 / 1.92e6).abs() < 1e-15, "{at_1000}");
+        // Never under 10⁻⁷ (what a face's f32 coordinates resolve), nor for a bad zoom.
+        assert_eq!(view_trim_tolerance(1e-5, (1920, 1080), 1e9), 1e-7);
+        assert_eq!(view_trim_tolerance(1e-5, (160, 120), f64::NAN), 1e-5);
+        // Negative control: a coarser tolerance given is what a fitted view keeps.
+        assert_eq!(view_trim_tolerance(1e-3, (160, 120), 1.0), 1e-3);
+    }
 }

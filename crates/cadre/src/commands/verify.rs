@@ -11,7 +11,7 @@ use cadre_render::raycast::RayCaster;
 use cadre_render::{Camera, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset, ViewState};
 use serde_json::json;
 
-use crate::commands::render::{Method, centre_point, parse_size, with_trims};
+use crate::commands::render::{Method, centre_point, parse_size, view_trim_tolerance, with_trims};
 use crate::load::load_step;
 
 /// Arguments of `cadre verify`.
@@ -29,7 +29,9 @@ pub struct VerifyArgs {
     /// Image size, WIDTHxHEIGHT (the ray caster casts nine rays a pixel).
     #[arg(long, default_value = "160x120", value_parser = parse_size)]
     size: (u32, u32),
-    /// Tolerance of the trims, relative to the bounding-box diagonal.
+    /// Tolerance of the trims, relative to the bounding-box diagonal, at most (each zoom's
+    /// trims are fitted within a quarter of its pixel where that is finer, as `cadre render
+    /// --zoom` fits them).
     #[arg(long, default_value_t = 1e-5)]
     trim_tolerance_rel: f64,
     /// One JSON object instead of a table.
@@ -80,18 +82,10 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
     let mesh = mesh_model(model, &params, None);
     let gpu = Gpu::headless().context("no GPU adapter")?;
     let renderer = Renderer::new(&gpu)?;
-    let mut scene = RenderScene::from_model(model, &mesh);
+    let scene = RenderScene::from_model(model, &mesh);
     let (lo, hi) = scene
         .bounds()
         .with_context(|| format!("{}: nothing to draw", input.display()))?;
-    if args.method == Method::Trim {
-        scene = with_trims(&renderer, scene, model, args.trim_tolerance_rel, input);
-    }
-    let fallback: Vec<u64> = scene
-        .trim
-        .as_ref()
-        .map_or_else(Vec::new, |t| t.fallback.iter().map(|(id, _)| *id).collect());
-    let prepared = renderer.prepare(&gpu, &scene);
     let caster = RayCaster::new(model, 1e-4 * (hi - lo).length());
     let skipped: HashSet<u64> = caster.skipped.iter().copied().collect();
     let (w, h) = args.size;
@@ -101,11 +95,26 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
         supersample: 1,
         ..FrameOptions::default()
     };
-    let mut views = Vec::new();
-    for (name, preset) in VIEWS {
-        let fitted = Camera::fit(lo, hi, preset, false, f64::from(w) / f64::from(h));
-        let point = centre_point(&caster, &fitted, (lo, hi));
-        for &zoom in &args.zoom {
+    // Each zoom drawn with the trims `cadre render --zoom` would fit for it (within a quarter
+    // of its pixel, `view_trim_tolerance`); the faces left to their meshes are the same at
+    // every tolerance but the finest's are kept.
+    let mut fallback: Vec<u64> = Vec::new();
+    let mut by_zoom = Vec::new();
+    for &zoom in &args.zoom {
+        let scene = if args.method == Method::Trim {
+            let relative = view_trim_tolerance(args.trim_tolerance_rel, (w, h), zoom);
+            with_trims(&renderer, scene.clone(), model, relative, input)
+        } else {
+            scene.clone()
+        };
+        fallback = scene
+            .trim
+            .as_ref()
+            .map_or_else(Vec::new, |t| t.fallback.iter().map(|(id, _)| *id).collect());
+        let prepared = renderer.prepare(&gpu, &scene);
+        for (name, preset) in VIEWS {
+            let fitted = Camera::fit(lo, hi, preset, false, f64::from(w) / f64::from(h));
+            let point = centre_point(&caster, &fitted, (lo, hi));
             let camera = fitted.zoomed_at(point, zoom, (lo, hi));
             let ids =
                 renderer.render_ids(&gpu, &prepared, &camera, &options, &ViewState::default())?;
@@ -116,9 +125,12 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
             if args.explain {
                 explain(name, zoom, (&gpu_ids, &exact, &near), (w, h), &skipped);
             }
-            views.push((name, zoom, figures));
+            by_zoom.push((name, zoom, figures));
         }
     }
+    // View by view, each at every zoom (the order the output always had).
+    by_zoom.sort_by_key(|v| VIEWS.iter().position(|(name, _)| *name == v.0));
+    let views = by_zoom;
     if args.json {
         let views: Vec<serde_json::Value> = views
             .iter()

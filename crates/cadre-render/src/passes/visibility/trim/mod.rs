@@ -35,7 +35,8 @@ pub(crate) const BINDINGS: &[Binding] = &[
 
 /// The tessellation pass's bind group 0: frame, surfaces, tasks, what it writes (the
 /// indirect draws and the levels), the packed B-splines (their knot lines), the count of
-/// grid points taken and the points; group 1: the instances.
+/// grid points taken and the points (with the cells' verdicts after them), the five trim
+/// buffers; group 1: the instances.
 pub(crate) const TESSELLATE_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(TrimSurface::WGSL_NAME),
@@ -45,11 +46,17 @@ pub(crate) const TESSELLATE_BINDINGS: &[Binding] = &[
     Binding::Storage("f32"),
     Binding::AtomicStorage,
     Binding::StorageWrite("vec4<f32>"),
+    Binding::Storage("TrimFace"),
+    Binding::Storage("u32"),
+    Binding::Storage("f32"),
+    Binding::Storage("u32"),
+    Binding::Storage("u32"),
 ];
 
-/// Storage buffers the render shader's stages bind (its group 0's eight and the instances'
-/// two): an adapter allowing fewer per stage draws every face from its mesh.
-pub(crate) const STORAGE_BUFFERS: u32 = 11;
+/// Storage buffers a stage of the back-end binds, at most: the tessellation pass' twelve and
+/// the instances' two (the render shader's stages bind eleven); an adapter allowing fewer
+/// per stage draws every face from its mesh.
+pub(crate) const STORAGE_BUFFERS: u32 = 14;
 
 /// Grid points the tessellation pass may hold per task, on average, before faces fall back
 /// to being evaluated by the vertex shader: a 32 × 32 grid (a frame's faces mostly need far
@@ -107,6 +114,7 @@ pub(crate) fn tessellate_source() -> String {
         include_str!("bspline.wgsl"),
         include_str!("sweep.wgsl"),
         include_str!("tessellate.wgsl"),
+        cadre_trim::TRIM_WGSL,
     ])
 }
 
@@ -381,6 +389,11 @@ impl TrimBackend {
                 geometry.bspline.as_entire_binding(),
                 self.points_used.as_entire_binding(),
                 grid.as_entire_binding(),
+                geometry.faces.as_entire_binding(),
+                geometry.nodes.as_entire_binding(),
+                geometry.floats.as_entire_binding(),
+                geometry.piece_offsets.as_entire_binding(),
+                geometry.lists.as_entire_binding(),
             ],
         );
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

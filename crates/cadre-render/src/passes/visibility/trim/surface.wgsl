@@ -41,6 +41,15 @@ const NO_POINTS: u32 = 0xffffffffu;
 // `TrimFaceSurface::breaks` of a face drawn as one span each way.
 const NO_BREAKS: u32 = 0xffffffffu;
 
+// Where the trim verdict of cell `cell` of a grid of `lines` cells each way lies in the grid
+// points' buffer (`grid_points`, vec4s) whose points start at point `base`: after the grid's
+// (lines + 1)² points, eight verdicts a point's room (two vec4s), one a component, stored as
+// an `f32` value (0, 1, 2: `TRIM_CELL_*`). x: the vec4's index; y: the component.
+fn verdict_slot(base: u32, lines: vec2<u32>, cell: u32) -> vec2<u32> {
+    let points = (lines.x + 1u) * (lines.y + 1u);
+    return vec2<u32>(2u * (base + points) + cell / 4u, cell % 4u);
+}
+
 // The spans of face `s`'s grid along u and v (its knot lines within its box; one span each
 // way for the closed forms).
 fn grid_spans(s: TrimSurface) -> vec2<u32> {

@@ -27,6 +27,12 @@
 @group(0) @binding(5) var<storage, read> trim_bspline: array<f32>;
 @group(0) @binding(6) var<storage, read_write> points_used: array<atomic<u32>>;
 @group(0) @binding(7) var<storage, read_write> grid_points: array<vec4<f32>>;
+// The trim trees (`cadre_trim::TRIM_WGSL`, appended): the cells' verdicts.
+@group(0) @binding(8) var<storage, read> trim_faces: array<TrimFace>;
+@group(0) @binding(9) var<storage, read> trim_nodes: array<u32>;
+@group(0) @binding(10) var<storage, read> trim_floats: array<f32>;
+@group(0) @binding(11) var<storage, read> trim_piece_offsets: array<u32>;
+@group(0) @binding(12) var<storage, read> trim_lists: array<u32>;
 
 // The tessellation's tolerance, in pixels.
 override TOLERANCE_PX: f32 = 0.5;
@@ -127,8 +133,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     args[4u * t + 1u] = task.instances;
     args[4u * t + 2u] = task.slot * TRIM_VERTICES;
     args[4u * t + 3u] = 0u;
-    // Room for the grid's points (two vec4 each), or none: the vertex shader evaluates them.
-    let points = select(0u, (lines.x + 1u) * (lines.y + 1u), visible);
+    // Room for the grid's points (two vec4 each) and its cells' trim verdicts (eight a
+    // point's room, `verdict_slot`), or none: the vertex shader evaluates them.
+    let points = select(0u, (lines.x + 1u) * (lines.y + 1u) + (cells + 7u) / 8u, visible);
     var base = NO_POINTS;
     if points > 0u {
         let at = atomicAdd(&points_used[0], points);
@@ -165,5 +172,19 @@ fn cs_points(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_ind
         let p = face_point(s, s.uv.xy + local);
         grid_points[2u * (base + i)] = vec4<f32>(p.position, local.x);
         grid_points[2u * (base + i) + 1u] = vec4<f32>(p.normal, local.y);
+    }
+    // Each cell against the face's trim tree, once (the vertex shader reads the verdict at
+    // each of the cell's six corners): out — not drawn, in — not tested per pixel, crossed.
+    let lines = per * spans;
+    let cells = lines.x * lines.y;
+    for (var c = lane + 64u * wg.z; c < cells; c += 64u * POINT_CHUNKS) {
+        let first = vec2<u32>(c % lines.x, c / lines.x);
+        let lo = vec2<f32>(grid_param(s, spans, 0u, first.x, per.x), grid_param(s, spans, 1u, first.y, per.y));
+        let hi = vec2<f32>(
+            grid_param(s, spans, 0u, first.x + 1u, per.x),
+            grid_param(s, spans, 1u, first.y + 1u, per.y),
+        );
+        let slot = verdict_slot(base, lines, c);
+        grid_points[slot.x][slot.y] = f32(trim_cell(s.ids.z, lo, hi));
     }
 }

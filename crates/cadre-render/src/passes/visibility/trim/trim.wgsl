@@ -68,9 +68,13 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
         local = vec2<f32>(grid_param(s, spans, 0u, grid.x, per.x), grid_param(s, spans, 1u, grid.y, per.y));
         point = face_point(s, s.uv.xy + local);
     }
-    // The cell against the tree, the same at its six corners.
+    // The cell against the tree, the same at its six corners: the tessellation pass's
+    // verdict, or (no room there) worked out here.
     var verdict = TRIM_CELL_CROSSED;
-    if TRIM_TEST {
+    if TRIM_TEST && (base != NO_POINTS) {
+        let slot = verdict_slot(base, lines, cell);
+        verdict = u32(grid_points[slot.x][slot.y] + 0.5);
+    } else if TRIM_TEST {
         let cell_lo = vec2<f32>(grid_param(s, spans, 0u, first.x, per.x), grid_param(s, spans, 1u, first.y, per.y));
         let cell_hi = vec2<f32>(
             grid_param(s, spans, 0u, first.x + 1u, per.x),
