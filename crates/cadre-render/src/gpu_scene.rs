@@ -646,6 +646,38 @@ pub(crate) struct FrameScene<'a> {
     pub trim: Option<FrameTrim>,
 }
 
+/// The records of a trimmed call (`(record, nearest distance from the eye)`) grouped in
+/// distance bands, each with its nearest distance: the trim back-end tessellates a call's
+/// faces for its nearest instance, so one call over a large assembly of repeated parts would
+/// draw its farthest copies with the grids of its nearest. A band holds the records whose
+/// nearest distance lies within a factor of two (`[2^k, 2^(k+1))`), so no copy gets more
+/// than twice the pixel accuracy it needs (its grid √2 finer each way, at most); the records
+/// an eye is inside of form a band of their own. An orthographic view's grids do not depend
+/// on the distance: one band.
+pub(crate) fn distance_bands(
+    records: &[(Draw, f64)],
+    orthographic: bool,
+) -> Vec<(Vec<usize>, f64)> {
+    let key = |near: f64| {
+        if orthographic {
+            0
+        } else if !near.is_finite() || near <= 0.0 {
+            i32::MIN
+        } else {
+            near.log2().floor().clamp(-1000.0, 1000.0) as i32
+        }
+    };
+    let mut bands: BTreeMap<i32, (Vec<usize>, f64)> = BTreeMap::new();
+    for (k, &(_, near)) in records.iter().enumerate() {
+        let band = bands
+            .entry(key(near))
+            .or_insert((Vec::new(), f64::INFINITY));
+        band.0.push(k);
+        band.1 = band.1.min(near);
+    }
+    bands.into_values().collect()
+}
+
 /// A visible run's base draw record, the material of its view colour, if any, and its
 /// bounding sphere relative to the eye.
 type RunRecord = (Draw, Option<u32>, (DVec3, f64));
@@ -867,38 +899,54 @@ impl<'a> FrameScene<'a> {
                     .filter(|&m| m + 1 < geometry.materials.len())
                     .map_or(geometry.default_material(), |m| m as u32);
                 // Opaque runs first, then see-through ones, each a contiguous run of records.
-                let resolved: Vec<(Draw, bool)> = group
+                let resolved: Vec<(Draw, bool, f64)> = group
                     .iter()
-                    .map(|&(d, colour, _)| {
+                    .map(|&(d, colour, (c, r))| {
                         let m = colour.unwrap_or(own_material);
                         let see_through = materials[m as usize].base_color[3] < SEE_THROUGH_BELOW;
-                        (Draw { material: m, ..d }, see_through)
+                        (Draw { material: m, ..d }, see_through, c.length() - r)
                     })
                     .collect();
                 for &(see_through, inside_out) in parts {
+                    let chosen: Vec<(Draw, f64)> = resolved
+                        .iter()
+                        .filter(|(d, t, _)| {
+                            *t == see_through
+                                && inside_out
+                                    .is_none_or(|i| i == ((d.flags & DRAW_INSIDE_OUT) != 0))
+                        })
+                        .map(|&(d, _, near)| (d, near))
+                        .collect();
                     let start = out.draws.len() as u32;
-                    out.draws.extend(
-                        resolved
-                            .iter()
-                            .filter(|(d, t)| {
-                                *t == see_through
-                                    && inside_out
-                                        .is_none_or(|i| i == ((d.flags & DRAW_INSIDE_OUT) != 0))
-                            })
-                            .map(|(d, _)| *d),
-                    );
-                    let records = out.draws.len() as u32 - start;
+                    out.draws.extend(chosen.iter().map(|(d, _)| *d));
+                    let records = chosen.len() as u32;
                     if records == 0 {
                         continue;
                     }
                     let trimmed = !see_through && range.surfaces.1 > 0;
                     if trimmed {
-                        out.trim_calls(
-                            range.surfaces,
-                            (start, records * list.count),
-                            locals,
-                            near as f32,
-                        );
+                        let bands = distance_bands(&chosen, camera.is_orthographic());
+                        if bands.len() == 1 {
+                            out.trim_calls(
+                                range.surfaces,
+                                (start, records * list.count),
+                                locals,
+                                near as f32,
+                            );
+                        } else {
+                            // Each band's records again, contiguous, so that its call's
+                            // instances are the band's alone.
+                            for (band, band_near) in bands {
+                                let first = out.draws.len() as u32;
+                                out.draws.extend(band.iter().map(|&k| chosen[k].0));
+                                out.trim_calls(
+                                    range.surfaces,
+                                    (first, band.len() as u32 * list.count),
+                                    locals,
+                                    band_near as f32,
+                                );
+                            }
+                        }
                     }
                     let call = DrawCall {
                         mesh,
@@ -1084,7 +1132,41 @@ pub(crate) fn buffer(
 
 #[cfg(test)]
 mod tests {
-    use super::buffer_limit;
+    use super::{buffer_limit, distance_bands};
+    use crate::layout::Draw;
+
+    /// A trimmed call's records are split by distance within a factor of two, each band
+    /// keeping its nearest distance; the eye's own records and an orthographic view's are
+    /// not split by distance.
+    #[test]
+    fn trimmed_records_are_banded_by_distance() {
+        let records: Vec<(Draw, f64)> = [3.0, 1.5, 2.5, 40.0, -1.0, 33.0, 7.9]
+            .iter()
+            .map(|&near| (Draw::default(), near))
+            .collect();
+        let bands = distance_bands(&records, false);
+        let got: Vec<(Vec<usize>, f64)> = bands;
+        assert_eq!(
+            got,
+            vec![
+                (vec![4], -1.0),
+                (vec![1], 1.5),
+                (vec![0, 2], 2.5),
+                (vec![6], 7.9),
+                (vec![3, 5], 33.0),
+            ]
+        );
+        // Every record in exactly one band, within a factor of two of the band's nearest.
+        for (band, near) in distance_bands(&records, false) {
+            for k in band {
+                let d = records[k].1;
+                assert!(d >= near && (near <= 0.0 || d < 2.0 * near), "{d} {near}");
+            }
+        }
+        let ortho = distance_bands(&records, true);
+        assert_eq!(ortho.len(), 1);
+        assert_eq!(ortho[0].0.len(), records.len());
+    }
 
     /// Storage buffers are bound whole: the binding limit, not the buffer limit, caps them
     /// (wgpu's defaults: 128 MiB against 256 MiB), so 2·10⁶ draw records of 128 bytes are

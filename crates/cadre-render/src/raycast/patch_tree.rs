@@ -25,6 +25,11 @@ const MAX_ROOT_SPLITS: usize = 64;
 const MAX_ANGLE: f64 = std::f64::consts::FRAC_PI_2;
 /// Newton iterations per leaf.
 const NEWTON_STEPS: usize = 24;
+/// How far Newton's iterates may roam from their cell, in cell sizes each way, before a
+/// step is damped.
+const ROAM: f64 = 8.0;
+/// Halvings of a Newton step, at most, that leaves its cell before the step is refused.
+const DAMPING_HALVINGS: u32 = 12;
 /// Halvings of a leaf, at most, while isolating the nearest hit of a grazing ray.
 const REFINE_DEPTH: u32 = 12;
 /// Halvings of a leaf, at most, where Newton's method found no hit for a grazing ray.
@@ -34,7 +39,7 @@ const MISSED_REFINE_DEPTH: u32 = 4;
 const GRAZING_SIN: f64 = 0.0;
 /// Cell halvings per ray, at most (each samples two cells): bounds the work of a ray
 /// running along a surface inside many cells' boxes.
-const REFINE_BUDGET: u32 = 64;
+const REFINE_BUDGET: u32 = 128;
 /// Refined cells a [`RefineCache`] keeps, at most, by default (about 170 bytes each).
 pub(crate) const REFINE_CACHE_CELLS: usize = 1 << 19;
 /// Safety factor on the sampled second-derivative bound.
@@ -414,18 +419,38 @@ impl PatchTree {
                 return None;
             }
             let r = -f;
-            let step_u = r.dot(b.cross(c)) / det;
-            let step_v = a.dot(r.cross(c)) / det;
-            let step_t = a.dot(b.cross(r)) / det;
-            // Left the widened cell by more than its size: the hit, if any, is another
-            // cell's.
-            u += step_u;
-            v += step_v;
-            t += step_t;
-            let (wu, wv) = (u1 - u0, v1 - v0);
-            if !(u > u0 - wu && u < u1 + wu && v > v0 - wv && v < v1 + wv && t.is_finite()) {
-                return None;
+            let step = (
+                r.dot(b.cross(c)) / det,
+                a.dot(r.cross(c)) / det,
+                a.dot(b.cross(r)) / det,
+            );
+            let (wu, wv) = (ROAM * (u1 - u0), ROAM * (v1 - v0));
+            let inside = |(u, v, t): (f64, f64, f64)| {
+                u > u0 - wu && u < u1 + wu && v > v0 - wv && v < v1 + wv && t.is_finite()
+            };
+            let full = (u + step.0, v + step.1, t + step.2);
+            if inside(full) {
+                (u, v, t) = full;
+                continue;
             }
+            // The full step leaves the widened cell by more than its size. A ray nearly
+            // along a direction the surface is straight in (a ruled face seen along its
+            // rulings: the Jacobian nearly singular) is thrown far off by the first steps
+            // from the centre though its hit lies in the cell (bug29478's face from the
+            // front): the step is halved until it stays in and brings the point nearer
+            // the ray. None that does: the hit, if any, is another cell's.
+            let residual = f.length();
+            let damped = (1..=DAMPING_HALVINGS).find_map(|k| {
+                let lambda = 0.5f64.powi(k as i32);
+                let p = (
+                    u + lambda * step.0,
+                    v + lambda * step.1,
+                    t + lambda * step.2,
+                );
+                (inside(p) && (surface.eval(p.0, p.1) - o - d * p.2).length() < residual)
+                    .then_some(p)
+            });
+            (u, v, t) = damped?;
         }
         None
     }
@@ -721,6 +746,55 @@ mod tests {
                     20.0 - y
                 );
             }
+        }
+    }
+
+    /// Rays nearly along a surface's straight direction (a cylinder's rulings: the Newton
+    /// Jacobian [S_u S_v −d] nearly singular) still find their hits, at the right place;
+    /// rays that miss the half cylinder still miss (bug29478: a ruled face seen from the
+    /// front was mostly missed).
+    #[test]
+    fn rays_along_the_rulings_hit_where_they_should() {
+        let surface = Surface::Cylinder {
+            frame: Frame::WORLD,
+            radius: 1.0,
+        };
+        let pi = std::f64::consts::PI;
+        let tree = PatchTree::build(&surface, (0.0, pi), (0.0, 10.0), RefineCache::new(1 << 12))
+            .expect("tree");
+        let (mut found, mut rays) = (0, 0);
+        for slope in [0.02, 0.005, 0.001] {
+            for k in 0..24 {
+                let u = 0.2 + 2.7 * f64::from(k) / 23.0;
+                let z = 1.0 + 8.0 * f64::from((k * 7) % 23) / 22.0;
+                let hit_point = DVec3::new(u.cos(), u.sin(), z);
+                // Leaving the tube outwards, a little off its normal, from 50 units below.
+                let a = u + 0.3;
+                let d = (DVec3::Z + slope * DVec3::new(a.cos(), a.sin(), 0.0)).normalize();
+                let length = 50.0;
+                let o = hit_point - d * length;
+                assert!(
+                    o.x * o.x + o.y * o.y < 1.0,
+                    "the ray starts inside the tube"
+                );
+                rays += 1;
+                if let Some(h) = tree.nearest(&surface, (o, d), 1e9, |_, _| true) {
+                    assert!((h.t - length).abs() < 1e-6, "slope {slope}, u {u}: {h:?}");
+                    found += 1;
+                }
+            }
+        }
+        assert_eq!(found, rays, "hits found");
+        // Negative control: the same rays turned to leave through the other half (y < 0),
+        // which the face does not have, miss.
+        for k in 0..24 {
+            let u = -0.2 - 2.7 * f64::from(k) / 23.0;
+            let d = (DVec3::Z + 0.005 * DVec3::new(u.cos(), u.sin(), 0.0)).normalize();
+            let o = DVec3::new(u.cos(), u.sin(), 5.0) - d * 50.0;
+            assert!(
+                tree.nearest(&surface, (o, d), 1e9, |_, _| true).is_none(),
+                "u {u}"
+            );
         }
     }
 

@@ -464,8 +464,6 @@ fn draw_file(
         .with_context(|| format!("{}: nothing was drawn", input.display()))
 }
 
-/// `scene` with `model`'s faces drawn from their exact surfaces (trims within `relative` of
-/// the diagonal), printing how many keep their meshes and why.
 /// The trims' tolerance relative to the diagonal for a `w` × `h` view magnified `zoom` times
 /// from the fitted one (which spans about the diagonal): `relative`, or a quarter of the
 /// view's pixel where that is finer — at 1000× a 1920-pixel view's pixel is 5·10⁻⁷ of the
@@ -476,6 +474,8 @@ pub(crate) fn view_trim_tolerance(relative: f64, (w, h): (u32, u32), zoom: f64) 
     relative.min((0.25 * pixel).max(1e-7))
 }
 
+/// `scene` with `model`'s faces drawn from their exact surfaces (trims within `relative` of
+/// the diagonal), printing how many keep their meshes and why.
 pub(crate) fn with_trims(
     renderer: &Renderer,
     scene: RenderScene,
