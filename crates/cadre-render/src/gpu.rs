@@ -18,6 +18,9 @@ pub struct Gpu {
     /// (`DownlevelFlags::COMPUTE_SHADERS`): the B-Rep edges of the visible-edges mode are
     /// then rasterized in compute ([`crate::passes`]' edges raster), else drawn as quads.
     pub compute: bool,
+    /// Whether fragment shaders may write storage buffers
+    /// (`DownlevelFlags::FRAGMENT_WRITABLE_STORAGE`): the crack pass needs it.
+    pub fragment_storage: bool,
 }
 
 impl Gpu {
@@ -139,6 +142,7 @@ impl Gpu {
             info,
             read_only_depth,
             compute,
+            fragment_storage: downlevel.contains(wgpu::DownlevelFlags::FRAGMENT_WRITABLE_STORAGE),
         })
     }
 

@@ -280,9 +280,16 @@ pub struct PreparedScene {
     pub(crate) trim: Option<TrimGeometry>,
     /// Faces the trim back-end draws (0 without trims).
     trimmed_faces: usize,
+    /// The scene's bounding-box diagonal (0 when empty): the crack pass's d_min follows it.
+    diagonal: f64,
 }
 
 impl PreparedScene {
+    /// The scene's bounding-box diagonal, world units (0 when it is empty).
+    pub fn diagonal(&self) -> f64 {
+        self.diagonal
+    }
+
     /// Uploads `scene`'s geometry: its meshes' and its primitives'; past `flat_limit`
     /// instances its placements are factored ([`Placements`]).
     /// `trims`: whether the renderer draws trimmed faces (the scene's [`crate::TrimScene`],
@@ -296,6 +303,7 @@ impl PreparedScene {
         let primitives = &scene.primitives;
         let trim_scene = scene.trim.as_deref().filter(|_| trims);
         let face_records = &scene.faces;
+        let diagonal = scene.bounds().map_or(0.0, |(lo, hi)| (hi - lo).length());
         // The exact face a dense face id is drawn from by the trim back-end, if any.
         let trimmed = |id: u32| -> Option<&crate::trim_surfaces::TrimFaceSurface> {
             let trim = trim_scene?;
@@ -443,6 +451,7 @@ impl PreparedScene {
             placements,
             primitives: primitives.clone(),
             primitive_materials,
+            diagonal,
             trimmed_faces: surfaces.len(),
             trim: trim_scene
                 .filter(|_| !surfaces.is_empty())

@@ -42,7 +42,7 @@ pub struct PassShader {
 
 /// Every shader of the renderer, with what the Rust side binds to it (for the layout tests).
 pub fn pass_shaders() -> Vec<PassShader> {
-    use crate::passes::{edges, pick, shade, visibility};
+    use crate::passes::{cracks, edges, pick, shade, visibility};
     let shader = |name, source, bindings, instanced| PassShader {
         name,
         source,
@@ -73,6 +73,24 @@ pub fn pass_shaders() -> Vec<PassShader> {
             visibility::trim::tessellate_source(),
             visibility::trim::TESSELLATE_BINDINGS,
             true,
+        ),
+        shader(
+            "visibility/trim crack fill",
+            visibility::trim::crack_source(),
+            visibility::trim::CRACK_BINDINGS,
+            true,
+        ),
+        shader(
+            "cracks detection",
+            cracks::detect_source(),
+            cracks::DETECT_BINDINGS,
+            false,
+        ),
+        shader(
+            "cracks resolve",
+            cracks::resolve_source(),
+            cracks::RESOLVE_BINDINGS,
+            false,
         ),
         shader("shade", shade::source(), shade::BINDINGS, false),
         shader("edges", edges::source(), edges::BINDINGS, true),
@@ -158,7 +176,8 @@ pub struct FrameUniform {
     /// Target width and height, edge width and hidden-edge dash length, all in target pixels.
     pub viewport: [f32; 4],
     /// Relative depth tolerances: an edge behind the scene's depth by less is visible; a
-    /// depth jump past the second makes a silhouette outline; unused, unused.
+    /// depth jump past the second makes a silhouette outline; then the crack pass's d_min
+    /// and gap tolerance, world units (`passes::cracks::tolerances`).
     pub tolerances: [f32; 4],
     /// Projection ([`PROJECTION_PERSPECTIVE`], [`PROJECTION_ORTHOGRAPHIC`]), face fill
     /// ([`FILL_SHADED`], [`FILL_BACKGROUND`], [`FILL_NONE`]), edge mode ([`EDGES_VISIBLE`],

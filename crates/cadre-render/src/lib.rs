@@ -78,6 +78,9 @@ pub use error::RenderError;
 pub use gpu::Gpu;
 pub use gpu_scene::{MAX_FRAME_TRIANGLES, PreparedScene};
 pub use lights::Light;
+pub use passes::cracks::{
+    CrackCounts, CrackMode, CrackOptions, MIN_DEPTH_REL as CRACK_MIN_DEPTH_REL,
+};
 pub use pick::PendingPick;
 pub use placements::{FLAT_LIMIT, MAX_LOCALS_PER_NODE};
 pub use render_scene::{RenderFace, RenderScene};
@@ -85,8 +88,8 @@ pub use renderer::{DisplayMode, FrameOptions, Renderer};
 pub use smooth::smooth_edges;
 pub use trim_surfaces::TrimScene;
 pub use view::{
-    InstanceStyle, MAX_HIGHLIGHTED, MAX_SECTIONS, Pick, SECTION_CAP, SectionPlane, ViewState,
-    section_cap,
+    CRACK_FILLED, GAP_CLOSED, InstanceStyle, MAX_HIGHLIGHTED, MAX_SECTIONS, Pick, SECTION_CAP,
+    SectionPlane, ViewState, section_cap,
 };
 pub use viewport::{PickHit, PickWindow, Viewport};
 /// The wgpu this renderer is built on, for embedders that hand it their window's surface.

@@ -8,6 +8,7 @@ use crate::layout::{
     EDGES_ALL, EDGES_VISIBLE, FrameUniform, LightGpu, LightRig, MAX_LIGHTS,
     PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE,
 };
+use crate::passes::cracks::{CrackCounts, CrackMode, CrackOptions, CrackPass};
 use crate::passes::edges::EdgesPass;
 use crate::passes::instances::InstanceLayout;
 use crate::passes::pick::PickPass;
@@ -88,6 +89,9 @@ pub struct FrameOptions {
     /// Lights (ambient light from the environment comes on top); the first
     /// [`crate::layout::MAX_LIGHTS`] are lit, the rest left out with a warning.
     pub lights: Vec<Light>,
+    /// How the cracks between faces drawn by the trim back-end are closed (exact by
+    /// default; frames without trimmed faces have none).
+    pub cracks: CrackOptions,
 }
 
 impl Default for FrameOptions {
@@ -103,6 +107,7 @@ impl Default for FrameOptions {
             mode: DisplayMode::Shaded,
             edge_width: 1.5,
             lights: Light::cad_rig(),
+            cracks: CrackOptions::default(),
         }
     }
 }
@@ -124,6 +129,12 @@ pub struct Renderer {
     binds: BindCache,
     /// Per-stage GPU timings of each frame ([`Renderer::with_pass_timings`]).
     timer: Option<crate::pass_timer::PassTimer>,
+    /// The crack pass, built on the first frame that closes cracks; `None` inside where the
+    /// adapter cannot run it (no compute, or fragment shaders that cannot write storage).
+    cracks: std::sync::OnceLock<CrackPass>,
+    /// Whether the adapter runs the crack pass (compute shaders, storage written by
+    /// fragment shaders), and its exact fill (enough storage buffers a stage).
+    crack_support: (bool, bool),
 }
 
 impl Renderer {
@@ -148,6 +159,8 @@ impl Renderer {
             proxy_depth: false,
             binds: BindCache::default(),
             timer: None,
+            cracks: std::sync::OnceLock::new(),
+            crack_support: crack_support(gpu),
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e)),
@@ -233,6 +246,28 @@ impl Renderer {
     /// Waits for the GPU.
     pub fn last_trim_triangles(&self, gpu: &Gpu) -> u64 {
         self.visibility.last_trim_triangles(&gpu.device, &gpu.queue)
+    }
+
+    /// What the last frame's crack pass did (zeros when no frame closed cracks). Waits for
+    /// the GPU.
+    pub fn last_crack_counts(&self, gpu: &Gpu) -> CrackCounts {
+        self.cracks.get().map_or_else(CrackCounts::default, |c| {
+            c.last_counts(&gpu.device, &gpu.queue)
+        })
+    }
+
+    /// The crack mode a frame of `scene` with `options` runs: off where the trim back-end
+    /// draws nothing or the adapter cannot run the pass, fast where it cannot run the
+    /// exact fill.
+    fn crack_mode(&self, scene: &PreparedScene, options: &FrameOptions) -> CrackMode {
+        let (pass, exact) = self.crack_support;
+        if !pass || !self.draws_trims() || scene.trim.is_none() {
+            return CrackMode::Off;
+        }
+        match options.cracks.mode {
+            CrackMode::Exact if !exact => CrackMode::Fast,
+            mode => mode,
+        }
     }
 
     /// Whether faces of scenes with trims ([`RenderScene::with_trims`]) are drawn from
@@ -463,6 +498,9 @@ impl Renderer {
         };
         let (_, edge_mode) = options.mode.fill_and_edges();
         let mut frame = frame_uniform(camera, options, state, (w, h));
+        let crack_mode = self.crack_mode(scene, options);
+        [frame.tolerances[2], frame.tolerances[3]] =
+            crate::passes::cracks::tolerances(&options.cracks, scene.diagonal());
         // Trimmed edges carry their coverage only where faces are trimmed per pixel.
         let coverage = options.analytic_coverage && scene.trim.is_some() && self.draws_trims();
         frame.counts[3] = u32::from(coverage);
@@ -521,6 +559,43 @@ impl Renderer {
             &frame_scene,
             timer,
         );
+        if crack_mode != CrackMode::Off {
+            let recorder = (device, &self.binds);
+            let cracks = self.cracks.get_or_init(|| CrackPass::new(device));
+            let crack_buffers = cracks.buffers(device, u64::from(w) * u64::from(h));
+            if let Some(t) = timer {
+                t.mark(&mut encoder, "visibility");
+            }
+            cracks.detect(
+                recorder,
+                &mut encoder,
+                targets,
+                frame_buffer,
+                (&crack_buffers, (w, h)),
+            );
+            let exact = crack_mode == CrackMode::Exact
+                && self.visibility.record_crack_fill(
+                    recorder,
+                    &mut encoder,
+                    targets,
+                    (frame_buffer, sections),
+                    &frame_scene,
+                    &crack_buffers,
+                );
+            cracks.resolve(
+                recorder,
+                &mut encoder,
+                targets,
+                frame_buffer,
+                &crack_buffers,
+                (exact, options.cracks.highlight),
+            );
+        }
+        let visibility_stage = if crack_mode == CrackMode::Off {
+            "visibility"
+        } else {
+            "cracks"
+        };
         let mark = |encoder: &mut wgpu::CommandEncoder, stage| {
             if let Some(t) = timer {
                 t.mark(encoder, stage);
@@ -540,11 +615,11 @@ impl Renderer {
         };
         let bytes = match readback {
             Readback::Ids => {
-                mark(&mut encoder, "visibility");
+                mark(&mut encoder, visibility_stage);
                 read_region(gpu, encoder, &targets.ids_texture, (0, 0), (w, h), 16)?
             }
             Readback::Uv => {
-                mark(&mut encoder, "visibility");
+                mark(&mut encoder, visibility_stage);
                 match &targets.uv {
                     Some((_, uv)) => read_region(gpu, encoder, uv, (0, 0), (w, h), 8)?,
                     None => Vec::new(),
@@ -552,7 +627,7 @@ impl Renderer {
             }
             Readback::Into(view) => {
                 if let Some(t) = timer {
-                    t.mark(&mut encoder, "visibility");
+                    t.mark(&mut encoder, visibility_stage);
                 }
                 self.shade_into(&shading, &mut encoder, view);
                 mark(&mut encoder, "shade");
@@ -576,7 +651,7 @@ impl Renderer {
                 });
                 let colour_view = colour.create_view(&Default::default());
                 if let Some(t) = timer {
-                    t.mark(&mut encoder, "visibility");
+                    t.mark(&mut encoder, visibility_stage);
                 }
                 self.shade_into(&shading, &mut encoder, &colour_view);
                 mark(&mut encoder, "shade");
@@ -971,6 +1046,17 @@ fn downsample(full: &RgbaImage, factor: u32) -> RgbaImage {
             }
         });
     RgbaImage::from_raw(w, h, out).expect("the buffer has w × h pixels")
+}
+
+/// Whether `gpu` runs the crack pass (compute shaders, and fragment shaders that write
+/// storage buffers: its resolve counts what it did) and its exact fill (whose fragment
+/// stage binds [`crate::passes::visibility::trim::CRACK_STORAGE_BUFFERS`] storage buffers).
+fn crack_support(gpu: &Gpu) -> (bool, bool) {
+    let pass = gpu.compute && gpu.fragment_storage;
+    let exact = pass
+        && gpu.device.limits().max_storage_buffers_per_shader_stage
+            >= crate::passes::visibility::trim::CRACK_STORAGE_BUFFERS;
+    (pass, exact)
 }
 
 #[cfg(test)]

@@ -138,6 +138,15 @@ impl SectionPlane {
 /// plane's depth. Bits 28–29 hold the plane's index, the bits below the material.
 pub const SECTION_CAP: u32 = 1 << 31;
 
+/// Flag in the material channel of a pixel's ids (not a section cap's) marking a crack the
+/// crack pass filled, set in the inspection view only ([`crate::CrackOptions::highlight`]):
+/// the shade pass paints it magenta.
+pub const CRACK_FILLED: u32 = 1 << 30;
+
+/// The same for a real gap in the model narrower than the gap tolerance, closed by the crack
+/// pass ([`crate::CrackOptions::gap_tolerance`]): painted orange.
+pub const GAP_CLOSED: u32 = 1 << 29;
+
 /// The index (into [`ViewState::sections`]) of the plane whose cap `ids` (one pixel of the
 /// visibility buffer) shows, or `None` when it shows a face or the background.
 pub fn section_cap(ids: [u32; 4]) -> Option<usize> {

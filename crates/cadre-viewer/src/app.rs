@@ -5,7 +5,10 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use cadre_render::{FrameOptions, Gpu, PendingPick, PickWindow, PreparedScene, Renderer, Viewport};
+use cadre_render::{
+    CrackMode, CrackOptions, FrameOptions, Gpu, PendingPick, PickWindow, PreparedScene, Renderer,
+    Viewport,
+};
 use cadre_spacenav::{NavSettings, SpaceEvent, SpaceNav};
 use glam::{DVec2, DVec3, DVec4};
 use winit::application::ApplicationHandler;
@@ -74,6 +77,10 @@ struct App {
     hover_pick: Option<(egui::Pos2, PendingPick)>,
     /// The cursor position whose answer `session.hover` holds.
     hovered_at: Option<egui::Pos2>,
+    /// The camera moved this frame (orbit, pan, an animation): the cracks between faces
+    /// drawn from their exact surfaces are closed by the fast fill, and by the exact one
+    /// once it stops.
+    camera_moving: bool,
     /// The 3D view's rectangle in the window, physical pixels.
     view_rect: egui::Rect,
     last_frame: Instant,
@@ -100,6 +107,7 @@ pub(crate) fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         pivot: None,
         hover_pick: None,
         hovered_at: None,
+        camera_moving: false,
         view_rect: egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1.0, 1.0)),
         last_frame: Instant::now(),
         spacenav: None,
@@ -314,6 +322,7 @@ impl App {
         let moving = input.orbit != egui::Vec2::ZERO
             || input.pan != egui::Vec2::ZERO
             || self.session.nav.as_ref().is_some_and(|n| n.animating());
+        self.camera_moving = moving || input.zoom != 0.0;
         match input.hover {
             Some(p) if input.zoom != 0.0 => {
                 self.session.hover = self.pick_at(p);
@@ -623,6 +632,14 @@ impl App {
             supersample: 1,
             mode: self.session.mode,
             background: [0.93, 0.94, 0.96, 1.0],
+            cracks: CrackOptions {
+                mode: if self.camera_moving {
+                    CrackMode::Fast
+                } else {
+                    CrackMode::Exact
+                },
+                ..CrackOptions::default()
+            },
             ..FrameOptions::default()
         };
         if let (Some(prepared), Some(nav), Some(target)) =

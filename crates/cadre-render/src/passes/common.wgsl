@@ -156,6 +156,23 @@ const SECTION_CAP: u32 = 0x80000000u;
 const MAX_SECTIONS: u32 = 3u;
 const CAP_MATERIAL: u32 = 0x0fffffffu;
 
+// The distance from the eye plane (world units) of the point at the target position `pos`
+// (pixels, a pixel's centre at + 0.5) of reverse-Z `depth`; the background (depth 0)
+// counts as infinitely far. The crack passes compare neighbours' depths in world units.
+fn eye_distance(pos: vec2<f32>, depth: f32) -> f32 {
+    if depth <= 0.0 {
+        return 3.0e38;
+    }
+    let ndc = vec2<f32>(pos.x / frame.viewport.x * 2.0 - 1.0, 1.0 - pos.y / frame.viewport.y * 2.0);
+    let v = frame.inv_proj * vec4<f32>(ndc, depth, 1.0);
+    return -v.z / v.w;
+}
+
+// Material bits of a crack the crack pass filled and of a real gap it closed
+// (view::CRACK_FILLED, view::GAP_CLOSED), set in the inspection view only.
+const CRACK_FILLED: u32 = 0x40000000u;
+const GAP_CLOSED: u32 = 0x20000000u;
+
 // Whether the ids of a pixel show a section cap.
 fn is_cap(ids: vec4<u32>) -> bool {
     return ids.y != 0u && (ids.z & SECTION_CAP) != 0u;

@@ -258,6 +258,94 @@ impl RayCaster {
             .collect()
     }
 
+    /// Whether each of the pixels `pixels` (index row by row, and the face's STEP id an
+    /// image shows there, 0 for nothing) is a crack of that image, given that the image
+    /// shows something farther there than the exact surface: the pixel's centre sees a
+    /// face, and none of [`DENSE_SAMPLES`] points on the circle of `radius` pixels about it
+    /// sees what the image shows (nothing included). Where one does, the image's choice
+    /// is a boundary's (a silhouette over what is behind, or the edge between two faces),
+    /// not a crack. Meant for the pixels where an image shows something farther than the
+    /// exact surface (the crack pass's verification).
+    pub fn cracks_at(
+        &self,
+        camera: &Camera,
+        (width, height): (u32, u32),
+        radius: f64,
+        pixels: &[(usize, u64)],
+    ) -> Vec<bool> {
+        let rays = PixelRays::new(camera, width, height);
+        let seen_at = |pixel: DVec2| {
+            let (origin, dir) = rays.through(pixel);
+            self.cast(origin, dir).map_or(0, |(_, id, _)| id)
+        };
+        pixels
+            .par_iter()
+            .map(|&(i, shown)| {
+                let i = i as u32;
+                let centre = DVec2::new(f64::from(i % width), f64::from(i / width));
+                let id = seen_at(centre);
+                id != 0
+                    && id != shown
+                    && (0..DENSE_SAMPLES).all(|k| {
+                        let angle = std::f64::consts::TAU * f64::from(k) / f64::from(DENSE_SAMPLES);
+                        seen_at(centre + DVec2::new(angle.cos(), angle.sin()) * radius) != shown
+                    })
+            })
+            .collect()
+    }
+
+    /// The crack pixels (indices row by row) of a GPU image (`ids`, as
+    /// `Renderer::render_ids` gives them; `step_ids`, its faces' STEP ids) against the ray
+    /// caster's `hits` of the same view: pixels where the GPU shows nothing, or a point
+    /// farther from the eye plane than the exact one by more than `d_min`, and the exact
+    /// image shows neither within half a pixel ([`RayCaster::cracks_at`]).
+    pub fn crack_pixels(
+        &self,
+        camera: &Camera,
+        (w, h): (u32, u32),
+        (ids, step_ids, hits): (&[[u32; 4]], &[u64], &[PixelHit]),
+        d_min: f64,
+    ) -> Vec<usize> {
+        let aspect = f64::from(w) / f64::from(h);
+        let unproject = (camera.projection_matrix(aspect) * camera.view_rotation()).inverse();
+        let forward = (camera.target - camera.eye).normalize_or_zero();
+        let gpu_depth = |i: usize, depth: f32| -> f64 {
+            if depth <= 0.0 {
+                return f64::INFINITY;
+            }
+            let (x, y) = ((i as u32 % w) as f64, (i as u32 / w) as f64);
+            let ndc = DVec4::new(
+                (x + 0.5) / f64::from(w) * 2.0 - 1.0,
+                1.0 - (y + 0.5) / f64::from(h) * 2.0,
+                f64::from(depth),
+                1.0,
+            );
+            let p = unproject * ndc;
+            (p.truncate() / p.w).dot(forward)
+        };
+        let suspects: Vec<usize> = (0..ids.len())
+            .filter(|&i| {
+                hits[i].is_some_and(|(_, point)| {
+                    let exact = (point - camera.eye).dot(forward);
+                    // Background: no depth (its ids may be an earlier frame's, `render_ids`).
+                    let depth = if ids[i][1] == 0 {
+                        0.0
+                    } else {
+                        f32::from_bits(ids[i][3])
+                    };
+                    gpu_depth(i, depth) > exact + d_min
+                })
+            })
+            .collect();
+        let shown: Vec<(usize, u64)> = suspects.iter().map(|&i| (i, step_ids[i])).collect();
+        let cracks = self.cracks_at(camera, (w, h), 0.5, &shown);
+        suspects
+            .into_iter()
+            .zip(cracks)
+            .filter_map(|(i, c)| c.then_some(i))
+            .collect()
+    }
+
     /// [`RayCaster::face_ids`] at `offset` pixels from each pixel's centre.
     fn face_ids_at(&self, camera: &Camera, width: u32, height: u32, offset: DVec2) -> Vec<u64> {
         self.samples_at(camera, width, height, offset)
@@ -345,6 +433,10 @@ impl RayCaster {
         best.0.is_finite().then_some(best)
     }
 }
+
+/// What a pixel's centre sees: the face's STEP id and the world point, or nothing
+/// ([`RayCaster::hits`]).
+pub type PixelHit = Option<(u64, DVec3)>;
 
 /// Circles of [`RayCaster::near_boundary_at`]'s samples (radii a third, two thirds and all
 /// of the disc's).

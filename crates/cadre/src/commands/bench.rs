@@ -62,6 +62,10 @@ enum BenchWhat {
         /// leaves it out too): what it costs.
         #[arg(long)]
         no_coverage: bool,
+        /// The crack pass (as `cadre render --cracks`; `--method trim` only): what it costs
+        /// (the GPU time of its stage, `cracks`, after `visibility`) and what it did.
+        #[arg(long, default_value = "exact", value_enum)]
+        cracks: crate::commands::render::CrackArg,
     },
     /// The viewer's frame on the same heavy scene: the scene uploaded once, then each frame
     /// orbits the camera by 2°, draws into a kept viewport (the window's path, no readback)
@@ -133,12 +137,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             mode,
             method,
             no_coverage,
+            cracks,
         } => bench_render(
             file,
             (*grid, *method),
             *size,
             *frames,
-            (*mode, !*no_coverage),
+            (*mode, !*no_coverage, *cracks),
         ),
         BenchWhat::View {
             file,
@@ -459,7 +464,11 @@ fn bench_render(
     grid: (u32, crate::commands::render::Method),
     (width, height): (u32, u32),
     frames: u32,
-    (mode, analytic_coverage): (cadre_render::DisplayMode, bool),
+    (mode, analytic_coverage, cracks): (
+        cadre_render::DisplayMode,
+        bool,
+        crate::commands::render::CrackArg,
+    ),
 ) -> Result<()> {
     use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset, ViewState};
 
@@ -482,6 +491,13 @@ fn bench_render(
         background: [1.0; 4],
         mode,
         analytic_coverage,
+        cracks: crate::commands::render::CrackArgs {
+            cracks,
+            inspect_cracks: false,
+            gap_tolerance: 0.0,
+            crack_depth: 0.0,
+        }
+        .options(),
         ..FrameOptions::default()
     };
     let trimmed_faces = renderer.prepare(&gpu, &scene).trimmed_faces();
@@ -530,6 +546,7 @@ fn bench_render(
             "frame_ms": ms,
             "median_ms": median(&ms),
             "pass_median_ms": pass_median,
+            "cracks": format!("{:?}", renderer.last_crack_counts(&gpu)),
         })
     );
     Ok(())

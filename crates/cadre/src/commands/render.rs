@@ -7,7 +7,8 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
 use cadre_render::{
-    Camera, DisplayMode, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset, ViewState,
+    Camera, CrackMode, CrackOptions, DisplayMode, FrameOptions, Gpu, RenderScene, Renderer,
+    ViewPreset, ViewState,
 };
 use image::RgbaImage;
 
@@ -95,6 +96,9 @@ pub struct RenderArgs {
     /// FOV in degrees, 30 by default), instead of `--view`.
     #[arg(long, value_parser = parse_camera, allow_hyphen_values = true)]
     camera: Option<CameraArg>,
+    /// How the cracks between faces of `--method trim` are closed.
+    #[command(flatten)]
+    cracks: CrackArgs,
     /// With a folder: also write every image into one contact sheet (a grid of tiles, row by
     /// row in file-name order; SHEET.txt lists which file each tile is).
     #[arg(long, value_name = "SHEET.png")]
@@ -108,6 +112,54 @@ pub enum Method {
     Mesh,
     /// The exact faces: surfaces tessellated on the GPU to the screen, trimmed per pixel.
     Trim,
+}
+
+/// The crack pass's options (`cadre render`, `cadre verify`).
+#[derive(clap::Args, Clone, Copy, Debug)]
+pub struct CrackArgs {
+    /// How the cracks between faces drawn by `--method trim` (each tessellated to its own
+    /// screen-space error) are closed: `exact` (the exact surface seen at each crack pixel,
+    /// trimmed exactly), `fast` (the face most neighbours show) or `off`.
+    #[arg(long, default_value = "exact", value_enum)]
+    pub cracks: CrackArg,
+    /// Inspection view: filled cracks painted magenta, closed gaps orange.
+    #[arg(long)]
+    pub inspect_cracks: bool,
+    /// Close real gaps in the model (faces that do not meet) narrower than this, in model
+    /// units (mm); 0 leaves them open. With `--inspect-cracks` they are painted orange.
+    #[arg(long, default_value_t = 0.0)]
+    pub gap_tolerance: f64,
+    /// d_min of the crack detection, model units: how much nearer than a pixel both
+    /// neighbours of a pair must be; 0 takes 10⁻³ of the model's diagonal.
+    #[arg(long, default_value_t = 0.0)]
+    pub crack_depth: f64,
+}
+
+/// `--cracks`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum CrackArg {
+    /// Cracks left as drawn.
+    Off,
+    /// Screen-space fill (the face most neighbours show).
+    Fast,
+    /// Object-space fill (the exact surface seen there).
+    Exact,
+}
+
+impl CrackArgs {
+    /// The renderer's crack options.
+    pub fn options(&self) -> CrackOptions {
+        CrackOptions {
+            mode: match self.cracks {
+                CrackArg::Off => CrackMode::Off,
+                CrackArg::Fast => CrackMode::Fast,
+                CrackArg::Exact => CrackMode::Exact,
+            },
+            highlight: self.inspect_cracks,
+            min_depth: self.crack_depth.max(0.0),
+            gap_tolerance: self.gap_tolerance.max(0.0),
+        }
+    }
 }
 
 /// `--camera`: eye, target, up and the vertical field of view in radians.
@@ -456,12 +508,34 @@ fn draw_file(
         background: args.background,
         mode: args.mode,
         edge_width: args.edge_width,
+        cracks: args.cracks.options(),
         ..FrameOptions::default()
     };
     let prepared = renderer.prepare(gpu, &scene);
-    renderer
+    let image = renderer
         .render(gpu, &prepared, &camera, &options, &ViewState::default())
-        .with_context(|| format!("{}: nothing was drawn", input.display()))
+        .with_context(|| format!("{}: nothing was drawn", input.display()))?;
+    if args.method == Method::Trim && options.cracks.mode != CrackMode::Off {
+        let c = renderer.last_crack_counts(gpu);
+        if c.detected > 0 {
+            eprintln!(
+                "{}: {} crack pixel(s): {} filled exactly, {} by the fast fill, {} in gaps \
+                 closed, {} left open{}",
+                input.display(),
+                c.detected,
+                c.exact,
+                c.fast,
+                c.gaps,
+                c.open,
+                if c.overflow > 0 {
+                    format!(", {} past the pass's capacity", c.overflow)
+                } else {
+                    String::new()
+                }
+            );
+        }
+    }
+    Ok(image)
 }
 
 /// The trims' tolerance relative to the diagonal for a `w` × `h` view magnified `zoom` times

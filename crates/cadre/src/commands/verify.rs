@@ -8,10 +8,15 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
 use cadre_render::raycast::RayCaster;
-use cadre_render::{Camera, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset, ViewState};
+use cadre_render::{
+    Camera, CrackMode, CrackOptions, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset,
+    ViewState,
+};
 use serde_json::json;
 
-use crate::commands::render::{Method, centre_point, parse_size, view_trim_tolerance, with_trims};
+use crate::commands::render::{
+    CrackArg, CrackArgs, Method, centre_point, parse_size, view_trim_tolerance, with_trims,
+};
 use crate::load::load_step;
 
 /// Arguments of `cadre verify`.
@@ -34,6 +39,20 @@ pub struct VerifyArgs {
     /// --zoom` fits them).
     #[arg(long, default_value_t = 1e-5)]
     trim_tolerance_rel: f64,
+    /// Also count, per view, the crack pixels against the ray caster's image with the crack
+    /// pass off ("cracks_before") and in this mode ("cracks_after"); the comparison is of
+    /// the image in this mode. Without it the image is drawn as `cadre render` draws it
+    /// (exact crack fill) and no crack figures are given.
+    #[arg(long, value_enum)]
+    cracks: Option<CrackArg>,
+    /// Gaps in the model narrower than this (model units) are closed (as `cadre render
+    /// --gap-tolerance`).
+    #[arg(long, default_value_t = 0.0)]
+    gap_tolerance: f64,
+    /// d_min of the crack detection and of the crack count, model units; 0 takes 10⁻³ of
+    /// the model's diagonal.
+    #[arg(long, default_value_t = 0.0)]
+    crack_depth: f64,
     /// One JSON object instead of a table.
     #[arg(long)]
     json: bool,
@@ -71,6 +90,9 @@ struct ViewFigures {
     unverified_share: f64,
     /// Pixels compared.
     compared: usize,
+    /// Crack pixels against the ray caster's image with the crack pass off and on (with
+    /// `--cracks`).
+    cracks: Option<(usize, usize)>,
 }
 
 /// Runs `cadre verify`.
@@ -102,11 +124,31 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
     };
     let mut caster = caster_at(1.0);
     let skipped: HashSet<u64> = caster.1.skipped.iter().copied().collect();
+    let crack_args = CrackArgs {
+        cracks: args.cracks.unwrap_or(CrackArg::Exact),
+        inspect_cracks: false,
+        gap_tolerance: args.gap_tolerance,
+        crack_depth: args.crack_depth,
+    };
     let options = FrameOptions {
         width: w,
         height: h,
         supersample: 1,
+        cracks: crack_args.options(),
         ..FrameOptions::default()
+    };
+    let no_cracks = FrameOptions {
+        cracks: CrackOptions {
+            mode: CrackMode::Off,
+            ..options.cracks
+        },
+        ..options.clone()
+    };
+    // The crack count's d_min: the crack pass's own.
+    let d_min = if args.crack_depth > 0.0 {
+        args.crack_depth
+    } else {
+        cadre_render::CRACK_MIN_DEPTH_REL * diagonal
     };
     // Each zoom drawn with the trims `cadre render --zoom` would fit for it (within a quarter
     // of its pixel, `view_trim_tolerance`); the faces left to their meshes are the same at
@@ -136,7 +178,8 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
             let ids =
                 renderer.render_ids(&gpu, &prepared, &camera, &options, &ViewState::default())?;
             let gpu_ids: Vec<u64> = ids.iter().map(|p| scene.face_step_id(p[0])).collect();
-            let exact = caster.face_ids(&camera, w, h);
+            let hits = caster.hits(&camera, w, h);
+            let exact: Vec<u64> = hits.iter().map(|h| h.map_or(0, |(id, _)| id)).collect();
             let mut near = caster.near_boundary(&camera, w, h, 0.5);
             // The pixels that would count as wrong looked at again, closely: eight samples
             // on a circle miss a sub-pixel sliver.
@@ -147,7 +190,33 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
             for (&i, d) in suspects.iter().zip(dense) {
                 near[i] = d;
             }
-            let figures = compare_view((&gpu_ids, &exact, &near), (w, h), &skipped);
+            let mut figures = compare_view((&gpu_ids, &exact, &near), (w, h), &skipped);
+            if args.cracks.is_some() {
+                let before = renderer.render_ids(
+                    &gpu,
+                    &prepared,
+                    &camera,
+                    &no_cracks,
+                    &ViewState::default(),
+                )?;
+                let before_ids: Vec<u64> =
+                    before.iter().map(|p| scene.face_step_id(p[0])).collect();
+                let cracks = |ids: &[[u32; 4]], step_ids: &[u64]| {
+                    caster.crack_pixels(&camera, (w, h), (ids, step_ids, &hits), d_min)
+                };
+                let (before, after) = (cracks(&before, &before_ids), cracks(&ids, &gpu_ids));
+                if args.explain {
+                    for &i in &after {
+                        let (x, y) = (i as u32 % w, i as u32 / w);
+                        eprintln!(
+                            "{name} {zoom}x: crack left at ({x}, {y}): the GPU shows {:?}, \
+                             the ray caster face #{}",
+                            ids[i], exact[i]
+                        );
+                    }
+                }
+                figures.cracks = Some((before.len(), after.len()));
+            }
             if args.explain {
                 explain(name, zoom, (&gpu_ids, &exact, &near), (w, h), &skipped);
             }
@@ -169,6 +238,8 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
                     "silhouette_px": f.silhouette_px,
                     "unverified_share": f.unverified_share,
                     "compared": f.compared,
+                    "cracks_before": f.cracks.map(|c| c.0),
+                    "cracks_after": f.cracks.map(|c| c.1),
                 })
             })
             .collect();
@@ -191,14 +262,18 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
             fallback.len(),
             caster.1.skipped.len()
         );
-        println!("view   zoom  disagree  worst px  silhouette px  unverified");
+        println!(
+            "view   zoom  disagree  worst px  silhouette px  unverified  cracks before → after"
+        );
         for (view, zoom, f) in &views {
             println!(
-                "{view:<6} {zoom:>5}  {:>7.3} %  {:>8.1}  {:>13.1}  {:>8.1} %",
+                "{view:<6} {zoom:>5}  {:>7.3} %  {:>8.1}  {:>13.1}  {:>8.1} %  {}",
                 100.0 * f.disagree_share,
                 f.worst_px,
                 f.silhouette_px,
-                100.0 * f.unverified_share
+                100.0 * f.unverified_share,
+                f.cracks
+                    .map_or_else(|| "-".to_string(), |(b, a)| format!("{b} → {a}"))
             );
         }
     }
@@ -261,6 +336,7 @@ fn compare_view(
         silhouette_px: silhouette,
         unverified_share: unverified as f64 / covered.max(1) as f64,
         compared,
+        cracks: None,
     }
 }
 

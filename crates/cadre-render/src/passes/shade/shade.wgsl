@@ -106,6 +106,10 @@ fn shade_pixel(p: vec2<i32>, pos: vec2<f32>) -> vec4<f32> {
         }
         return frame.background;
     }
+    // The inspection view: cracks the crack pass filled, magenta; real gaps it closed, orange.
+    if !cap && ((ids.z & (CRACK_FILLED | GAP_CLOSED)) != 0u) {
+        return select(vec4<f32>(1.0, 0.3, 0.0, 1.0), vec4<f32>(1.0, 0.0, 1.0, 1.0), (ids.z & CRACK_FILLED) != 0u);
+    }
     let m = materials[ids.z & CAP_MATERIAL];
     // The cut material a little darker than the part's surface.
     let base = m.base_color.rgb * select(1.0, 0.8, cap);

@@ -304,6 +304,33 @@ impl VisibilityPass {
         self.draw(recorder, &mut pass, &inputs, Phase::Visibility);
     }
 
+    /// Records the trim back-end's exact crack fill into `buffers` when it drew this frame
+    /// (`sections`: the frame has section planes); whether it did.
+    pub fn record_crack_fill(
+        &self,
+        recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &VisibilityTargets,
+        (frame, sections): (&wgpu::Buffer, bool),
+        scene: &FrameScene<'_>,
+        buffers: &crate::passes::cracks::CrackBuffers,
+    ) -> bool {
+        let Some(trim) = self.trim.as_ref().filter(|_| scene.trim.is_some()) else {
+            return false;
+        };
+        let inputs = PhaseInputs {
+            frame,
+            scene,
+            sections,
+            with_uv: false,
+            proxy_depth: false,
+            coverage: false,
+        };
+        trim.get(recorder.0)
+            .draw_cracks(recorder, encoder, &inputs, targets, buffers);
+        true
+    }
+
     /// Records a see-through `phase` over `colour` (kept, blended onto): x-ray with no
     /// depth, the transparent phase tested against `visibility`'s depth (skipped when the
     /// frame has nothing see-through).

@@ -33,6 +33,30 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Storage("vec4<f32>"),
 ];
 
+/// The exact crack fill's bind group 0 (`crack.wgsl`, after the render shader): the render
+/// shader's [`BINDINGS`], then the crack map, the entries, the state and the hits
+/// (`passes::cracks`); group 1: the instances.
+pub(crate) const CRACK_BINDINGS: &[Binding] = &[
+    Binding::Uniform(FrameUniform::WGSL_NAME),
+    Binding::Storage(TrimSurface::WGSL_NAME),
+    Binding::Storage("u32"),
+    Binding::Storage("TrimFace"),
+    Binding::Storage("u32"),
+    Binding::Storage("f32"),
+    Binding::Storage("u32"),
+    Binding::Storage("u32"),
+    Binding::Storage("f32"),
+    Binding::Storage("vec4<f32>"),
+    Binding::Storage("u32"),
+    Binding::Storage("vec4<u32>"),
+    Binding::AtomicStorage,
+    Binding::StorageWrite("vec4<u32>"),
+];
+
+/// Storage buffers the exact crack fill's fragment stage binds: the render shader's nine,
+/// the crack buffers' four and the instances' two.
+pub(crate) const CRACK_STORAGE_BUFFERS: u32 = 15;
+
 /// The tessellation pass's bind group 0: frame, surfaces, tasks, what it writes (the
 /// indirect draws and the levels), the packed B-splines (their knot lines), the count of
 /// grid points taken and the points (with the cells' verdicts after them), the five trim
@@ -103,6 +127,20 @@ pub(crate) fn source() -> String {
         include_str!("sweep.wgsl"),
         include_str!("trim.wgsl"),
         cadre_trim::TRIM_WGSL,
+    ])
+}
+
+/// The exact crack fill's whole WGSL: the render shader's and `crack.wgsl`.
+pub(crate) fn crack_source() -> String {
+    wgsl(&[
+        INSTANCES_WGSL,
+        TEXEL_WGSL,
+        SURFACE_WGSL,
+        include_str!("bspline.wgsl"),
+        include_str!("sweep.wgsl"),
+        include_str!("trim.wgsl"),
+        cadre_trim::TRIM_WGSL,
+        include_str!("crack.wgsl"),
     ])
 }
 
@@ -267,6 +305,45 @@ pub(crate) struct TrimBackend {
     grid_points: bool,
     /// The last frame's indirect draws and their count, for [`TrimBackend::last_triangles`].
     last: std::sync::Mutex<Option<(wgpu::Buffer, u32)>>,
+    /// The exact crack fill, built on the first frame that asks for it.
+    cracks: OnceLock<CrackFill>,
+    /// The instances' layout (the crack fill's group 1).
+    instances: InstanceLayout,
+}
+
+/// The exact crack fill's module, layouts and pipelines (by `sections`).
+struct CrackFill {
+    module: wgpu::ShaderModule,
+    layout: wgpu::BindGroupLayout,
+    pipeline_layout: wgpu::PipelineLayout,
+    pipelines: [OnceLock<wgpu::RenderPipeline>; 2],
+}
+
+impl CrackFill {
+    fn new(device: &wgpu::Device, instances: &InstanceLayout) -> CrackFill {
+        let module = shader(device, "trim crack fill", &crack_source());
+        // The render shader's bindings as its stages see them; the crack buffers only in the
+        // fragment stage (vertex stages may not write storage).
+        let shared = BINDINGS.len();
+        let mut group = entries(
+            &CRACK_BINDINGS[..shared],
+            wgpu::ShaderStages::VERTEX_FRAGMENT,
+        );
+        for (i, mut e) in entries(&CRACK_BINDINGS[shared..], wgpu::ShaderStages::FRAGMENT)
+            .into_iter()
+            .enumerate()
+        {
+            e.binding = (shared + i) as u32;
+            group.push(e);
+        }
+        let (layout, pipeline_layout) = layouts(device, "trim crack fill", &group, Some(instances));
+        CrackFill {
+            module,
+            layout,
+            pipeline_layout,
+            pipelines: Default::default(),
+        }
+    }
 }
 
 impl TrimBackend {
@@ -329,6 +406,8 @@ impl TrimBackend {
             trim_test,
             grid_points: variant.grid_points,
             last: std::sync::Mutex::new(None),
+            cracks: OnceLock::new(),
+            instances: instances.clone(),
         }
     }
 
@@ -510,6 +589,95 @@ impl TrimBackend {
                 grid.as_entire_binding(),
             ],
         );
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        let instances = &inputs.scene.instances;
+        for draw in &trim.draws {
+            pass.set_bind_group(1, &instances.bind, &[instances.offset(draw.slot)]);
+            pass.multi_draw_indirect(&trim.args, 16 * u64::from(draw.task_first), draw.faces);
+        }
+    }
+
+    /// Records the exact crack fill (`crack.wgsl`): every trimmed face of the frame drawn
+    /// again over its whole box, its fragments next to the crack pixels of `buffers`
+    /// solving for the exact surface seen there; into a pass over `targets`' depth only
+    /// (neither tested nor written).
+    pub fn draw_cracks(
+        &self,
+        (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &PhaseInputs<'_>,
+        targets: &super::VisibilityTargets,
+        buffers: &crate::passes::cracks::CrackBuffers,
+    ) {
+        let (Some(trim), Some(geometry)) = (&inputs.scene.trim, &inputs.scene.geometry.trim) else {
+            return;
+        };
+        let Some(grid) = self
+            .grid
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .as_ref()
+            .map(|(buffer, _)| buffer.clone())
+        else {
+            return;
+        };
+        let fill = self
+            .cracks
+            .get_or_init(|| CrackFill::new(device, &self.instances));
+        let pipeline = fill.pipelines[usize::from(inputs.sections)].get_or_init(|| {
+            pipeline(
+                device,
+                PipelineSpec {
+                    label: "trim crack fill",
+                    layout: &fill.pipeline_layout,
+                    module: &fill.module,
+                    vertex: "vs_crack",
+                    cull: None,
+                    fragment: "fs_crack",
+                    buffers: &[],
+                    depth: Some(wgpu::DepthStencilState {
+                        depth_write_enabled: Some(false),
+                        depth_compare: Some(wgpu::CompareFunction::Always),
+                        ..depth_state()
+                    }),
+                    targets: &[],
+                    constants: &[
+                        ("SECTIONS", if inputs.sections { 1.0 } else { 0.0 }),
+                        ("TRIM_TEST", 0.0),
+                        ("TRIM_TEST_CRACKS", if self.trim_test { 1.0 } else { 0.0 }),
+                        ("COVERAGE", 0.0),
+                        (
+                            "CRACK_HIT_CAPACITY",
+                            f64::from(crate::passes::cracks::HIT_CAPACITY),
+                        ),
+                    ],
+                },
+            )
+        });
+        let bind = binds.get(
+            device,
+            "trim crack fill",
+            &fill.layout,
+            &[
+                inputs.frame.as_entire_binding(),
+                geometry.surfaces.as_entire_binding(),
+                trim.levels.as_entire_binding(),
+                geometry.faces.as_entire_binding(),
+                geometry.nodes.as_entire_binding(),
+                geometry.floats.as_entire_binding(),
+                geometry.piece_offsets.as_entire_binding(),
+                geometry.lists.as_entire_binding(),
+                geometry.bspline.as_entire_binding(),
+                grid.as_entire_binding(),
+                buffers.map.as_entire_binding(),
+                buffers.entries.as_entire_binding(),
+                buffers.state.as_entire_binding(),
+                buffers.hits.as_entire_binding(),
+            ],
+        );
+        let mut pass =
+            crate::passes::cracks::kept_targets_pass(encoder, "trim crack fill", targets, false);
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);
         let instances = &inputs.scene.instances;

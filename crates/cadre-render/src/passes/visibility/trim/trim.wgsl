@@ -37,6 +37,12 @@ struct TrimOut {
 
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32) -> TrimOut {
+    return trim_vertex(vertex, instance);
+}
+
+// Vertex `vertex` of instance `instance` of a draw: the grid point it stands for, placed
+// (also the crack pass's vertex, crack.wgsl).
+fn trim_vertex(vertex: u32, instance: u32) -> TrimOut {
     // The face is the draw's `vertex / TRIM_VERTICES`-th (its first vertex, set by the
     // tessellation pass), the cell and corner its `vertex % TRIM_VERTICES`-th.
     let k = vertex / TRIM_VERTICES;

@@ -1,0 +1,159 @@
+// Crack detection (seed 000, Part IV, step 2), a compute pass over the visibility buffer
+// after every back-end has drawn: pixel p is a crack when, for one of the four pairs of
+// opposite neighbours (left–right, up–down, both diagonals), both neighbours show a face
+// nearer than p by at least `frame.tolerances.z` (d_min, world units) and neither shows p's
+// face (p's face of the same instance): a gap between two faces tessellated apart, through
+// which the background or a face behind shows. The rule keeps silhouettes out: past a
+// silhouette one neighbour shows p's face, or nothing. Each crack gets an entry (its pixel,
+// the pair, and the fast fill: the face most of its nearer neighbours show, at their mean
+// depth) and its pixel the entry's number; the exact fill and the resolve pass read them.
+
+@group(0) @binding(1) var depth_tex: texture_2d<f32>;
+@group(0) @binding(2) var ids_tex: texture_2d<u32>;
+@group(0) @binding(3) var normal_tex: texture_2d<f32>;
+// Per pixel: 0, or 1 + its entry's index (every pixel written each frame).
+@group(0) @binding(4) var<storage, read_write> crack_map: array<u32>;
+// Per entry, three vec4: (pixel, pair, the pixel's own depth bits, 0), the fast fill's ids,
+// its normal texel's bits.
+@group(0) @binding(5) var<storage, read_write> crack_entries: array<vec4<u32>>;
+// Counters (the first `CRACK_HEADER` words, cleared each frame), then the entries' atomics.
+@group(0) @binding(6) var<storage, read_write> crack_state: array<atomic<u32>>;
+
+// `passes::cracks` constants.
+const CRACK_HEADER: u32 = 16u;
+const CRACK_ENTRY_WORDS: u32 = 8u;
+const CRACK_COUNT_ENTRIES: u32 = 0u;
+const CRACK_COUNT_OVERFLOW: u32 = 1u;
+const CRACK_MAILBOX_SLOTS: u32 = 4u;
+const CRACK_WORD_HEAD: u32 = 4u;
+const CRACK_WORD_MISS: u32 = 5u;
+const CRACK_WORD_MISS_NEXT: u32 = 6u;
+
+// The crack buffers' capacity in entries (`passes::cracks` sets it).
+override CRACK_ENTRY_CAPACITY: u32 = 1024u;
+
+struct Texel {
+    ids: vec4<u32>,
+    distance: f32,
+    // Reverse-Z depth (0: background).
+    depth: f32,
+    // A face (not the background, not a section cap).
+    face: bool,
+}
+
+fn texel_at(p: vec2<i32>) -> Texel {
+    var t: Texel;
+    let depth = textureLoad(depth_tex, p, 0).x;
+    t.ids = textureLoad(ids_tex, p, 0);
+    t.distance = eye_distance(vec2<f32>(p) + 0.5, depth);
+    t.depth = depth;
+    t.face = (depth > 0.0) && (t.ids.y != 0u) && !is_cap(t.ids);
+    if depth <= 0.0 {
+        t.ids = vec4<u32>(0u);
+    }
+    return t;
+}
+
+fn same_face(a: vec4<u32>, b: vec4<u32>) -> bool {
+    return (a.x == b.x) && (a.y == b.y);
+}
+
+// The four pairs' offsets.
+fn pair_offset(k: u32) -> vec2<i32> {
+    switch k {
+        case 0u: { return vec2<i32>(1, 0); }
+        case 1u: { return vec2<i32>(0, 1); }
+        case 2u: { return vec2<i32>(1, 1); }
+        default: { return vec2<i32>(1, -1); }
+    }
+}
+
+// The offset of neighbour `k` (0..8) of a pixel, row by row, the pixel itself skipped.
+fn neighbour(k: u32) -> vec2<i32> {
+    let m = k + select(0u, 1u, k >= 4u);
+    return vec2<i32>(i32(m % 3u) - 1, i32(m / 3u) - 1);
+}
+
+@compute @workgroup_size(8, 8)
+fn cs_detect(@builtin(global_invocation_id) g: vec3<u32>) {
+    let dims = textureDimensions(ids_tex);
+    if (g.x >= dims.x) || (g.y >= dims.y) {
+        return;
+    }
+    let p = vec2<i32>(g.xy);
+    let index = g.y * dims.x + g.x;
+    crack_map[index] = 0u;
+    // The image's border has no opposite neighbours.
+    if (g.x == 0u) || (g.y == 0u) || (g.x + 1u >= dims.x) || (g.y + 1u >= dims.y) {
+        return;
+    }
+    let own = texel_at(p);
+    if (own.ids.y != 0u) && is_cap(own.ids) {
+        return;
+    }
+    let d_min = frame.tolerances.z;
+    var pair = 4u;
+    for (var k = 0u; k < 4u; k++) {
+        let o = pair_offset(k);
+        let a = texel_at(p + o);
+        let b = texel_at(p - o);
+        let nearer = (a.distance + d_min <= own.distance) && (b.distance + d_min <= own.distance);
+        let other = !same_face(a.ids, own.ids) && !same_face(b.ids, own.ids);
+        if a.face && b.face && nearer && other && (pair == 4u) {
+            pair = k;
+        }
+    }
+    if pair == 4u {
+        return;
+    }
+    // The fast fill: of the eight neighbours nearer than p, the face most of them show, its
+    // first texel, at their mean depth.
+    var best = vec2<i32>(0);
+    var best_count = 0u;
+    for (var k = 0u; k < 8u; k++) {
+        let o = neighbour(k);
+        let t = texel_at(p + o);
+        if !t.face || (t.distance + d_min > own.distance) {
+            continue;
+        }
+        var count = 0u;
+        for (var j = 0u; j < 8u; j++) {
+            let oj = neighbour(j);
+            let u = textureLoad(ids_tex, p + oj, 0);
+            count += select(0u, 1u, same_face(u, t.ids) && (textureLoad(depth_tex, p + oj, 0).x > 0.0));
+        }
+        if count > best_count {
+            best_count = count;
+            best = o;
+        }
+    }
+    let fill = texel_at(p + best);
+    var depth_sum = 0.0;
+    var depth_count = 0.0;
+    for (var j = 0u; j < 8u; j++) {
+        let oj = neighbour(j);
+        let depth = textureLoad(depth_tex, p + oj, 0).x;
+        if (depth > 0.0) && same_face(textureLoad(ids_tex, p + oj, 0), fill.ids) {
+            depth_sum += depth;
+            depth_count += 1.0;
+        }
+    }
+    let entry = atomicAdd(&crack_state[CRACK_COUNT_ENTRIES], 1u);
+    if entry >= CRACK_ENTRY_CAPACITY {
+        atomicAdd(&crack_state[CRACK_COUNT_OVERFLOW], 1u);
+        return;
+    }
+    crack_map[index] = entry + 1u;
+    let normal = textureLoad(normal_tex, p + best, 0);
+    crack_entries[3u * entry] = vec4<u32>(index, pair, bitcast<u32>(own.depth), 0u);
+    crack_entries[3u * entry + 1u] = vec4<u32>(fill.ids.xyz, bitcast<u32>(depth_sum / max(depth_count, 1.0)));
+    crack_entries[3u * entry + 2u] = bitcast<vec4<u32>>(vec4<f32>(normal.xy, 1.0, 1.0));
+    let words = CRACK_HEADER + entry * CRACK_ENTRY_WORDS;
+    for (var slot = 0u; slot < CRACK_MAILBOX_SLOTS; slot++) {
+        atomicStore(&crack_state[words + slot], 0u);
+    }
+    atomicStore(&crack_state[words + CRACK_WORD_HEAD], 0u);
+    // +∞: no solution off a face seen yet.
+    atomicStore(&crack_state[words + CRACK_WORD_MISS], 0x7f800000u);
+    atomicStore(&crack_state[words + CRACK_WORD_MISS_NEXT], 0x7f800000u);
+}

@@ -1,0 +1,465 @@
+//! Crack-free rendering (seed 000, Part IV), between the visibility pass and the shading:
+//! faces tessellated each to its own screen-space error no longer share their boundary
+//! vertices, so the background or a face behind shows through a pixel here and there along
+//! their shared edges. Three steps, each its own shader:
+//!
+//! 1. **Detection** (`detect.wgsl`, compute): a pixel is a crack when, for one of its four
+//!    pairs of opposite neighbours, both are nearer than it by at least d_min and neither
+//!    shows its face (silhouettes are never taken: past one, a neighbour shows the same face
+//!    or nothing). Each crack gets an entry (its pixel, the fast fill), capped at
+//!    [`ENTRY_CAPACITY`] a frame (the rest are counted, [`CrackCounts::overflow`]).
+//! 2. **Exact fill** (`visibility/trim/crack.wgsl`, [`CrackMode::Exact`]): the trimmed faces
+//!    drawn again untrimmed; a fragment next to a crack solves, by Newton's method from its
+//!    (u, v), for its exact surface's point seen at the crack pixel's centre, keeps it if the
+//!    face's exact trim does, and pushes it on the pixel's list of hits (a mailbox per pixel
+//!    so that a face is solved once). The seed keeps the nearest with a 64-bit `atomicMin`
+//!    of depth | id (a two-pass 32-bit fallback where the adapter has no 64-bit atomics);
+//!    a list per pixel, walked by the resolve, keeps it in one pass on every adapter
+//!    (WebGPU included) with 32-bit atomics only, and its lists are short (a crack is seen
+//!    by the two or three faces about it).
+//! 3. **Resolve** (`resolve.wgsl`, a full-screen triangle): each crack pixel gets its texel
+//!    (normal, ids, (u, v), depth): the nearest hit; without one (a gap in the model
+//!    itself, or Newton's method failing) the fast fill where a face's trim passed within
+//!    half the gap tolerance of the pixel's ray, else the pixel is left as it is; with
+//!    [`CrackMode::Fast`] the fast fill (the face most neighbours show, at their mean
+//!    depth). With [`CrackOptions::highlight`] filled cracks and closed gaps are marked for
+//!    the shade pass, which paints them (the inspection view).
+
+use crate::frame_buffers::BindCache;
+use crate::layout::{Binding, FrameUniform, GpuStruct};
+use crate::passes::common::{PipelineSpec, entries, layouts, pipeline, shader, wgsl};
+use crate::passes::visibility::{DEPTH, TARGETS, TARGETS_NO_UV, VisibilityTargets};
+use std::sync::{Mutex, OnceLock};
+
+/// How a frame closes the cracks between faces drawn by the trim back-end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum CrackMode {
+    /// Not at all (what the trim back-end draws is what is shown).
+    Off,
+    /// In screen space: a crack pixel takes the face most of its neighbours show (for a
+    /// moving camera).
+    Fast,
+    /// In object space: a crack pixel takes the exact surface seen there, trimmed exactly
+    /// (Newton's method from the neighbouring faces' fragments).
+    #[default]
+    Exact,
+}
+
+/// The crack pass's settings ([`crate::FrameOptions::cracks`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CrackOptions {
+    /// Off, fast or exact.
+    pub mode: CrackMode,
+    /// Paint filled cracks and closed gaps (the inspection view): cracks magenta, gaps
+    /// orange.
+    pub highlight: bool,
+    /// d_min, world units: how much nearer than a pixel both neighbours of a pair must be
+    /// for it to be a crack; 0 takes [`MIN_DEPTH_REL`] of the scene's diagonal.
+    pub min_depth: f64,
+    /// Real gaps in the model (faces that do not meet) narrower than this, world units, are
+    /// closed too (and painted as gaps when highlighted); 0 leaves every gap open.
+    pub gap_tolerance: f64,
+}
+
+impl Default for CrackOptions {
+    fn default() -> Self {
+        CrackOptions {
+            mode: CrackMode::Exact,
+            highlight: false,
+            min_depth: 0.0,
+            gap_tolerance: 0.0,
+        }
+    }
+}
+
+/// d_min relative to the scene's bounding-box diagonal when [`CrackOptions::min_depth`] is
+/// 0: the seed's 1 mm is 10⁻³ of a 1 m assembly; well above the trim back-end's depth
+/// error (its grids keep within 2.5·10⁻⁴ of the diagonal, `DEPTH_REL`), so two adjacent
+/// faces' pixels never pass for a crack.
+pub const MIN_DEPTH_REL: f64 = 1e-3;
+
+/// Crack pixels a frame can hold (past them, cracks are counted and left).
+pub const ENTRY_CAPACITY: u32 = 1 << 16;
+
+/// Exact-fill hits a frame can hold (four a crack).
+pub const HIT_CAPACITY: u32 = 4 * ENTRY_CAPACITY;
+
+/// Words of the crack state's header (counters, [`CrackCounts`]), before the entries'.
+pub const HEADER: u32 = 16;
+
+/// Atomic words an entry has in the crack state: four mailbox slots (faces solved), the head
+/// of its hits, its two least miss distances, one unused.
+pub const ENTRY_WORDS: u32 = 8;
+
+/// What the last frame's crack pass did (the first words of its state).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CrackCounts {
+    /// Crack pixels detected (those past [`ENTRY_CAPACITY`] included).
+    pub detected: u32,
+    /// Crack pixels past [`ENTRY_CAPACITY`], left as they are.
+    pub overflow: u32,
+    /// Exact solutions on trimmed faces found (past [`HIT_CAPACITY`] included).
+    pub hits: u32,
+    /// Newton solves run (fragments next to a crack that were not turned back by the
+    /// mailbox).
+    pub solves: u32,
+    /// Crack pixels filled by an exact hit.
+    pub exact: u32,
+    /// Crack pixels filled by the fast fill ([`CrackMode::Fast`]).
+    pub fast: u32,
+    /// Crack pixels in real gaps narrower than the tolerance, closed by the fast fill.
+    pub gaps: u32,
+    /// Crack pixels left open: a gap wider than the tolerance, or no solution found.
+    pub open: u32,
+}
+
+/// The detection's bind group 0: frame, the depth, ids and normal targets, the crack map,
+/// the entries, the state.
+pub(crate) const DETECT_BINDINGS: &[Binding] = &[
+    Binding::Uniform(FrameUniform::WGSL_NAME),
+    Binding::FloatTexture,
+    Binding::UintTexture,
+    Binding::FloatTexture,
+    Binding::StorageWrite("u32"),
+    Binding::StorageWrite("vec4<u32>"),
+    Binding::AtomicStorage,
+];
+
+/// The resolve's bind group 0: frame, the crack map, the entries, the state, the hits.
+pub(crate) const RESOLVE_BINDINGS: &[Binding] = &[
+    Binding::Uniform(FrameUniform::WGSL_NAME),
+    Binding::Storage("u32"),
+    Binding::Storage("vec4<u32>"),
+    Binding::AtomicStorage,
+    Binding::Storage("vec4<u32>"),
+];
+
+/// The detection's whole WGSL.
+pub(crate) fn detect_source() -> String {
+    wgsl(&[include_str!("detect.wgsl")])
+}
+
+/// The resolve's whole WGSL.
+pub(crate) fn resolve_source() -> String {
+    wgsl(&[include_str!("resolve.wgsl")])
+}
+
+/// The crack buffers of one target size, kept between frames while it stays.
+#[derive(Clone)]
+pub(crate) struct CrackBuffers {
+    /// Per pixel, 0 or 1 + its entry.
+    pub map: wgpu::Buffer,
+    /// Three `vec4<u32>` an entry.
+    pub entries: wgpu::Buffer,
+    /// Counters, then [`ENTRY_WORDS`] an entry.
+    pub state: wgpu::Buffer,
+    /// Two `vec4<u32>` a hit.
+    pub hits: wgpu::Buffer,
+    /// Pixels the map holds.
+    pixels: u64,
+}
+
+impl CrackBuffers {
+    fn new(device: &wgpu::Device, pixels: u64) -> CrackBuffers {
+        let make = |label, size: u64, extra: wgpu::BufferUsages| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | extra,
+                mapped_at_creation: false,
+            })
+        };
+        let entries = u64::from(ENTRY_CAPACITY);
+        CrackBuffers {
+            map: make("crack map", 4 * pixels.max(1), wgpu::BufferUsages::empty()),
+            entries: make("crack entries", 48 * entries, wgpu::BufferUsages::empty()),
+            state: make(
+                "crack state",
+                4 * (u64::from(HEADER) + u64::from(ENTRY_WORDS) * entries),
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+            ),
+            hits: make(
+                "crack hits",
+                32 * u64::from(HIT_CAPACITY),
+                wgpu::BufferUsages::empty(),
+            ),
+            pixels,
+        }
+    }
+}
+
+/// The crack pass: detection and resolve pipelines, and the buffers of the last size.
+pub(crate) struct CrackPass {
+    detect: wgpu::ComputePipeline,
+    detect_layout: wgpu::BindGroupLayout,
+    resolve_module: wgpu::ShaderModule,
+    resolve_layout: wgpu::BindGroupLayout,
+    resolve_pipeline_layout: wgpu::PipelineLayout,
+    /// Indexed by `exact + 2 × highlight + 4 × with_uv`.
+    resolves: [OnceLock<wgpu::RenderPipeline>; 8],
+    buffers: Mutex<Option<CrackBuffers>>,
+}
+
+impl CrackPass {
+    /// Compiles the detection and the resolve.
+    pub fn new(device: &wgpu::Device) -> CrackPass {
+        let module = shader(device, "crack detection", &detect_source());
+        let (detect_layout, detect_pipeline_layout) = layouts(
+            device,
+            "crack detection",
+            &entries(DETECT_BINDINGS, wgpu::ShaderStages::COMPUTE),
+            None,
+        );
+        let detect = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("crack detection"),
+            layout: Some(&detect_pipeline_layout),
+            module: &module,
+            entry_point: Some("cs_detect"),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &[("CRACK_ENTRY_CAPACITY", f64::from(ENTRY_CAPACITY))],
+                ..Default::default()
+            },
+            cache: None,
+        });
+        let resolve_module = shader(device, "crack resolve", &resolve_source());
+        let (resolve_layout, resolve_pipeline_layout) = layouts(
+            device,
+            "crack resolve",
+            &entries(RESOLVE_BINDINGS, wgpu::ShaderStages::FRAGMENT),
+            None,
+        );
+        CrackPass {
+            detect,
+            detect_layout,
+            resolve_module,
+            resolve_layout,
+            resolve_pipeline_layout,
+            resolves: Default::default(),
+            buffers: Mutex::new(None),
+        }
+    }
+
+    /// The buffers for `pixels` pixels: the kept ones, or new ones.
+    pub fn buffers(&self, device: &wgpu::Device, pixels: u64) -> CrackBuffers {
+        let mut kept = self.buffers.lock().unwrap_or_else(|e| e.into_inner());
+        match &*kept {
+            Some(b) if b.pixels >= pixels => b.clone(),
+            _ => {
+                let b = CrackBuffers::new(device, pixels);
+                *kept = Some(b.clone());
+                b
+            }
+        }
+    }
+
+    /// Records the detection over `targets` (the visibility buffer as drawn) into `buffers`.
+    pub fn detect(
+        &self,
+        (device, binds): (&wgpu::Device, &BindCache),
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &VisibilityTargets,
+        frame: &wgpu::Buffer,
+        (buffers, (width, height)): (&CrackBuffers, (u32, u32)),
+    ) {
+        encoder.clear_buffer(&buffers.state, 0, Some(4 * u64::from(HEADER)));
+        let bind = binds.get(
+            device,
+            "crack detection",
+            &self.detect_layout,
+            &[
+                frame.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&targets.depth),
+                wgpu::BindingResource::TextureView(&targets.ids),
+                wgpu::BindingResource::TextureView(&targets.normal),
+                buffers.map.as_entire_binding(),
+                buffers.entries.as_entire_binding(),
+                buffers.state.as_entire_binding(),
+            ],
+        );
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("crack detection"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.detect);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+    }
+
+    /// Records the resolve: the crack pixels' texels written into `targets`; `exact`: the
+    /// exact fill ran (else the fast fill only).
+    pub fn resolve(
+        &self,
+        (device, binds): (&wgpu::Device, &BindCache),
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &VisibilityTargets,
+        frame: &wgpu::Buffer,
+        buffers: &CrackBuffers,
+        (exact, highlight): (bool, bool),
+    ) {
+        let with_uv = targets.uv.is_some();
+        let k = usize::from(exact) + 2 * usize::from(highlight) + 4 * usize::from(with_uv);
+        let pipeline = self.resolves[k].get_or_init(|| {
+            pipeline(
+                device,
+                PipelineSpec {
+                    label: "crack resolve",
+                    layout: &self.resolve_pipeline_layout,
+                    module: &self.resolve_module,
+                    vertex: "vs_resolve",
+                    cull: None,
+                    fragment: "fs_resolve",
+                    buffers: &[],
+                    depth: Some(written_always()),
+                    targets: if with_uv { &TARGETS } else { &TARGETS_NO_UV },
+                    constants: &[
+                        ("EXACT", f64::from(u8::from(exact))),
+                        ("HIGHLIGHT", f64::from(u8::from(highlight))),
+                    ],
+                },
+            )
+        });
+        let bind = binds.get(
+            device,
+            "crack resolve",
+            &self.resolve_layout,
+            &[
+                frame.as_entire_binding(),
+                buffers.map.as_entire_binding(),
+                buffers.entries.as_entire_binding(),
+                buffers.state.as_entire_binding(),
+                buffers.hits.as_entire_binding(),
+            ],
+        );
+        let mut pass = kept_targets_pass(encoder, "crack resolve", targets, true);
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.draw(0..3, 0..1);
+    }
+
+    /// What the last frame's crack pass did (waits for the GPU); zeros before any.
+    pub fn last_counts(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> CrackCounts {
+        let Some(buffers) = self
+            .buffers
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+        else {
+            return CrackCounts::default();
+        };
+        let size = 4 * u64::from(HEADER);
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("crack counts readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&buffers.state, 0, &readback, 0, size);
+        queue.submit([encoder.finish()]);
+        let slice = readback.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |_| {});
+        if device.poll(wgpu::PollType::wait_indefinitely()).is_err() {
+            return CrackCounts::default();
+        }
+        let Ok(view) = slice.get_mapped_range() else {
+            return CrackCounts::default();
+        };
+        let w: &[u32] = bytemuck::cast_slice(&view);
+        CrackCounts {
+            detected: w[0],
+            overflow: w[1],
+            hits: w[2],
+            solves: w[3],
+            exact: w[4],
+            fast: w[5],
+            gaps: w[6],
+            open: w[7],
+        }
+    }
+}
+
+/// Depth state of the resolve: every fragment it keeps writes its depth, whatever was there
+/// (the crack pixel showed something farther, or nothing).
+fn written_always() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH,
+        depth_write_enabled: Some(true),
+        depth_compare: Some(wgpu::CompareFunction::Always),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
+/// A render pass over the visibility targets, loaded and kept: with the colour targets
+/// (`colours`) for the resolve, the depth alone for the exact fill's draw.
+pub(crate) fn kept_targets_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    targets: &VisibilityTargets,
+    colours: bool,
+) -> wgpu::RenderPass<'e> {
+    let keep = |view| {
+        Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            },
+        })
+    };
+    let attachments = if colours {
+        vec![
+            keep(&targets.normal),
+            keep(&targets.ids),
+            targets.uv.as_ref().and_then(|(uv, _)| keep(uv)),
+        ]
+    } else {
+        Vec::new()
+    };
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &attachments,
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: &targets.depth,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
+
+/// The crack pass's settings for a frame over a scene whose bounding-box diagonal is
+/// `diagonal`: d_min and the gap tolerance in world units, for the frame uniform's
+/// `tolerances.z` and `.w`.
+pub(crate) fn tolerances(options: &CrackOptions, diagonal: f64) -> [f32; 2] {
+    let min_depth = if options.min_depth > 0.0 {
+        options.min_depth
+    } else {
+        MIN_DEPTH_REL * diagonal
+    };
+    [min_depth as f32, options.gap_tolerance.max(0.0) as f32]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn d_min_follows_the_scene_unless_given() {
+        let derived = tolerances(&CrackOptions::default(), 500.0);
+        assert_eq!(derived, [0.5, 0.0]);
+        let given = CrackOptions {
+            min_depth: 2.0,
+            gap_tolerance: 0.1,
+            ..CrackOptions::default()
+        };
+        assert_eq!(tolerances(&given, 500.0), [2.0, 0.1]);
+    }
+}

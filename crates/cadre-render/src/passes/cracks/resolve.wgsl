@@ -1,0 +1,108 @@
+// Crack resolve (seed 000, Part IV, steps 3a and the composite of 3b): one triangle over
+// the target; each crack pixel the detection flagged gets a texel of the visibility buffer
+// (normal, ids, (u, v), and its depth through `frag_depth`), every other pixel is left as
+// it is. With the exact fill, the nearest of the pixel's hits (crack.wgsl) — the exact
+// surface seen there, trimmed exactly — where it is nearer than what the pixel shows;
+// without one, a real gap in the model: closed by the fast fill when narrower than the gap
+// tolerance (the two least distances from the pixel's ray to a face's trim), else left. With the fast fill alone,
+// the face most of the neighbours show. Marked (ids' material bits 30 and 29) for the
+// inspection view when `HIGHLIGHT` is set.
+
+@group(0) @binding(1) var<storage, read> crack_map: array<u32>;
+@group(0) @binding(2) var<storage, read> crack_entries: array<vec4<u32>>;
+@group(0) @binding(3) var<storage, read_write> crack_state: array<atomic<u32>>;
+@group(0) @binding(4) var<storage, read> crack_hits: array<vec4<u32>>;
+
+const CRACK_HEADER: u32 = 16u;
+const CRACK_ENTRY_WORDS: u32 = 8u;
+const CRACK_COUNT_EXACT: u32 = 4u;
+const CRACK_COUNT_FAST: u32 = 5u;
+const CRACK_COUNT_GAPS: u32 = 6u;
+const CRACK_COUNT_OPEN: u32 = 7u;
+const CRACK_WORD_HEAD: u32 = 4u;
+const CRACK_WORD_MISS: u32 = 5u;
+const CRACK_WORD_MISS_NEXT: u32 = 6u;
+
+// The exact fill ran (else the fast fill only).
+override EXACT: bool = true;
+// Mark filled cracks and closed gaps for the inspection view.
+override HIGHLIGHT: bool = false;
+// Hits a pixel's list is walked for, at most (the mailbox keeps lists short).
+const CRACK_LIST_MAX: u32 = 64u;
+
+struct ResolveOut {
+    @location(0) normal: vec4<f32>,
+    @location(1) ids: vec4<u32>,
+    @location(2) uv: vec2<u32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+@vertex
+fn vs_resolve(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let x = f32(i32(i & 1u) * 4 - 1);
+    let y = f32(i32(i >> 1u) * 4 - 1);
+    return vec4<f32>(x, y, 0.0, 1.0);
+}
+
+@fragment
+fn fs_resolve(@builtin(position) pos: vec4<f32>) -> ResolveOut {
+    let width = u32(frame.viewport.x);
+    let p = vec2<u32>(pos.xy);
+    let at = crack_map[p.y * width + p.x];
+    if at == 0u {
+        discard;
+    }
+    let entry = at - 1u;
+    let words = CRACK_HEADER + entry * CRACK_ENTRY_WORDS;
+    var out: ResolveOut;
+    // The nearest hit (reverse Z: the largest depth).
+    var best = 0u;
+    var best_depth = -1.0;
+    var next = atomicLoad(&crack_state[words + CRACK_WORD_HEAD]);
+    for (var k = 0u; (k < CRACK_LIST_MAX) && (next != 0u); k++) {
+        let hit = next - 1u;
+        let depth = bitcast<f32>(crack_hits[2u * hit].w);
+        if depth > best_depth {
+            best_depth = depth;
+            best = next;
+        }
+        next = crack_hits[2u * hit + 1u].w;
+    }
+    // A hit closes the crack only if it is nearer than what the pixel shows by d_min: the
+    // surface the pixel already shows (a floor seen through a real gap) is hit too.
+    let own = bitcast<f32>(crack_entries[3u * entry].z);
+    let closes = eye_distance(pos.xy, best_depth) + frame.tolerances.z <= eye_distance(pos.xy, own);
+    if EXACT && (best != 0u) && closes {
+        let a = crack_hits[2u * (best - 1u)];
+        let b = crack_hits[2u * (best - 1u) + 1u];
+        out.ids = vec4<u32>(a.x, a.y, a.z | select(0u, CRACK_FILLED, HIGHLIGHT), a.w);
+        out.normal = vec4<f32>(unpack2x16unorm(b.x), 1.0, 1.0);
+        out.uv = b.yz;
+        out.depth = best_depth;
+        atomicAdd(&crack_state[CRACK_COUNT_EXACT], 1u);
+        return out;
+    }
+    var mark = select(0u, CRACK_FILLED, HIGHLIGHT);
+    if EXACT {
+        // No face's exact surface closes it: a gap in the model itself, as wide as the
+        // ray's two least misses of a face's trim (a face each side; unknown, so left open,
+        // where only one face told). Closed when narrower than the tolerance.
+        let least = bitcast<f32>(atomicLoad(&crack_state[words + CRACK_WORD_MISS]));
+        let next = bitcast<f32>(atomicLoad(&crack_state[words + CRACK_WORD_MISS_NEXT]));
+        let width = least + next;
+        if !(width <= frame.tolerances.w) {
+            atomicAdd(&crack_state[CRACK_COUNT_OPEN], 1u);
+            discard;
+        }
+        mark = select(0u, GAP_CLOSED, HIGHLIGHT);
+        atomicAdd(&crack_state[CRACK_COUNT_GAPS], 1u);
+    } else {
+        atomicAdd(&crack_state[CRACK_COUNT_FAST], 1u);
+    }
+    let fill = crack_entries[3u * entry + 1u];
+    out.ids = vec4<u32>(fill.x, fill.y, fill.z | mark, fill.w);
+    out.normal = bitcast<vec4<f32>>(crack_entries[3u * entry + 2u]);
+    out.uv = vec2<u32>(0u);
+    out.depth = bitcast<f32>(fill.w);
+    return out;
+}
