@@ -119,7 +119,10 @@ impl Gpu {
         // (`Renderer::with_pass_timings`), where the adapter has them.
         let timestamps =
             wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
-        let required_features = adapter.features() & timestamps;
+        // The exact crack fill's fragment shader tests its depth mask before it runs
+        // (`@early_depth_test(force)`), where the adapter allows it (Vulkan, GLES 3.1+).
+        let required_features =
+            adapter.features() & (timestamps | wgpu::Features::SHADER_EARLY_DEPTH_TEST);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("cadre"),
             required_features,

@@ -562,7 +562,7 @@ impl Renderer {
         if crack_mode != CrackMode::Off {
             let recorder = (device, &self.binds);
             let cracks = self.cracks.get_or_init(|| CrackPass::new(device));
-            let crack_buffers = cracks.buffers(device, u64::from(w) * u64::from(h));
+            let crack_buffers = cracks.buffers(device, (w, h));
             if let Some(t) = timer {
                 t.mark(&mut encoder, "visibility");
             }
@@ -571,17 +571,27 @@ impl Renderer {
                 &mut encoder,
                 targets,
                 frame_buffer,
-                (&crack_buffers, (w, h)),
+                &crack_buffers,
             );
+            if let Some(t) = timer {
+                t.mark(&mut encoder, "crack detection");
+            }
+            if crack_mode == CrackMode::Exact {
+                cracks.mask(recorder, &mut encoder, frame_buffer, &crack_buffers);
+            }
             let exact = crack_mode == CrackMode::Exact
                 && self.visibility.record_crack_fill(
                     recorder,
                     &mut encoder,
-                    targets,
                     (frame_buffer, sections),
                     &frame_scene,
                     &crack_buffers,
                 );
+            if let Some(t) = timer
+                && exact
+            {
+                t.mark(&mut encoder, "crack exact fill");
+            }
             cracks.resolve(
                 recorder,
                 &mut encoder,
@@ -594,7 +604,7 @@ impl Renderer {
         let visibility_stage = if crack_mode == CrackMode::Off {
             "visibility"
         } else {
-            "cracks"
+            "crack resolve"
         };
         let mark = |encoder: &mut wgpu::CommandEncoder, stage| {
             if let Some(t) = timer {

@@ -1,23 +1,28 @@
-// Crack detection (seed 000, Part IV, step 2), a compute pass over the visibility buffer
+// Crack detection (seed 000, Part IV, step 2), a pass over the visibility buffer
 // after every back-end has drawn: pixel p is a crack when, for one of the four pairs of
 // opposite neighbours (left–right, up–down, both diagonals), both neighbours show a face
 // nearer than p by at least `frame.tolerances.z` (d_min, world units) and neither shows p's
 // face (p's face of the same instance): a gap between two faces tessellated apart, through
 // which the background or a face behind shows. The rule keeps silhouettes out: past a
-// silhouette one neighbour shows p's face, or nothing. Each crack gets an entry (its pixel,
-// the pair, and the fast fill: the face most of its nearer neighbours show, at their mean
-// depth) and its pixel the entry's number; the exact fill and the resolve pass read them.
+// silhouette one neighbour shows p's face, or nothing. Two full-screen passes: the flags
+// (`fs_flag`, the crack mask's depth), then at the flagged pixels the entries (`fs_detect`:
+// its pixel, the pair, and the fast fill — the face most of its nearer neighbours show, at
+// their mean depth) and the pixel's entry number in the map; the exact fill and the resolve
+// pass read them.
 
 @group(0) @binding(1) var depth_tex: texture_2d<f32>;
 @group(0) @binding(2) var ids_tex: texture_2d<u32>;
 @group(0) @binding(3) var normal_tex: texture_2d<f32>;
-// Per pixel: 0, or 1 + its entry's index (every pixel written each frame).
+// Per pixel: 0, or 1 + its entry's index (cleared each frame, the cracks written here).
 @group(0) @binding(4) var<storage, read_write> crack_map: array<u32>;
 // Per entry, three vec4: (pixel, pair, the pixel's own depth bits, 0), the fast fill's ids,
 // its normal texel's bits.
 @group(0) @binding(5) var<storage, read_write> crack_entries: array<vec4<u32>>;
 // Counters (the first `CRACK_HEADER` words, cleared each frame), then the entries' atomics.
 @group(0) @binding(6) var<storage, read_write> crack_state: array<atomic<u32>>;
+// The indirect draw of the mask's and the resolve's quads, a quad (6 vertices) a crack
+// (`cs_args`).
+@group(0) @binding(7) var<storage, read_write> crack_args: array<u32>;
 
 // `passes::cracks` constants.
 const CRACK_HEADER: u32 = 16u;
@@ -74,22 +79,30 @@ fn neighbour(k: u32) -> vec2<i32> {
     return vec2<i32>(i32(m % 3u) - 1, i32(m / 3u) - 1);
 }
 
-@compute @workgroup_size(8, 8)
-fn cs_detect(@builtin(global_invocation_id) g: vec3<u32>) {
-    let dims = textureDimensions(ids_tex);
-    if (g.x >= dims.x) || (g.y >= dims.y) {
-        return;
-    }
-    let p = vec2<i32>(g.xy);
-    let index = g.y * dims.x + g.x;
-    crack_map[index] = 0u;
+// The pair (0..3) that makes the pixel `p` of a target of `dims` a crack, 4 when none does.
+fn crack_pair(p: vec2<i32>, dims: vec2<u32>) -> u32 {
+    let g = vec2<u32>(p);
     // The image's border has no opposite neighbours.
     if (g.x == 0u) || (g.y == 0u) || (g.x + 1u >= dims.x) || (g.y + 1u >= dims.y) {
-        return;
+        return 4u;
+    }
+    // First on the depth target alone (reverse Z: nearer is greater), which turns away
+    // nearly every pixel: on a surface the depth grows one way or the other across a pixel,
+    // so one neighbour of each pair is farther.
+    let depth = textureLoad(depth_tex, p, 0).x;
+    var nearer_pair = false;
+    for (var k = 0u; k < 4u; k++) {
+        let o = pair_offset(k);
+        let a = textureLoad(depth_tex, p + o, 0).x;
+        let b = textureLoad(depth_tex, p - o, 0).x;
+        nearer_pair = nearer_pair | ((a > depth) & (b > depth));
+    }
+    if !nearer_pair {
+        return 4u;
     }
     let own = texel_at(p);
     if (own.ids.y != 0u) && is_cap(own.ids) {
-        return;
+        return 4u;
     }
     let d_min = frame.tolerances.z;
     var pair = 4u;
@@ -103,9 +116,40 @@ fn cs_detect(@builtin(global_invocation_id) g: vec3<u32>) {
             pair = k;
         }
     }
+    return pair;
+}
+
+// One triangle over the target, at depth ½ (the entries' pass tests it against the flags).
+@vertex
+fn vs_detect(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let x = f32(i32(i & 1u) * 4 - 1);
+    let y = f32(i32(i >> 1u) * 4 - 1);
+    return vec4<f32>(x, y, 0.5, 1.0);
+}
+
+// The flags: the crack pixels at depth 0 in the crack mask, every other pixel at 1. Free of
+// side effects, so a CPU rasterizer shades it 4 × 4 pixels at a time (a shader that writes
+// storage runs pixel by pixel there: lavapipe, 1920 × 1080, PRO10363, 131 ms with the
+// entries written here, 91 ms for an empty shader that merely could write).
+@fragment
+fn fs_flag(@builtin(position) pos: vec4<f32>) -> @builtin(frag_depth) f32 {
+    return select(1.0, 0.0, crack_pair(vec2<i32>(pos.xy), textureDimensions(ids_tex)) < 4u);
+}
+
+// The entries: run where the flags pass (`Greater` than the mask: the cracks alone, where
+// the adapter tests depth before a shader that writes storage, `@early_depth_test`;
+// elsewhere every pixel, which finds no pair).
+@fragment
+fn fs_detect(@builtin(position) pos: vec4<f32>) {
+    let dims = textureDimensions(ids_tex);
+    let p = vec2<i32>(pos.xy);
+    let index = u32(p.y) * dims.x + u32(p.x);
+    let pair = crack_pair(p, dims);
     if pair == 4u {
         return;
     }
+    let own = texel_at(p);
+    let d_min = frame.tolerances.z;
     // The fast fill: of the eight neighbours nearer than p, the face most of them show, its
     // first texel, at their mean depth.
     var best = vec2<i32>(0);
@@ -156,4 +200,13 @@ fn cs_detect(@builtin(global_invocation_id) g: vec3<u32>) {
     // +∞: no solution off a face seen yet.
     atomicStore(&crack_state[words + CRACK_WORD_MISS], 0x7f800000u);
     atomicStore(&crack_state[words + CRACK_WORD_MISS_NEXT], 0x7f800000u);
+}
+
+// The indirect draw of the crack quads: 6 vertices, as many instances as cracks were kept.
+@compute @workgroup_size(1)
+fn cs_args() {
+    crack_args[0] = 6u;
+    crack_args[1] = min(atomicLoad(&crack_state[CRACK_COUNT_ENTRIES]), CRACK_ENTRY_CAPACITY);
+    crack_args[2] = 0u;
+    crack_args[3] = 0u;
 }

@@ -3,7 +3,8 @@
 //! vertices, so the background or a face behind shows through a pixel here and there along
 //! their shared edges. Three steps, each its own shader:
 //!
-//! 1. **Detection** (`detect.wgsl`, compute): a pixel is a crack when, for one of its four
+//! 1. **Detection** (`detect.wgsl`, two full-screen passes: the flags as the crack mask's
+//!    depth, free of side effects; then, at the flagged pixels only, the entries): a pixel is a crack when, for one of its four
 //!    pairs of opposite neighbours, both are nearer than it by at least d_min and neither
 //!    shows its face (silhouettes are never taken: past one, a neighbour shows the same face
 //!    or nothing). Each crack gets an entry (its pixel, the fast fill), capped at
@@ -114,7 +115,7 @@ pub struct CrackCounts {
 }
 
 /// The detection's bind group 0: frame, the depth, ids and normal targets, the crack map,
-/// the entries, the state.
+/// the entries, the state, the quads' indirect draw.
 pub(crate) const DETECT_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::FloatTexture,
@@ -123,12 +124,12 @@ pub(crate) const DETECT_BINDINGS: &[Binding] = &[
     Binding::StorageWrite("u32"),
     Binding::StorageWrite("vec4<u32>"),
     Binding::AtomicStorage,
+    Binding::StorageWrite("u32"),
 ];
 
-/// The resolve's bind group 0: frame, the crack map, the entries, the state, the hits.
+/// The resolve's (and the mask's) bind group 0: frame, the entries, the state, the hits.
 pub(crate) const RESOLVE_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
-    Binding::Storage("u32"),
     Binding::Storage("vec4<u32>"),
     Binding::AtomicStorage,
     Binding::Storage("vec4<u32>"),
@@ -137,6 +138,21 @@ pub(crate) const RESOLVE_BINDINGS: &[Binding] = &[
 /// The detection's whole WGSL.
 pub(crate) fn detect_source() -> String {
     wgsl(&[include_str!("detect.wgsl")])
+}
+
+/// The detection's WGSL; with `early_depth`, its entries' fragment shader tests the flags
+/// before it runs (`@early_depth_test(force)`: a shader that writes storage is otherwise
+/// tested after it ran).
+fn detect_source_with(early_depth: bool) -> String {
+    let source = detect_source();
+    if early_depth {
+        source.replace(
+            "@fragment\nfn fs_detect",
+            "@fragment @early_depth_test(force)\nfn fs_detect",
+        )
+    } else {
+        source
+    }
 }
 
 /// The resolve's whole WGSL.
@@ -155,12 +171,18 @@ pub(crate) struct CrackBuffers {
     pub state: wgpu::Buffer,
     /// Two `vec4<u32>` a hit.
     pub hits: wgpu::Buffer,
-    /// Pixels the map holds.
-    pixels: u64,
+    /// The indirect draw of the crack quads (mask, resolve): 6 vertices, an instance a
+    /// crack.
+    pub args: wgpu::Buffer,
+    /// The exact fill's depth mask: 0 about the cracks, 1 elsewhere.
+    pub mask: wgpu::TextureView,
+    /// The target size they are for.
+    size: (u32, u32),
 }
 
 impl CrackBuffers {
-    fn new(device: &wgpu::Device, pixels: u64) -> CrackBuffers {
+    fn new(device: &wgpu::Device, (width, height): (u32, u32)) -> CrackBuffers {
+        let pixels = u64::from(width) * u64::from(height);
         let make = |label, size: u64, extra: wgpu::BufferUsages| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -171,7 +193,7 @@ impl CrackBuffers {
         };
         let entries = u64::from(ENTRY_CAPACITY);
         CrackBuffers {
-            map: make("crack map", 4 * pixels.max(1), wgpu::BufferUsages::empty()),
+            map: make("crack map", 4 * pixels.max(1), wgpu::BufferUsages::COPY_DST),
             entries: make("crack entries", 48 * entries, wgpu::BufferUsages::empty()),
             state: make(
                 "crack state",
@@ -183,15 +205,41 @@ impl CrackBuffers {
                 32 * u64::from(HIT_CAPACITY),
                 wgpu::BufferUsages::empty(),
             ),
-            pixels,
+            args: make("crack quads", 16, wgpu::BufferUsages::INDIRECT),
+            mask: device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some("crack mask"),
+                    size: wgpu::Extent3d {
+                        width,
+                        height,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: DEPTH,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default()),
+            size: (width, height),
         }
     }
 }
 
 /// The crack pass: detection and resolve pipelines, and the buffers of the last size.
 pub(crate) struct CrackPass {
-    detect: wgpu::ComputePipeline,
+    /// The flags: a full-screen triangle's fragments writing the crack mask's depth (0 at a
+    /// crack, 1 elsewhere).
+    flag: wgpu::RenderPipeline,
+    /// The entries: a full-screen triangle's fragments at the flagged pixels (tested against
+    /// the mask).
+    detect: wgpu::RenderPipeline,
+    /// The detection's second entry point: the quads' indirect draw from its count.
+    args: wgpu::ComputePipeline,
     detect_layout: wgpu::BindGroupLayout,
+    /// The exact fill's depth mask (the crack quads' 3 × 3 pixels at depth 0).
+    mask: wgpu::RenderPipeline,
     resolve_module: wgpu::ShaderModule,
     resolve_layout: wgpu::BindGroupLayout,
     resolve_pipeline_layout: wgpu::PipelineLayout,
@@ -203,34 +251,95 @@ pub(crate) struct CrackPass {
 impl CrackPass {
     /// Compiles the detection and the resolve.
     pub fn new(device: &wgpu::Device) -> CrackPass {
-        let module = shader(device, "crack detection", &detect_source());
-        let (detect_layout, detect_pipeline_layout) = layouts(
-            device,
+        let early = device
+            .features()
+            .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST);
+        let module = shader(device, "crack detection", &detect_source_with(early));
+        // The detection is two fragment shaders, its count turned into the quads' draw by a
+        // compute one.
+        let mut group = entries(DETECT_BINDINGS, wgpu::ShaderStages::FRAGMENT);
+        for entry in &mut group {
+            entry.visibility |= wgpu::ShaderStages::COMPUTE;
+        }
+        let (detect_layout, detect_pipeline_layout) =
+            layouts(device, "crack detection", &group, None);
+        let capacity = [("CRACK_ENTRY_CAPACITY", f64::from(ENTRY_CAPACITY))];
+        let full_screen = |label, fragment, depth| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&detect_pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_detect"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: Default::default(),
+                depth_stencil: Some(depth),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fragment),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &capacity,
+                        ..Default::default()
+                    },
+                    targets: &[],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let flag = full_screen("crack flags", "fs_flag", written_always());
+        let detect = full_screen(
             "crack detection",
-            &entries(DETECT_BINDINGS, wgpu::ShaderStages::COMPUTE),
-            None,
+            "fs_detect",
+            wgpu::DepthStencilState {
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                ..written_always()
+            },
         );
-        let detect = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("crack detection"),
+        let args = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("crack quads"),
             layout: Some(&detect_pipeline_layout),
             module: &module,
-            entry_point: Some("cs_detect"),
+            entry_point: Some("cs_args"),
             compilation_options: wgpu::PipelineCompilationOptions {
-                constants: &[("CRACK_ENTRY_CAPACITY", f64::from(ENTRY_CAPACITY))],
+                constants: &capacity,
                 ..Default::default()
             },
             cache: None,
         });
         let resolve_module = shader(device, "crack resolve", &resolve_source());
-        let (resolve_layout, resolve_pipeline_layout) = layouts(
-            device,
-            "crack resolve",
-            &entries(RESOLVE_BINDINGS, wgpu::ShaderStages::FRAGMENT),
-            None,
-        );
+        // The vertex stage reads the entries (where its quad goes); the state, written, is
+        // the fragment stage's alone (vertex stages may not write storage).
+        let mut group = entries(RESOLVE_BINDINGS, wgpu::ShaderStages::VERTEX_FRAGMENT);
+        group[2].visibility = wgpu::ShaderStages::FRAGMENT;
+        let (resolve_layout, resolve_pipeline_layout) =
+            layouts(device, "crack resolve", &group, None);
+        let mask = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("crack mask"),
+            layout: Some(&resolve_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &resolve_module,
+                entry_point: Some("vs_mask"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: Some(written_always()),
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        });
         CrackPass {
+            flag,
             detect,
+            args,
             detect_layout,
+            mask,
             resolve_module,
             resolve_layout,
             resolve_pipeline_layout,
@@ -239,13 +348,13 @@ impl CrackPass {
         }
     }
 
-    /// The buffers for `pixels` pixels: the kept ones, or new ones.
-    pub fn buffers(&self, device: &wgpu::Device, pixels: u64) -> CrackBuffers {
+    /// The buffers for a target of `size`: the kept ones, or new ones.
+    pub fn buffers(&self, device: &wgpu::Device, size: (u32, u32)) -> CrackBuffers {
         let mut kept = self.buffers.lock().unwrap_or_else(|e| e.into_inner());
         match &*kept {
-            Some(b) if b.pixels >= pixels => b.clone(),
+            Some(b) if b.size == size => b.clone(),
             _ => {
-                let b = CrackBuffers::new(device, pixels);
+                let b = CrackBuffers::new(device, size);
                 *kept = Some(b.clone());
                 b
             }
@@ -259,9 +368,10 @@ impl CrackPass {
         encoder: &mut wgpu::CommandEncoder,
         targets: &VisibilityTargets,
         frame: &wgpu::Buffer,
-        (buffers, (width, height)): (&CrackBuffers, (u32, u32)),
+        buffers: &CrackBuffers,
     ) {
         encoder.clear_buffer(&buffers.state, 0, Some(4 * u64::from(HEADER)));
+        encoder.clear_buffer(&buffers.map, 0, None);
         let bind = binds.get(
             device,
             "crack detection",
@@ -274,15 +384,88 @@ impl CrackPass {
                 buffers.map.as_entire_binding(),
                 buffers.entries.as_entire_binding(),
                 buffers.state.as_entire_binding(),
+                buffers.args.as_entire_binding(),
             ],
         );
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("crack detection"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &buffers.mask,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, &bind, &[]);
+            pass.set_pipeline(&self.flag);
+            pass.draw(0..3, 0..1);
+            pass.set_pipeline(&self.detect);
+            pass.draw(0..3, 0..1);
+        }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("crack detection"),
+            label: Some("crack quads"),
             timestamp_writes: None,
         });
-        pass.set_pipeline(&self.detect);
+        pass.set_pipeline(&self.args);
         pass.set_bind_group(0, &bind, &[]);
-        pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+        pass.dispatch_workgroups(1, 1, 1);
+    }
+
+    /// Records the exact fill's depth mask into `buffers.mask`: cleared to 1 (nothing
+    /// passes), the 3 × 3 pixels about each crack at 0.
+    pub fn mask(
+        &self,
+        (device, binds): (&wgpu::Device, &BindCache),
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &wgpu::Buffer,
+        buffers: &CrackBuffers,
+    ) {
+        let bind = self.resolve_bind((device, binds), frame, buffers);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("crack mask"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &buffers.mask,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.mask);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.draw_indirect(&buffers.args, 0);
+    }
+
+    /// The resolve's (and the mask's) bind group.
+    fn resolve_bind(
+        &self,
+        (device, binds): (&wgpu::Device, &BindCache),
+        frame: &wgpu::Buffer,
+        buffers: &CrackBuffers,
+    ) -> wgpu::BindGroup {
+        binds.get(
+            device,
+            "crack resolve",
+            &self.resolve_layout,
+            &[
+                frame.as_entire_binding(),
+                buffers.entries.as_entire_binding(),
+                buffers.state.as_entire_binding(),
+                buffers.hits.as_entire_binding(),
+            ],
+        )
     }
 
     /// Records the resolve: the crack pixels' texels written into `targets`; `exact`: the
@@ -318,22 +501,11 @@ impl CrackPass {
                 },
             )
         });
-        let bind = binds.get(
-            device,
-            "crack resolve",
-            &self.resolve_layout,
-            &[
-                frame.as_entire_binding(),
-                buffers.map.as_entire_binding(),
-                buffers.entries.as_entire_binding(),
-                buffers.state.as_entire_binding(),
-                buffers.hits.as_entire_binding(),
-            ],
-        );
-        let mut pass = kept_targets_pass(encoder, "crack resolve", targets, true);
+        let bind = self.resolve_bind((device, binds), frame, buffers);
+        let mut pass = kept_targets_pass(encoder, "crack resolve", targets);
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        pass.draw(0..3, 0..1);
+        pass.draw_indirect(&buffers.args, 0);
     }
 
     /// What the last frame's crack pass did (waits for the GPU); zeros before any.
@@ -390,13 +562,11 @@ fn written_always() -> wgpu::DepthStencilState {
     }
 }
 
-/// A render pass over the visibility targets, loaded and kept: with the colour targets
-/// (`colours`) for the resolve, the depth alone for the exact fill's draw.
-pub(crate) fn kept_targets_pass<'e>(
+/// A render pass over the visibility targets, loaded and kept (the resolve's).
+fn kept_targets_pass<'e>(
     encoder: &'e mut wgpu::CommandEncoder,
     label: &str,
     targets: &VisibilityTargets,
-    colours: bool,
 ) -> wgpu::RenderPass<'e> {
     let keep = |view| {
         Some(wgpu::RenderPassColorAttachment {
@@ -409,15 +579,11 @@ pub(crate) fn kept_targets_pass<'e>(
             },
         })
     };
-    let attachments = if colours {
-        vec![
-            keep(&targets.normal),
-            keep(&targets.ids),
-            targets.uv.as_ref().and_then(|(uv, _)| keep(uv)),
-        ]
-    } else {
-        Vec::new()
-    };
+    let attachments = [
+        keep(&targets.normal),
+        keep(&targets.ids),
+        targets.uv.as_ref().and_then(|(uv, _)| keep(uv)),
+    ];
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
         color_attachments: &attachments,

@@ -1,17 +1,16 @@
-// Crack resolve (seed 000, Part IV, steps 3a and the composite of 3b): one triangle over
-// the target; each crack pixel the detection flagged gets a texel of the visibility buffer
-// (normal, ids, (u, v), and its depth through `frag_depth`), every other pixel is left as
-// it is. With the exact fill, the nearest of the pixel's hits (crack.wgsl) — the exact
+// Crack resolve (seed 000, Part IV, steps 3a and the composite of 3b): a quad over each
+// crack pixel the detection kept (an indirect instanced draw: the cost follows the cracks,
+// not the image) gives it a texel of the visibility buffer (normal, ids, (u, v), and its
+// depth through `frag_depth`); every other pixel is left as it is. With the exact fill, the nearest of the pixel's hits (crack.wgsl) — the exact
 // surface seen there, trimmed exactly — where it is nearer than what the pixel shows;
 // without one, a real gap in the model: closed by the fast fill when narrower than the gap
 // tolerance (the two least distances from the pixel's ray to a face's trim), else left. With the fast fill alone,
 // the face most of the neighbours show. Marked (ids' material bits 30 and 29) for the
 // inspection view when `HIGHLIGHT` is set.
 
-@group(0) @binding(1) var<storage, read> crack_map: array<u32>;
-@group(0) @binding(2) var<storage, read> crack_entries: array<vec4<u32>>;
-@group(0) @binding(3) var<storage, read_write> crack_state: array<atomic<u32>>;
-@group(0) @binding(4) var<storage, read> crack_hits: array<vec4<u32>>;
+@group(0) @binding(1) var<storage, read> crack_entries: array<vec4<u32>>;
+@group(0) @binding(2) var<storage, read_write> crack_state: array<atomic<u32>>;
+@group(0) @binding(3) var<storage, read> crack_hits: array<vec4<u32>>;
 
 const CRACK_HEADER: u32 = 16u;
 const CRACK_ENTRY_WORDS: u32 = 8u;
@@ -37,22 +36,44 @@ struct ResolveOut {
     @builtin(frag_depth) depth: f32,
 }
 
+// Corner `corner` (0..6, two triangles) of the square of `radius` pixels about the centre of
+// crack `entry`'s pixel, at reverse-Z depth `z`.
+fn crack_quad(entry: u32, corner: u32, radius: f32, z: f32) -> vec4<f32> {
+    let width = u32(frame.viewport.x);
+    let pixel = crack_entries[3u * entry].x;
+    let centre = vec2<f32>(f32(pixel % width), f32(pixel / width)) + 0.5;
+    // Corners (0, 0), (1, 0), (1, 1), (0, 0), (1, 1), (0, 1), as bit masks.
+    let step = vec2<f32>(f32((22u >> corner) & 1u), f32((52u >> corner) & 1u));
+    let q = centre + (2.0 * step - 1.0) * radius;
+    return vec4<f32>(q.x / frame.viewport.x * 2.0 - 1.0, 1.0 - q.y / frame.viewport.y * 2.0, z, 1.0);
+}
+
+struct ResolveVertex {
+    @builtin(position) position: vec4<f32>,
+    @location(0) @interpolate(flat) entry: u32,
+}
+
+// One quad a crack (instanced: the detection's count), over its pixel.
 @vertex
-fn vs_resolve(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let x = f32(i32(i & 1u) * 4 - 1);
-    let y = f32(i32(i >> 1u) * 4 - 1);
-    return vec4<f32>(x, y, 0.0, 1.0);
+fn vs_resolve(@builtin(vertex_index) corner: u32, @builtin(instance_index) entry: u32) -> ResolveVertex {
+    var out: ResolveVertex;
+    out.position = crack_quad(entry, corner, 0.5, 0.0);
+    out.entry = entry;
+    return out;
+}
+
+// The exact fill's depth mask: the 3 × 3 pixels about each crack at depth 0, so that the
+// fill's fragments pass (`Greater`) only there, everywhere else turned away before their
+// shader runs (the mask is cleared to 1).
+@vertex
+fn vs_mask(@builtin(vertex_index) corner: u32, @builtin(instance_index) entry: u32) -> @builtin(position) vec4<f32> {
+    return crack_quad(entry, corner, 1.5, 0.0);
 }
 
 @fragment
-fn fs_resolve(@builtin(position) pos: vec4<f32>) -> ResolveOut {
-    let width = u32(frame.viewport.x);
-    let p = vec2<u32>(pos.xy);
-    let at = crack_map[p.y * width + p.x];
-    if at == 0u {
-        discard;
-    }
-    let entry = at - 1u;
+fn fs_resolve(in: ResolveVertex) -> ResolveOut {
+    let pos = in.position;
+    let entry = in.entry;
     let words = CRACK_HEADER + entry * CRACK_ENTRY_WORDS;
     var out: ResolveOut;
     // The nearest hit (reverse Z: the largest depth).

@@ -310,7 +310,6 @@ impl VisibilityPass {
         &self,
         recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
         encoder: &mut wgpu::CommandEncoder,
-        targets: &VisibilityTargets,
         (frame, sections): (&wgpu::Buffer, bool),
         scene: &FrameScene<'_>,
         buffers: &crate::passes::cracks::CrackBuffers,
@@ -327,7 +326,7 @@ impl VisibilityPass {
             coverage: false,
         };
         trim.get(recorder.0)
-            .draw_cracks(recorder, encoder, &inputs, targets, buffers);
+            .draw_cracks(recorder, encoder, &inputs, buffers);
         true
     }
 

@@ -130,6 +130,21 @@ pub(crate) fn source() -> String {
     ])
 }
 
+/// The exact crack fill's whole WGSL: the render shader's and `crack.wgsl`; with
+/// `early_depth`, its fragment shader tests the depth mask before it runs
+/// (`@early_depth_test(force)`: a shader that writes storage is otherwise tested after).
+pub(crate) fn crack_source_with(early_depth: bool) -> String {
+    let source = crack_source();
+    if early_depth {
+        source.replace(
+            "@fragment\nfn fs_crack",
+            "@fragment @early_depth_test(force)\nfn fs_crack",
+        )
+    } else {
+        source
+    }
+}
+
 /// The exact crack fill's whole WGSL: the render shader's and `crack.wgsl`.
 pub(crate) fn crack_source() -> String {
     wgsl(&[
@@ -321,7 +336,10 @@ struct CrackFill {
 
 impl CrackFill {
     fn new(device: &wgpu::Device, instances: &InstanceLayout) -> CrackFill {
-        let module = shader(device, "trim crack fill", &crack_source());
+        let early = device
+            .features()
+            .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST);
+        let module = shader(device, "trim crack fill", &crack_source_with(early));
         // The render shader's bindings as its stages see them; the crack buffers only in the
         // fragment stage (vertex stages may not write storage).
         let shared = BINDINGS.len();
@@ -600,14 +618,13 @@ impl TrimBackend {
 
     /// Records the exact crack fill (`crack.wgsl`): every trimmed face of the frame drawn
     /// again over its whole box, its fragments next to the crack pixels of `buffers`
-    /// solving for the exact surface seen there; into a pass over `targets`' depth only
-    /// (neither tested nor written).
+    /// solving for the exact surface seen there; into a pass over the crack mask
+    /// (`buffers.mask`, tested, not written: only the fragments about a crack run).
     pub fn draw_cracks(
         &self,
         (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
         encoder: &mut wgpu::CommandEncoder,
         inputs: &PhaseInputs<'_>,
-        targets: &super::VisibilityTargets,
         buffers: &crate::passes::cracks::CrackBuffers,
     ) {
         let (Some(trim), Some(geometry)) = (&inputs.scene.trim, &inputs.scene.geometry.trim) else {
@@ -638,7 +655,7 @@ impl TrimBackend {
                     buffers: &[],
                     depth: Some(wgpu::DepthStencilState {
                         depth_write_enabled: Some(false),
-                        depth_compare: Some(wgpu::CompareFunction::Always),
+                        depth_compare: Some(wgpu::CompareFunction::Greater),
                         ..depth_state()
                     }),
                     targets: &[],
@@ -676,8 +693,21 @@ impl TrimBackend {
                 buffers.hits.as_entire_binding(),
             ],
         );
-        let mut pass =
-            crate::passes::cracks::kept_targets_pass(encoder, "trim crack fill", targets, false);
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("trim crack fill"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &buffers.mask,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Load,
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);
         let instances = &inputs.scene.instances;
