@@ -24,15 +24,6 @@
 // (`cs_args`).
 @group(0) @binding(7) var<storage, read_write> crack_args: array<u32>;
 
-// `passes::cracks` constants.
-const CRACK_HEADER: u32 = 16u;
-const CRACK_ENTRY_WORDS: u32 = 8u;
-const CRACK_COUNT_ENTRIES: u32 = 0u;
-const CRACK_COUNT_OVERFLOW: u32 = 1u;
-const CRACK_MAILBOX_SLOTS: u32 = 4u;
-const CRACK_WORD_HEAD: u32 = 4u;
-const CRACK_WORD_MISS: u32 = 5u;
-const CRACK_WORD_MISS_NEXT: u32 = 6u;
 
 // The crack buffers' capacity in entries (`passes::cracks` sets it).
 override CRACK_ENTRY_CAPACITY: u32 = 1024u;

@@ -135,29 +135,55 @@ pub(crate) const RESOLVE_BINDINGS: &[Binding] = &[
     Binding::Storage("vec4<u32>"),
 ];
 
+/// The crack buffers' layout in WGSL (the state's words), placed before each crack shader.
+pub(crate) const LAYOUT_WGSL: &str = include_str!("layout.wgsl");
+
 /// The detection's whole WGSL.
 pub(crate) fn detect_source() -> String {
-    wgsl(&[include_str!("detect.wgsl")])
+    wgsl(&[LAYOUT_WGSL, include_str!("detect.wgsl")])
 }
 
-/// The detection's WGSL; with `early_depth`, its entries' fragment shader tests the flags
-/// before it runs (`@early_depth_test(force)`: a shader that writes storage is otherwise
-/// tested after it ran).
-fn detect_source_with(early_depth: bool) -> String {
-    let source = detect_source();
+/// The resolve's whole WGSL.
+pub(crate) fn resolve_source() -> String {
+    wgsl(&[LAYOUT_WGSL, include_str!("resolve.wgsl")])
+}
+
+/// `source` with its fragment entry point `entry` testing depth before it runs, when
+/// `early_depth` (`@early_depth_test(force)`, `SHADER_EARLY_DEPTH_TEST`): a shader that
+/// writes storage is otherwise tested after it ran, so every fragment pays for it.
+pub(crate) fn with_early_depth(source: String, entry: &str, early_depth: bool) -> String {
     if early_depth {
         source.replace(
-            "@fragment\nfn fs_detect",
-            "@fragment @early_depth_test(force)\nfn fs_detect",
+            &format!("@fragment\nfn {entry}"),
+            &format!("@fragment @early_depth_test(force)\nfn {entry}"),
         )
     } else {
         source
     }
 }
 
-/// The resolve's whole WGSL.
-pub(crate) fn resolve_source() -> String {
-    wgsl(&[include_str!("resolve.wgsl")])
+/// A render pass over `depth` alone (the crack mask), cleared to `clear` or loaded, kept.
+pub(crate) fn depth_only_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    depth: &wgpu::TextureView,
+    clear: Option<f32>,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: depth,
+            depth_ops: Some(wgpu::Operations {
+                load: clear.map_or(wgpu::LoadOp::Load, wgpu::LoadOp::Clear),
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
 }
 
 /// The crack buffers of one target size, kept between frames while it stays.
@@ -254,7 +280,11 @@ impl CrackPass {
         let early = device
             .features()
             .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST);
-        let module = shader(device, "crack detection", &detect_source_with(early));
+        let module = shader(
+            device,
+            "crack detection",
+            &with_early_depth(detect_source(), "fs_detect", early),
+        );
         // The detection is two fragment shaders, its count turned into the quads' draw by a
         // compute one.
         let mut group = entries(DETECT_BINDINGS, wgpu::ShaderStages::FRAGMENT);
@@ -388,21 +418,7 @@ impl CrackPass {
             ],
         );
         {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("crack detection"),
-                color_attachments: &[],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &buffers.mask,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass = depth_only_pass(encoder, "crack detection", &buffers.mask, None);
             pass.set_bind_group(0, &bind, &[]);
             pass.set_pipeline(&self.flag);
             pass.draw(0..3, 0..1);
@@ -428,21 +444,7 @@ impl CrackPass {
         buffers: &CrackBuffers,
     ) {
         let bind = self.resolve_bind((device, binds), frame, buffers);
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("crack mask"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &buffers.mask,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut pass = depth_only_pass(encoder, "crack mask", &buffers.mask, Some(1.0));
         pass.set_pipeline(&self.mask);
         pass.set_bind_group(0, &bind, &[]);
         pass.draw_indirect(&buffers.args, 0);

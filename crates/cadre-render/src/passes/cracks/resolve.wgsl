@@ -12,15 +12,6 @@
 @group(0) @binding(2) var<storage, read_write> crack_state: array<atomic<u32>>;
 @group(0) @binding(3) var<storage, read> crack_hits: array<vec4<u32>>;
 
-const CRACK_HEADER: u32 = 16u;
-const CRACK_ENTRY_WORDS: u32 = 8u;
-const CRACK_COUNT_EXACT: u32 = 4u;
-const CRACK_COUNT_FAST: u32 = 5u;
-const CRACK_COUNT_GAPS: u32 = 6u;
-const CRACK_COUNT_OPEN: u32 = 7u;
-const CRACK_WORD_HEAD: u32 = 4u;
-const CRACK_WORD_MISS: u32 = 5u;
-const CRACK_WORD_MISS_NEXT: u32 = 6u;
 
 // The exact fill ran (else the fast fill only).
 override EXACT: bool = true;

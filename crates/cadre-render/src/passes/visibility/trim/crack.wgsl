@@ -5,7 +5,7 @@
 // the point of its face's exact surface seen at the centre of that pixel; a solution that
 // the face's exact trim keeps is a hit, pushed on the pixel's list of hits (the resolve
 // pass, passes/cracks/resolve.wgsl, keeps the nearest). The layout of the crack buffers is
-// `passes::cracks`' (`CRACK_*` below are its constants).
+// `passes::cracks`' (cracks/layout.wgsl, placed before this file).
 
 // Per pixel: 0, or 1 + the index of its crack entry.
 @group(0) @binding(10) var<storage, read> crack_map: array<u32>;
@@ -18,15 +18,6 @@
 // normal (`pack2x16unorm`), u and v bits, and 1 + the next hit of the same pixel (0: none).
 @group(0) @binding(13) var<storage, read_write> crack_hits: array<vec4<u32>>;
 
-// `passes::cracks::HEADER` and friends.
-const CRACK_HEADER: u32 = 16u;
-const CRACK_ENTRY_WORDS: u32 = 8u;
-const CRACK_COUNT_HITS: u32 = 2u;
-const CRACK_COUNT_SOLVES: u32 = 3u;
-const CRACK_MAILBOX_SLOTS: u32 = 4u;
-const CRACK_WORD_HEAD: u32 = 4u;
-const CRACK_WORD_MISS: u32 = 5u;
-const CRACK_WORD_MISS_NEXT: u32 = 6u;
 
 // Newton's iterations at most, and the distance to the pixel's centre, in pixels, at which
 // a point is on its ray (the seed stops at ‖F‖ < ε and gives up after 4–5 steps; starting

@@ -130,21 +130,6 @@ pub(crate) fn source() -> String {
     ])
 }
 
-/// The exact crack fill's whole WGSL: the render shader's and `crack.wgsl`; with
-/// `early_depth`, its fragment shader tests the depth mask before it runs
-/// (`@early_depth_test(force)`: a shader that writes storage is otherwise tested after).
-pub(crate) fn crack_source_with(early_depth: bool) -> String {
-    let source = crack_source();
-    if early_depth {
-        source.replace(
-            "@fragment\nfn fs_crack",
-            "@fragment @early_depth_test(force)\nfn fs_crack",
-        )
-    } else {
-        source
-    }
-}
-
 /// The exact crack fill's whole WGSL: the render shader's and `crack.wgsl`.
 pub(crate) fn crack_source() -> String {
     wgsl(&[
@@ -155,6 +140,7 @@ pub(crate) fn crack_source() -> String {
         include_str!("sweep.wgsl"),
         include_str!("trim.wgsl"),
         cadre_trim::TRIM_WGSL,
+        crate::passes::cracks::LAYOUT_WGSL,
         include_str!("crack.wgsl"),
     ])
 }
@@ -339,7 +325,8 @@ impl CrackFill {
         let early = device
             .features()
             .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST);
-        let module = shader(device, "trim crack fill", &crack_source_with(early));
+        let source = crate::passes::cracks::with_early_depth(crack_source(), "fs_crack", early);
+        let module = shader(device, "trim crack fill", &source);
         // The render shader's bindings as its stages see them; the crack buffers only in the
         // fragment stage (vertex stages may not write storage).
         let shared = BINDINGS.len();
@@ -594,18 +581,7 @@ impl TrimBackend {
             device,
             "visibility trim",
             &self.layout,
-            &[
-                inputs.frame.as_entire_binding(),
-                geometry.surfaces.as_entire_binding(),
-                trim.levels.as_entire_binding(),
-                geometry.faces.as_entire_binding(),
-                geometry.nodes.as_entire_binding(),
-                geometry.floats.as_entire_binding(),
-                geometry.piece_offsets.as_entire_binding(),
-                geometry.lists.as_entire_binding(),
-                geometry.bspline.as_entire_binding(),
-                grid.as_entire_binding(),
-            ],
+            &render_resources(inputs, (geometry, trim), &grid),
         );
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);
@@ -677,37 +653,18 @@ impl TrimBackend {
             "trim crack fill",
             &fill.layout,
             &[
-                inputs.frame.as_entire_binding(),
-                geometry.surfaces.as_entire_binding(),
-                trim.levels.as_entire_binding(),
-                geometry.faces.as_entire_binding(),
-                geometry.nodes.as_entire_binding(),
-                geometry.floats.as_entire_binding(),
-                geometry.piece_offsets.as_entire_binding(),
-                geometry.lists.as_entire_binding(),
-                geometry.bspline.as_entire_binding(),
-                grid.as_entire_binding(),
-                buffers.map.as_entire_binding(),
-                buffers.entries.as_entire_binding(),
-                buffers.state.as_entire_binding(),
-                buffers.hits.as_entire_binding(),
-            ],
+                render_resources(inputs, (geometry, trim), &grid).as_slice(),
+                &[
+                    buffers.map.as_entire_binding(),
+                    buffers.entries.as_entire_binding(),
+                    buffers.state.as_entire_binding(),
+                    buffers.hits.as_entire_binding(),
+                ],
+            ]
+            .concat(),
         );
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("trim crack fill"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &buffers.mask,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut pass =
+            crate::passes::cracks::depth_only_pass(encoder, "trim crack fill", &buffers.mask, None);
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);
         let instances = &inputs.scene.instances;
@@ -716,4 +673,25 @@ impl TrimBackend {
             pass.multi_draw_indirect(&trim.args, 16 * u64::from(draw.task_first), draw.faces);
         }
     }
+}
+
+/// The render shader's bind group 0 ([`BINDINGS`]): the frame, the faces' records and
+/// trees, the frame's levels and grid points; the exact crack fill's starts with them.
+fn render_resources<'a>(
+    inputs: &PhaseInputs<'a>,
+    (geometry, trim): (&'a TrimGeometry, &'a FrameTrim),
+    grid: &'a wgpu::Buffer,
+) -> Vec<wgpu::BindingResource<'a>> {
+    vec![
+        inputs.frame.as_entire_binding(),
+        geometry.surfaces.as_entire_binding(),
+        trim.levels.as_entire_binding(),
+        geometry.faces.as_entire_binding(),
+        geometry.nodes.as_entire_binding(),
+        geometry.floats.as_entire_binding(),
+        geometry.piece_offsets.as_entire_binding(),
+        geometry.lists.as_entire_binding(),
+        geometry.bspline.as_entire_binding(),
+        grid.as_entire_binding(),
+    ]
 }

@@ -1,0 +1,22 @@
+// The crack buffers' layout, shared by the detection, the exact fill (visibility/trim/
+// crack.wgsl) and the resolve; `passes::cracks`' constants of the same names (HEADER,
+// ENTRY_WORDS, `CrackCounts`' order) are its Rust twin.
+
+// Words of the state's header (the counters), then `CRACK_ENTRY_WORDS` atomics an entry.
+const CRACK_HEADER: u32 = 16u;
+const CRACK_ENTRY_WORDS: u32 = 8u;
+// The counters: `CrackCounts`, in its order.
+const CRACK_COUNT_ENTRIES: u32 = 0u;
+const CRACK_COUNT_OVERFLOW: u32 = 1u;
+const CRACK_COUNT_HITS: u32 = 2u;
+const CRACK_COUNT_SOLVES: u32 = 3u;
+const CRACK_COUNT_EXACT: u32 = 4u;
+const CRACK_COUNT_FAST: u32 = 5u;
+const CRACK_COUNT_GAPS: u32 = 6u;
+const CRACK_COUNT_OPEN: u32 = 7u;
+// An entry's words: mailbox slots (faces solved) first, then the head of its hits and its
+// two least miss distances.
+const CRACK_MAILBOX_SLOTS: u32 = 4u;
+const CRACK_WORD_HEAD: u32 = 4u;
+const CRACK_WORD_MISS: u32 = 5u;
+const CRACK_WORD_MISS_NEXT: u32 = 6u;
