@@ -251,6 +251,12 @@ struct MeshRanges {
     solid: Option<bool>,
     /// Bounding sphere (centre, radius) of its vertices and lines, mesh-local.
     sphere: (glam::DVec3, f64),
+    /// Where its stored geometry is measured from (vertices, segments, trimmed faces'
+    /// records, `sphere`), in the mesh's own coordinates: its centre, so that `f32` keeps
+    /// the precision of a part far from its file's origin (1,661 mm out, `f32` steps 0.12 µm:
+    /// pixels of a small face magnified 100×); each draw record places it by its world
+    /// placement times the translation to it, in `f64`. Zero where placements are factored.
+    origin: glam::DVec3,
 }
 
 /// A scene's geometry on the GPU, uploaded once and drawn by any number of frames: vertex and
@@ -318,8 +324,24 @@ impl PreparedScene {
         let mut meshes = Vec::with_capacity(scene.meshes.len());
         let mut vertices = Vec::with_capacity(scene.meshes.len());
         let mut indices = Vec::with_capacity(scene.meshes.len());
-        for mesh in &scene.meshes {
-            let (verts, all, mut primitives, faces) =
+        let solids: Vec<Option<bool>> = scene.meshes.iter().map(closed_orientation).collect();
+        let placements = Placements::new(scene, |m| solids[m].is_some(), flat_limit);
+        // Each mesh is stored relative to its own centre, which its draw records add back in
+        // f64 (`MeshRanges::origin`); not where placements are factored into shared local
+        // lists, whose records cannot.
+        let factored = placements.lists.len() > 1;
+        for (mesh, &solid) in scene.meshes.iter().zip(&solids) {
+            let origin = if factored {
+                DVec3::ZERO
+            } else {
+                mesh_origin(mesh)
+            };
+            let shift = |p: [f32; 3]| {
+                (DVec3::from(p.map(f64::from)) - origin)
+                    .as_vec3()
+                    .to_array()
+            };
+            let (mut verts, all, mut primitives, faces) =
                 mesh_buffers(mesh, &|id| trimmed(id).is_some());
             for (range, ids) in primitives.iter_mut().zip(&faces) {
                 let first = surfaces.len() as u32;
@@ -331,9 +353,13 @@ impl PreparedScene {
                         (&trim.bspline_data, trim.depth_tolerance),
                         id,
                         face_points(&verts, &all, range, id),
+                        origin,
                     ))
                 }));
                 range.surfaces = (first, surfaces.len() as u32 - first);
+            }
+            for v in &mut verts {
+                v.position = shift(v.position);
             }
             vertices.push(buffer(
                 device,
@@ -347,10 +373,11 @@ impl PreparedScene {
                 bytemuck::cast_slice(&all),
                 wgpu::BufferUsages::INDEX,
             ));
-            let solid = closed_orientation(mesh);
             let lines = append(
                 &mut segments,
-                mesh.lines.iter().map(|&[a, b]| (a, b, 0, 0, [0; 2])),
+                mesh.lines
+                    .iter()
+                    .map(|&[a, b]| (shift(a), shift(b), 0, 0, [0; 2])),
             );
             // (a, b, edge id) of the edges; meshes from the file: edges where the face id or
             // the surface folds.
@@ -377,14 +404,21 @@ impl PreparedScene {
                 &mut segments,
                 edge_segments.iter().map(|&(a, b, id)| {
                     let packed = faces.as_ref().map_or([0; 2], |f| f.packed(a, b));
-                    (a, b, id, SEGMENT_EDGE, packed)
+                    (shift(a), shift(b), id, SEGMENT_EDGE, packed)
                 }),
             );
             let points = append(
                 &mut segments,
-                mesh.vertices
+                mesh.vertices.iter().map(|v| {
+                    let p = shift(v.position);
+                    (p, p, v.id, SEGMENT_VERTEX, [0; 2])
+                }),
+            );
+            let (centre, radius) = bounding_sphere(
+                mesh.positions
                     .iter()
-                    .map(|v| (v.position, v.position, v.id, SEGMENT_VERTEX, [0; 2])),
+                    .copied()
+                    .chain(mesh.lines.iter().flatten().copied()),
             );
             meshes.push(MeshRanges {
                 primitives,
@@ -392,12 +426,8 @@ impl PreparedScene {
                 edges,
                 points,
                 solid,
-                sphere: bounding_sphere(
-                    mesh.positions
-                        .iter()
-                        .copied()
-                        .chain(mesh.lines.iter().flatten().copied()),
-                ),
+                sphere: (centre - origin, radius),
+                origin,
             });
         }
         let mut materials: Vec<Material> = scene
@@ -414,7 +444,6 @@ impl PreparedScene {
             params: DEFAULT_MATERIAL.params,
         }));
         materials.push(DEFAULT_MATERIAL);
-        let placements = Placements::new(scene, |m| meshes[m].solid.is_some(), flat_limit);
         // A call draws at most one mesh's lines, edges or points.
         let longest = meshes
             .iter()
@@ -602,6 +631,26 @@ fn mesh_buffers(mesh: &SceneMesh, trimmed: &dyn Fn(u32) -> bool) -> MeshBuffers 
         })
         .collect();
     (verts, all, prims, faces)
+}
+
+/// The centre of `mesh`'s bounding box (its vertices and lines; zero when it has none): the
+/// origin its geometry is stored from ([`MeshRanges::origin`]).
+fn mesh_origin(mesh: &SceneMesh) -> DVec3 {
+    let (lo, hi) = mesh
+        .positions
+        .iter()
+        .chain(mesh.lines.iter().flatten())
+        .map(|p| DVec3::from(p.map(f64::from)))
+        .filter(|p| p.is_finite())
+        .fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(p), hi.max(p)),
+        );
+    if lo.x <= hi.x {
+        0.5 * (lo + hi)
+    } else {
+        DVec3::ZERO
+    }
 }
 
 /// The (position, normal, (u, v)) of the vertices of face `id`'s triangles in `range` of a
@@ -807,11 +856,15 @@ impl<'a> FrameScene<'a> {
             });
             let ranges = &geometry.meshes[run.mesh];
             let list = placements.lists[run.list];
+            // The mesh's stored geometry is relative to its origin (zero under local lists,
+            // whose placements come after the record's).
+            let world = run.world * DAffine3::from_translation(ranges.origin);
             let mut spheres = SphereUnion::default();
             if run.list == 0 {
-                coverage.add(run.world, ranges.sphere);
-                spheres.add(run.world, ranges.sphere);
+                coverage.add(world, ranges.sphere);
+                spheres.add(world, ranges.sphere);
             } else {
+                debug_assert_eq!(ranges.origin, DVec3::ZERO);
                 for l in placements.list(list) {
                     let world = run.world * l.affine();
                     coverage.add(world, ranges.sphere);
@@ -829,7 +882,7 @@ impl<'a> FrameScene<'a> {
                         0
                     }
             });
-            let record = placement(camera, rotation, run.world, (run.instance, flags));
+            let record = placement(camera, rotation, world, (run.instance, flags));
             groups.entry((run.mesh, run.list)).or_default().push((
                 record(geometry.default_material()),
                 colour_material,

@@ -87,7 +87,8 @@ pub struct TrimScene {
     pub depth_tolerance: f64,
     /// The B-spline faces' surfaces, packed as the GPU reads them: per surface its degrees
     /// and control-net size (as `u32` bits), its u and v knots, then its control points
-    /// row by row (along u) as homogeneous (x w, y w, z w, w), all `f32`.
+    /// row by row (along u), relative to the face's frame origin, as homogeneous
+    /// (x w, y w, z w, w), all `f32`.
     pub bspline_data: Vec<f32>,
 }
 
@@ -201,10 +202,12 @@ pub fn surface_wgsl() -> String {
     .join("\n")
 }
 
-/// Packs `b` at the end of `data` as [`TrimScene::bspline_data`] holds it; returns its
-/// offset, or why the GPU cannot evaluate it.
+/// Packs `b` at the end of `data` as [`TrimScene::bspline_data`] holds it, its control
+/// points relative to `anchor` (the face record's origin, which the evaluators add back);
+/// returns its offset, or why the GPU cannot evaluate it.
 pub fn pack_bspline(
     b: &cadre_geom::bspline::BSplineSurface,
+    anchor: DVec3,
     data: &mut Vec<f32>,
 ) -> Result<u32, String> {
     let (p, q) = (b.u_degree, b.v_degree);
@@ -227,6 +230,7 @@ pub fn pack_bspline(
     for (i, row) in b.control_points.iter().enumerate() {
         for (j, c) in row.iter().enumerate() {
             let w = b.weights.as_ref().map_or(1.0, |w| w[i][j]);
+            let c = *c - anchor;
             data.extend([c.x * w, c.y * w, c.z * w, w].map(|x| x as f32));
         }
     }
@@ -266,6 +270,22 @@ pub(crate) fn pack_breaks(
     at
 }
 
+/// The centre of the bounding box of `points` (zero for none): the anchor a face's packed
+/// control points are stored relative to. `f32` holds a point 1,661 mm from the origin to
+/// 0.12 µm, three pixels of a 0.5 mm face magnified 100× (corpus bug29478); relative to
+/// the face's own centre, to a ten-millionth of the face.
+pub(crate) fn net_centre(points: impl Iterator<Item = DVec3>) -> DVec3 {
+    let (lo, hi) = points.fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    );
+    if lo.is_finite() && hi.is_finite() {
+        0.5 * (lo + hi)
+    } else {
+        DVec3::ZERO
+    }
+}
+
 /// A B-spline surface packed at the end of `data` (see [`TrimScene::bspline_data`]), with
 /// bounds of its second derivatives over the box `origin + [0, size]`.
 fn packed_bspline(
@@ -274,11 +294,12 @@ fn packed_bspline(
     size: [f64; 2],
     data: &mut Vec<f32>,
 ) -> Result<Exact, String> {
-    let at = pack_bspline(b, data)?;
+    let anchor = net_centre(b.control_points.iter().flatten().copied());
+    let at = pack_bspline(b, anchor, data)?;
     let curvature = bspline_curvature(b, origin, size);
     Ok((
         SURFACE_BSPLINE,
-        [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+        [anchor, DVec3::X, DVec3::Y, DVec3::Z],
         [0.0; 2],
         curvature,
         at,
@@ -392,8 +413,9 @@ fn polynomial_curvature(b: &cadre_geom::bspline::BSplineSurface) -> [f64; 3] {
     m
 }
 
-/// The point of a packed B-spline at (u, v), as `surface.wgsl` evaluates it (in `f64` from
-/// the same `f32` data): the CPU twin the tests check the packing with.
+/// The point of a packed B-spline at (u, v), relative to the anchor it was packed with, as
+/// `bspline.wgsl` evaluates it (in `f64` from the same `f32` data): the CPU twin the tests
+/// check the packing with.
 pub fn packed_bspline_point(data: &[f32], at: u32, u: f64, v: f64) -> DVec3 {
     let at = at as usize;
     let [p, q, nu, nv] = [0, 1, 2, 3].map(|k| data[at + k].to_bits() as usize);
@@ -442,17 +464,33 @@ fn surface_name(model: &Model, face: FaceId) -> &'static str {
 }
 
 /// A surface's kind, frame, numbers and second-derivative bounds over the (u, v) box
-/// `origin + [0, size]`, for the kinds the GPU evaluates in closed form.
+/// `origin + [0, size]`, for the kinds the GPU evaluates in closed form. The linear
+/// parameters (a plane's u and v, a cylinder's and cone's v) are measured from the box's
+/// corner: the frame's origin is moved there, and a cone's radius is the one there (see
+/// `surface.wgsl`'s `surface_point`).
 fn closed_form(surface: &Surface, origin: [f64; 2], size: [f64; 2]) -> Option<Exact> {
+    let [u0, v0] = origin;
     let axes = |f: &cadre_geom::Frame| [f.origin, f.x, f.y, f.z];
+    let along_z = |f: &cadre_geom::Frame| [f.origin + f.z * v0, f.x, f.y, f.z];
     // The largest |cos v| over the box's v range (the sphere's parallels).
     let v_range = (origin[1], origin[1] + size[1]);
     Some(match surface {
         Surface::Trimmed { basis, .. } => return closed_form(basis, origin, size),
-        Surface::Plane { frame } => (SURFACE_PLANE, axes(frame), [0.0; 2], [0.0; 3], 0),
+        Surface::Plane { frame } => (
+            SURFACE_PLANE,
+            [
+                frame.origin + frame.x * u0 + frame.y * v0,
+                frame.x,
+                frame.y,
+                frame.z,
+            ],
+            [0.0; 2],
+            [0.0; 3],
+            0,
+        ),
         Surface::Cylinder { frame, radius } => (
             SURFACE_CYLINDER,
-            axes(frame),
+            along_z(frame),
             [*radius, 0.0],
             [radius.abs(), 0.0, 0.0],
             0,
@@ -469,8 +507,8 @@ fn closed_form(surface: &Surface, origin: [f64; 2], size: [f64; 2]) -> Option<Ex
                 .max((radius + v_range.1 * tan).abs());
             (
                 SURFACE_CONE,
-                axes(frame),
-                [*radius, tan],
+                along_z(frame),
+                [radius + v0 * tan, tan],
                 [rho, tan.abs(), 0.0],
                 0,
             )
@@ -497,16 +535,18 @@ fn closed_form(surface: &Surface, origin: [f64; 2], size: [f64; 2]) -> Option<Ex
     })
 }
 
-/// The point of a closed-form surface at (u, v), as the GPU evaluates it (`trim.wgsl`'s
-/// `surface_point`): the CPU twin the tests check the records against.
+/// The point of a closed-form surface at (u, v), as the GPU evaluates it (`surface.wgsl`'s
+/// `surface_point`, its linear parameters from the box's corner): the CPU twin the tests
+/// check the records against.
 pub fn closed_form_point(s: &TrimFaceSurface, u: f64, v: f64) -> DVec3 {
     let [o, x, y, z] = s.frame;
     let radial = x * u.cos() + y * u.sin();
     let [a, b] = s.params;
+    let (lu, lv) = (u - s.uv_origin[0], v - s.uv_origin[1]);
     match s.kind {
-        SURFACE_PLANE => o + x * u + y * v,
-        SURFACE_CYLINDER => o + radial * a + z * v,
-        SURFACE_CONE => o + radial * (a + v * b) + z * v,
+        SURFACE_PLANE => o + x * lu + y * lv,
+        SURFACE_CYLINDER => o + radial * a + z * lv,
+        SURFACE_CONE => o + radial * (a + lv * b) + z * lv,
         SURFACE_SPHERE => o + radial * (a * v.cos()) + z * (a * v.sin()),
         _ => o + radial * (a + b * v.cos()) + z * (b * v.sin()),
     }
@@ -523,7 +563,7 @@ pub fn closed_form_normal(s: &TrimFaceSurface, u: f64, v: f64) -> DVec3 {
     match s.kind {
         SURFACE_PLANE => z,
         SURFACE_CYLINDER => radial * a,
-        SURFACE_CONE => (radial - z * b) * sign(a + v * b),
+        SURFACE_CONE => (radial - z * b) * sign(a + (v - s.uv_origin[1]) * b),
         SURFACE_SPHERE => meridian * sign(a),
         _ => meridian * sign((a + b * v.cos()) * b),
     }
@@ -533,7 +573,7 @@ pub fn closed_form_normal(s: &TrimFaceSurface, u: f64, v: f64) -> DVec3 {
 /// packed B-spline in `data`.
 pub fn face_point(s: &TrimFaceSurface, data: &[f32], u: f64, v: f64) -> DVec3 {
     match s.kind {
-        SURFACE_BSPLINE => packed_bspline_point(data, s.data, u, v),
+        SURFACE_BSPLINE => s.frame[0] + packed_bspline_point(data, s.data, u, v),
         SURFACE_EXTRUSION | SURFACE_REVOLUTION => crate::trim_sweeps::sweep_point(s, data, u, v).0,
         _ => closed_form_point(s, u, v),
     }
@@ -569,12 +609,15 @@ pub const DEPTH_REL: f64 = 2.5e-4;
 /// The GPU record of face id `face_id` drawn from `s`, its tessellation kept within `depth`
 /// model units of the surface at least ([`TrimScene::depth_tolerance`]). `points` are its
 /// mesh's vertices (position, normal, (u, v)), which say which side of the surface is the
-/// face's outside (the mesh's normals follow the shell's orientation).
+/// face's outside (the mesh's normals follow the shell's orientation). Positions in the
+/// record are relative to `mesh_origin`, the point the mesh's vertices are stored from
+/// (`gpu_scene`), which its draw records add back in `f64`.
 pub fn surface_record(
     s: &TrimFaceSurface,
     (data, depth): (&[f32], f64),
     face_id: u32,
     points: impl Iterator<Item = ([f32; 3], [f32; 3], [f32; 2])>,
+    mesh_origin: DVec3,
 ) -> crate::layout::TrimSurface {
     let mut agreement = 0.0;
     for (_, normal, uv) in points {
@@ -585,14 +628,16 @@ pub fn surface_record(
     }
     let sign = if agreement < 0.0 { -1.0 } else { 1.0 };
     // The box's surface sampled on a grid, widened by the grid's chord error: a sphere that
-    // holds every point of the box, so of the face.
+    // holds every point of the box, so of the face (relative to the mesh's origin).
     let n = SPHERE_SAMPLES - 1;
     let samples: Vec<[f32; 3]> = (0..=n)
         .flat_map(|i| (0..=n).map(move |j| (i, j)))
         .map(|(i, j)| {
             let u = s.uv_origin[0] + s.uv_size[0] * i as f64 / n as f64;
             let v = s.uv_origin[1] + s.uv_size[1] * j as f64 / n as f64;
-            face_point(s, data, u, v).as_vec3().to_array()
+            (face_point(s, data, u, v) - mesh_origin)
+                .as_vec3()
+                .to_array()
         })
         .collect();
     // A box whose points cannot all be evaluated gets no bound, so it is never culled
@@ -610,7 +655,8 @@ pub fn surface_record(
     let h = [s.uv_size[0] / n as f64, s.uv_size[1] / n as f64];
     let [muu, muv, mvv] = s.curvature;
     let chord = (h[0] * h[0] * muu + 2.0 * h[0] * h[1] * muv + h[1] * h[1] * mvv) / 8.0;
-    let [o, x, y, z] = s.frame.map(|a| a.as_vec3());
+    let o = (s.frame[0] - mesh_origin).as_vec3();
+    let [x, y, z] = [s.frame[1], s.frame[2], s.frame[3]].map(|a| a.as_vec3());
     let f = |v: glam::Vec3, w: f64| [v.x, v.y, v.z, w as f32];
     crate::layout::TrimSurface {
         origin: f(o, s.params[0]),
@@ -698,7 +744,7 @@ mod tests {
             data: at,
             breaks: NO_BREAKS,
         };
-        let record = surface_record(&s, (&data, 0.0), 1, std::iter::empty());
+        let record = surface_record(&s, (&data, 0.0), 1, std::iter::empty(), DVec3::ZERO);
         let [x, y, z, r] = record.sphere.map(f64::from);
         let (centre, radius) = (DVec3::new(x, y, z), r);
         let mut farthest: f64 = 0.0;

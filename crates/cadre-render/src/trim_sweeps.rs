@@ -60,8 +60,19 @@ pub fn sweep_surface(
         }
         other => return Err(format!("{} is not a sweep", other.type_name())),
     };
+    // The profile is packed relative to the frame's origin (a point near the face: f32
+    // keeps its precision there, see `trim_surfaces::net_centre`); a revolution's is moved
+    // along its axis to the foot of the profile's centre, which turns the same.
+    let near = profile_anchor(profile);
+    let frame = if kind == SURFACE_REVOLUTION {
+        let [o, x, y, axis] = frame;
+        [o + axis * (near - o).dot(axis), x, y, axis]
+    } else {
+        let [_, x, y, z] = frame;
+        [near, x, y, z]
+    };
     let start = data.len();
-    let (at, knots) = match pack_profile(profile, data) {
+    let (at, knots) = match pack_profile(profile, frame[0], data) {
         Ok(packed) => packed,
         Err(why) => {
             data.truncate(start);
@@ -93,9 +104,26 @@ pub fn sweep_surface(
     })
 }
 
-/// Packs `curve` as a sweep's profile at the end of `data`: its offset and its interior
-/// knots (none but a B-spline's), or why the GPU cannot evaluate it.
-fn pack_profile(curve: &Curve3, data: &mut Vec<f32>) -> Result<(u32, Vec<f64>), String> {
+/// A point near the profile `curve`: the centre of a B-spline's control points, a line's or
+/// a conic's origin.
+fn profile_anchor(curve: &Curve3) -> DVec3 {
+    match curve {
+        Curve3::Trimmed { basis, .. } => profile_anchor(basis),
+        Curve3::Line { origin, .. } => *origin,
+        Curve3::Circle { frame, .. } | Curve3::Ellipse { frame, .. } => frame.origin,
+        Curve3::BSpline(b) => crate::trim_surfaces::net_centre(b.control_points.iter().copied()),
+        _ => DVec3::ZERO,
+    }
+}
+
+/// Packs `curve` as a sweep's profile at the end of `data`, its points relative to `anchor`
+/// (the record's origin): its offset and its interior knots (none but a B-spline's), or
+/// why the GPU cannot evaluate it.
+fn pack_profile(
+    curve: &Curve3,
+    anchor: DVec3,
+    data: &mut Vec<f32>,
+) -> Result<(u32, Vec<f64>), String> {
     let at = u32::try_from(data.len()).map_err(|_| "profile data past 2³² floats".to_string())?;
     let word = |n: usize| f32::from_bits(n as u32);
     let vectors = |data: &mut Vec<f32>, kind: u32, v: [DVec3; 3]| {
@@ -104,20 +132,24 @@ fn pack_profile(curve: &Curve3, data: &mut Vec<f32>) -> Result<(u32, Vec<f64>), 
     };
     match curve {
         // A trimmed curve keeps its basis' parameter.
-        Curve3::Trimmed { basis, .. } => return pack_profile(basis, data),
+        Curve3::Trimmed { basis, .. } => return pack_profile(basis, anchor, data),
         Curve3::Line { origin, direction } => {
-            vectors(data, PROFILE_LINE, [*origin, *direction, DVec3::ZERO]);
+            vectors(
+                data,
+                PROFILE_LINE,
+                [*origin - anchor, *direction, DVec3::ZERO],
+            );
         }
         Curve3::Circle { frame, radius } => vectors(
             data,
             PROFILE_ELLIPSE,
-            [frame.origin, frame.x * *radius, frame.y * *radius],
+            [frame.origin - anchor, frame.x * *radius, frame.y * *radius],
         ),
         Curve3::Ellipse { frame, a, b } => {
             vectors(
                 data,
                 PROFILE_ELLIPSE,
-                [frame.origin, frame.x * *a, frame.y * *b],
+                [frame.origin - anchor, frame.x * *a, frame.y * *b],
             );
         }
         Curve3::BSpline(b) => {
@@ -136,6 +168,7 @@ fn pack_profile(curve: &Curve3, data: &mut Vec<f32>) -> Result<(u32, Vec<f64>), 
             data.extend(b.knots.iter().map(|&k| k as f32));
             for (i, c) in b.control_points.iter().enumerate() {
                 let w = b.weights.as_ref().map_or(1.0, |w| w[i]);
+                let c = *c - anchor;
                 data.extend([c.x * w, c.y * w, c.z * w, w].map(|x| x as f32));
             }
             return Ok((at, b.knots.clone()));
@@ -195,16 +228,17 @@ fn rotate(q: DVec3, a: DVec3, angle: f64) -> DVec3 {
 /// meeting it: the pole of a dome) the direction is taken a ten-thousandth of the box
 /// towards its middle, the limit of the normals there.
 pub fn sweep_point(s: &TrimFaceSurface, data: &[f32], u: f64, v: f64) -> (DVec3, DVec3) {
-    let [centre, _, _, axis] = s.frame;
+    // The profile is packed relative to the frame's origin (`pack_profile`).
+    let [origin, _, _, axis] = s.frame;
     if s.kind == SURFACE_EXTRUSION {
         let (c, dc) = packed_profile_point(data, s.data, u);
-        return (c + axis * v, dc.cross(axis));
+        return (origin + c + axis * v, dc.cross(axis));
     }
     let turned = |v: f64| {
         let (c, dc) = packed_profile_point(data, s.data, v);
-        let q = rotate(c - centre, axis, u);
+        let q = rotate(c, axis, u);
         let su = axis.cross(q);
-        (centre + q, su, rotate(dc, axis, u), (c - centre).length())
+        (origin + q, su, rotate(dc, axis, u), c.length())
     };
     let (point, su, sv, reach) = turned(v);
     if su.length() > 1e-5 * reach {

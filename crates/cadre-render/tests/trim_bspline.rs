@@ -98,7 +98,7 @@ fn gpu_bspline_points_are_the_exact_surfaces() {
     let mut data = Vec::new();
     let offsets: Vec<u32> = surfaces
         .iter()
-        .map(|s| pack_bspline(s, &mut data).expect("packs"))
+        .map(|s| pack_bspline(s, Vec3::ZERO, &mut data).expect("packs"))
         .collect();
     // Across the domain [0, 4]², on knots, and a little outside it.
     let ts: Vec<f64> = (0..=16)

@@ -65,9 +65,19 @@ fn agreement(
     (model, scene): (&cadre_brep::Model, &RenderScene),
     camera: &Camera,
 ) -> f64 {
+    agreement_from(gpu, renderer, (model, scene), (camera, camera))
+}
+
+/// [`agreement`] of the GPU's image from `drawn` with the ray caster's from `camera`.
+fn agreement_from(
+    gpu: &Gpu,
+    renderer: &Renderer,
+    (model, scene): (&cadre_brep::Model, &RenderScene),
+    (drawn, camera): (&Camera, &Camera),
+) -> f64 {
     let (w, h) = (128, 96);
     let ids = renderer
-        .ids_of(gpu, scene, camera, &options(w, h))
+        .ids_of(gpu, scene, drawn, &options(w, h))
         .expect("ids");
     let caster = cadre_render::raycast::RayCaster::new(model, 0.001);
     assert!(caster.skipped.is_empty(), "{:?}", caster.skipped);
@@ -299,4 +309,107 @@ fn trimmed_bspline_faces_agree_with_a_fine_mesh() {
             );
         }
     }
+}
+
+/// `text` with every 3D Cartesian point moved by `offset`: the model translated (directions
+/// are not points; the pcurves' 2D points stay).
+fn translated(text: &str, offset: glam::DVec3) -> String {
+    const KEY: &str = "CARTESIAN_POINT(";
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find(KEY) {
+        let (head, tail) = rest.split_at(at + KEY.len());
+        out.push_str(head);
+        // The name, then the coordinates' list.
+        let open = tail.find(",(").expect("a point's coordinates") + 2;
+        let close = open + tail[open..].find(')').expect("closed");
+        let numbers: Vec<f64> = tail[open..close]
+            .split(',')
+            .map(|x| x.trim().parse().expect("a coordinate"))
+            .collect();
+        out.push_str(&tail[..open]);
+        if numbers.len() == 3 {
+            let p = glam::DVec3::new(numbers[0], numbers[1], numbers[2]) + offset;
+            out.push_str(&format!("{:e},{:e},{:e}", p.x, p.y, p.z));
+        } else {
+            out.push_str(&tail[open..close]);
+        }
+        rest = &tail[close..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Parts far from their file's origin (corpus bug29478: a face half a millimetre wide,
+/// 2,300 mm out): `f32` holds coordinates to 10⁻⁷ of their size, pixels of such a face up
+/// close, unless each mesh is stored from its own centre, each B-spline's control points
+/// from the face's, each linear parameter from its box's corner (the draw records adding
+/// the rest in `f64`). The fixtures moved 3,000 times their size away, seen at 100×,
+/// against the ray caster (in `f64`). Negative control: the GPU's image drawn two pixels
+/// aside, the error a lost `f32` precision makes there, disagrees.
+#[test]
+fn faces_far_from_the_origin_keep_their_precision() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    if !renderer.draws_trims() {
+        eprintln!("skipped: the adapter runs no compute shaders, its scenes keep their meshes");
+        return;
+    }
+    let mut compared = 0;
+    let mut worst_aside: f64 = 0.0;
+    for name in [
+        "crates/cadre-mesh/tests/data/quarter_sphere_collapsed_sides.step",
+        "crates/cadre-render/tests/data/dome-and-cone.step",
+        "crates/cadre-mesh/tests/data/cylinder_hole_across_seam.step",
+    ] {
+        let text = std::fs::read_to_string(common::root().join(name)).expect("fixture reads");
+        let (_, near) = common::model_and_scene_of(text.clone().into_bytes(), 0.01);
+        let (lo, hi) = near.bounds().expect("geometry");
+        let offset = glam::DVec3::new(0.74, 0.12, 0.66) * (3000.0 * (hi - lo).length());
+        let far = translated(&text, offset);
+        let (model, scene) = common::model_and_scene_of(far.into_bytes(), 0.01);
+        let scene = scene.with_trims(&model, TRIM_TOLERANCE);
+        let (lo, hi) = scene.bounds().expect("geometry");
+        for view in [ViewPreset::Iso, ViewPreset::Front] {
+            let fitted = Camera::fit(lo, hi, view, false, 4.0 / 3.0);
+            let camera = zoomed(&model, fitted, 100.0, (lo, hi));
+            if covered(&model, &camera) < 1000 {
+                eprintln!("{name} {view:?} ×100: the close-up shows little; skipped");
+                continue;
+            }
+            let trim = agreement(&gpu, &renderer, (&model, &scene), &camera);
+            if trim.is_nan() {
+                continue;
+            }
+            // Two pixels to the right: the eye and target moved along the image's x.
+            let forward = (camera.target - camera.eye).normalize();
+            let right = forward.cross(camera.up).normalize();
+            let pixel = match camera.projection {
+                cadre_render::Projection::Perspective { fov_y } => {
+                    2.0 * (camera.target - camera.eye).length() * (0.5 * fov_y).tan() / 96.0
+                }
+                cadre_render::Projection::Orthographic { height } => height / 96.0,
+            };
+            let aside = Camera {
+                eye: camera.eye + right * (2.0 * pixel),
+                target: camera.target + right * (2.0 * pixel),
+                ..camera
+            };
+            let wrong = agreement_from(&gpu, &renderer, (&model, &scene), (&aside, &camera));
+            eprintln!(
+                "{name} {view:?} ×100, {:.0} mm out: trim {:.2} %, drawn 2 px aside {:.2} %",
+                offset.length(),
+                100.0 * trim,
+                100.0 * wrong
+            );
+            assert!(trim >= 0.99, "{name} {view:?}: {trim}");
+            worst_aside = worst_aside.min(wrong - trim);
+            compared += 1;
+        }
+    }
+    assert!(compared >= 3, "{compared} views compared");
+    assert!(
+        worst_aside < -0.005,
+        "two pixels aside lost at most {worst_aside} of the pixels"
+    );
 }

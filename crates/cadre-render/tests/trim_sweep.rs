@@ -85,7 +85,13 @@ fn gpu_sweep_points_are_the_exact_surfaces() {
         .enumerate()
         .map(|(k, (s, o, z))| {
             let face = sweep_surface(s, 0, (*o, *z), &mut data).expect("drawn");
-            surface_record(&face, (&data, 0.0), k as u32, std::iter::empty())
+            surface_record(
+                &face,
+                (&data, 0.0),
+                k as u32,
+                std::iter::empty(),
+                Vec3::ZERO,
+            )
         })
         .collect();
     let n = 12;
@@ -114,7 +120,7 @@ fn gpu_sweep_points_are_the_exact_surfaces() {
          fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
              if id.x >= arrayLength(&queries) {{ return; }}
              let q = queries[id.x];
-             let p = face_point(records[q.x], vec2<f32>(bitcast<f32>(q.y), bitcast<f32>(q.z)));
+             let p = face_point(records[q.x], vec2<f32>(bitcast<f32>(q.y), bitcast<f32>(q.z)) - records[q.x].uv.xy);
              answers[2u * id.x] = vec4<f32>(p.position, 0.0);
              answers[2u * id.x + 1u] = vec4<f32>(p.normal, 0.0);
          }}",

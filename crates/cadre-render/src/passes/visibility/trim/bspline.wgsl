@@ -135,13 +135,19 @@ fn bspline_point(at: u32, uv: vec2<f32>) -> SurfacePoint {
     return out;
 }
 
-// The point of face record `s`'s surface at `uv`: its closed form, its B-spline or its sweep.
-fn face_point(s: TrimSurface, uv: vec2<f32>) -> SurfacePoint {
+// The point of face record `s`'s surface at `local`, its parameters from the lower corner of
+// the record's (u, v) box: its closed form, its B-spline or its sweep.
+fn face_point(s: TrimSurface, local: vec2<f32>) -> SurfacePoint {
+    let uv = s.uv.xy + local;
     if s.ids.x == SURFACE_BSPLINE {
-        return bspline_point(s.ids.w, uv);
+        // The control points are packed relative to the record's origin (`pack_bspline`),
+        // so that a face far from its mesh's origin keeps f32's precision.
+        var point = bspline_point(s.ids.w, uv);
+        point.position += s.origin.xyz;
+        return point;
     }
     if (s.ids.x == SURFACE_EXTRUSION) | (s.ids.x == SURFACE_REVOLUTION) {
         return sweep_point(s, uv);
     }
-    return surface_point(s, uv);
+    return surface_point(s, local);
 }

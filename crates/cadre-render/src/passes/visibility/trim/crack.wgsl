@@ -21,9 +21,14 @@
 
 // Newton's iterations at most, and the distance to the pixel's centre, in pixels, at which
 // a point is on its ray (the seed stops at ‖F‖ < ε and gives up after 4–5 steps; starting
-// within a pixel or two of the answer, the tests converge in 2–3).
-const CRACK_NEWTON_STEPS: u32 = 6u;
+// within a pixel or two of the answer, the tests converge in 2–3). Near a silhouette of the
+// face (a cylinder seen edge-on), where the map from (u, v) to the screen folds, Newton's
+// method converges only linearly: past the steps, a point within `CRACK_ACCEPT_PX` of the
+// centre is taken (the surface crosses the pixel there; the grids themselves keep half a
+// pixel).
+const CRACK_NEWTON_STEPS: u32 = 10u;
 const CRACK_NEWTON_PX: f32 = 0.01;
+const CRACK_ACCEPT_PX: f32 = 0.1;
 
 // The crack buffers' capacity in hits (`passes::cracks` sets it).
 override CRACK_HIT_CAPACITY: u32 = 1024u;
@@ -50,7 +55,7 @@ fn vs_crack(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
 // Where the face-local (u, v) `local` of face `s` placed by `d` lands: target pixels (x, y),
 // reverse-Z depth (z) and clip w.
 fn crack_screen(s: TrimSurface, d: Draw, local: vec2<f32>) -> vec4<f32> {
-    let point = face_point(s, s.uv.xy + local);
+    let point = face_point(s, local);
     let clip = frame.view_proj * (d.model * vec4<f32>(point.position, 1.0));
     let ndc = clip.xyz / clip.w;
     return vec4<f32>((0.5 + 0.5 * ndc.x) * frame.viewport.x, (0.5 - 0.5 * ndc.y) * frame.viewport.y, ndc.z, clip.w);
@@ -58,6 +63,28 @@ fn crack_screen(s: TrimSurface, d: Draw, local: vec2<f32>) -> vec4<f32> {
 
 fn crack_word(entry: u32, word: u32) -> u32 {
     return CRACK_HEADER + entry * CRACK_ENTRY_WORDS + word;
+}
+
+// `local` a turn round (2π) in each angle of `s`'s surface (u of the surfaces of revolution
+// and of the closed forms but the plane, v of the torus) where that takes it into the box.
+fn crack_unwrapped(s: TrimSurface, local: vec2<f32>) -> vec2<f32> {
+    let tau = 6.283185307;
+    let kind = s.ids.x;
+    let angles = vec2<bool>(
+        (kind == SURFACE_CYLINDER) | (kind == SURFACE_CONE) | (kind == SURFACE_SPHERE)
+            | (kind == SURFACE_TORUS) | (kind == SURFACE_REVOLUTION),
+        kind == SURFACE_TORUS,
+    );
+    var out = local;
+    for (var axis = 0u; axis < 2u; axis++) {
+        let size = s.uv[2u + axis];
+        if angles[axis] & (out[axis] < 0.0) & (out[axis] + tau <= size) {
+            out[axis] += tau;
+        } else if angles[axis] & (out[axis] > size) & (out[axis] - tau >= 0.0) {
+            out[axis] -= tau;
+        }
+    }
+    return out;
 }
 
 @fragment
@@ -120,25 +147,39 @@ fn fs_crack(in: CrackOut) {
             if abs(det) < 1e-20 {
                 break;
             }
-            let delta = vec2<f32>(sv.y * f.x - sv.x * f.y, -su.y * f.x + su.x * f.y) / det;
-            // A step past a quarter of the box: diverging.
-            if any(abs(delta) > 0.25 * abs(s.uv.zw) + h) {
-                break;
+            var delta = vec2<f32>(sv.y * f.x - sv.x * f.y, -su.y * f.x + su.x * f.y) / det;
+            // Steps held within a quarter of the box (by halves: one past it is near a fold,
+            // where the Jacobian all but vanishes, and would leave for a far part of the
+            // surface).
+            let limit = 0.25 * abs(s.uv.zw) + h;
+            for (var k = 0u; (k < 8u) & any(abs(delta) > limit); k++) {
+                delta *= 0.5;
             }
             local -= delta;
             screen = crack_screen(s, d, local);
         }
         if !at_goal {
-            at_goal = length(screen.xy - goal) < CRACK_NEWTON_PX;
+            at_goal = length(screen.xy - goal) < CRACK_ACCEPT_PX;
         }
-        if !at_goal || screen.w <= 0.0 || screen.z <= 0.0 || screen.z > 1.0 {
+        if !at_goal {
+            // Unsolved from this fragment: the face's mailbox slot freed, so that another
+            // of its fragments about the pixel (a nearer start) tries.
+            for (var slot = 0u; slot < CRACK_MAILBOX_SLOTS; slot++) {
+                atomicCompareExchangeWeak(&crack_state[crack_word(entry, slot)], key, 0u);
+            }
             continue;
         }
+        if screen.w <= 0.0 || screen.z <= 0.0 || screen.z > 1.0 {
+            continue;
+        }
+        // An angle's solution a turn away from the box (across a closed face's seam, where
+        // a cylinder seen from the side has its silhouette) taken back into it.
+        local = crack_unwrapped(s, local);
         // A solution past the tree's box (whose side is often the trim's own edge) is off
         // the face by its distance to the box, plus the box point's to the trim.
         let kept = clamp(local, vec2<f32>(0.0), s.uv.zw);
         let in_box = all(kept == local);
-        let point = face_point(s, s.uv.xy + kept);
+        let point = face_point(s, kept);
         let placed = place_vertex(d, point.position, point.normal * s.axis_y.w);
         if SECTIONS && section_cut(placed.world) {
             continue;
@@ -149,11 +190,11 @@ fn fs_crack(in: CrackOut) {
             var world = 0.0;
             if !in_box || TRIM_TEST_CRACKS {
                 let pixels = trim_edge_pixels(s.ids.z, kept, jx, jy);
-                let across = face_point(s, s.uv.xy + kept + jx).position - point.position;
+                let across = face_point(s, kept + jx).position - point.position;
                 world = pixels * length((d.model * vec4<f32>(across, 0.0)).xyz);
             }
             if !in_box {
-                let off = face_point(s, s.uv.xy + local).position - point.position;
+                let off = face_point(s, local).position - point.position;
                 world += length((d.model * vec4<f32>(off, 0.0)).xyz);
             }
             if world < 1e29 {

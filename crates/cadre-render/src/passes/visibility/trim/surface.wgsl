@@ -30,6 +30,7 @@ const SURFACE_PLANE: u32 = 0u;
 const SURFACE_CYLINDER: u32 = 1u;
 const SURFACE_CONE: u32 = 2u;
 const SURFACE_SPHERE: u32 = 3u;
+const SURFACE_TORUS: u32 = 4u;
 
 // Vertices reserved for each face of a draw (`trim::TRIM_VERTICES`): 6 per cell of the
 // largest grid, 256² cells (tessellate.wgsl's `MAX_LEVEL` at most).
@@ -83,7 +84,13 @@ struct SurfacePoint {
     normal: vec3<f32>,
 }
 
-fn surface_point(s: TrimSurface, uv: vec2<f32>) -> SurfacePoint {
+// `local`: the parameters from the lower corner of the record's (u, v) box. The linear ones
+// (a plane's u and v, a cylinder's or cone's v) are taken from there, the record's frame
+// and a cone's radius being moved to that corner (`trim_surfaces::closed_form`): a plane
+// whose frame lies 1,661 mm from its face has parameters in the thousands, which f32 holds
+// to 0.12 µm; the angles are absolute.
+fn surface_point(s: TrimSurface, local: vec2<f32>) -> SurfacePoint {
+    let uv = s.uv.xy + local;
     let x = s.axis_x.xyz;
     let y = s.axis_y.xyz;
     let z = s.axis_z.xyz;
@@ -98,16 +105,16 @@ fn surface_point(s: TrimSurface, uv: vec2<f32>) -> SurfacePoint {
     var out: SurfacePoint;
     switch s.ids.x {
         case SURFACE_PLANE: {
-            out.position = uv.x * x + uv.y * y;
+            out.position = local.x * x + local.y * y;
             out.normal = z;
         }
         case SURFACE_CYLINDER: {
-            out.position = a * radial + uv.y * z;
+            out.position = a * radial + local.y * z;
             out.normal = a * radial;
         }
         case SURFACE_CONE: {
-            let rho = a + uv.y * b;
-            out.position = rho * radial + uv.y * z;
+            let rho = a + local.y * b;
+            out.position = rho * radial + local.y * z;
             out.normal = select(1.0, -1.0, rho < 0.0) * (radial - b * z);
         }
         case SURFACE_SPHERE: {

@@ -1,9 +1,10 @@
 // Trim back-end, swept surfaces (render shader only): surfaces of linear extrusion
-// S = C(u) + v d (d: the record's axis_z) and of revolution S = c + R_a(u) (C(v) − c) (c: the
-// record's origin, a: its unit axis_z), from their profile C packed at the record's data
-// offset in `trim_bspline` behind a kind word: a (rational) B-spline curve (degree, control
-// points, knots, homogeneous control points), a line o + t X or an ellipse
-// o + cos t X + sin t Y (nine numbers o, X, Y). `trim_sweeps::sweep_point` is the CPU twin.
+// S = c + C(u) + v d (d: the record's axis_z) and of revolution S = c + R_a(u) C(v) (a: its
+// unit axis_z), c the record's origin (a point near the face; on a revolution's axis), from
+// their profile C, relative to c, packed at the record's data offset in `trim_bspline`
+// behind a kind word: a (rational) B-spline curve (degree, control points, knots,
+// homogeneous control points), a line o + t X or an ellipse o + cos t X + sin t Y (nine
+// numbers o, X, Y). `trim_sweeps::sweep_point` is the CPU twin.
 
 const SURFACE_EXTRUSION: u32 = 6u;
 const SURFACE_REVOLUTION: u32 = 7u;
@@ -69,15 +70,15 @@ fn rotate_about(q: vec3<f32>, a: vec3<f32>, angle: f32) -> vec3<f32> {
 fn sweep_point(s: TrimSurface, uv: vec2<f32>) -> SurfacePoint {
     var out: SurfacePoint;
     let axis = s.axis_z.xyz;
+    let centre = s.origin.xyz;
     if s.ids.x == SURFACE_EXTRUSION {
         let c = profile_point(s.ids.w, uv.x);
-        out.position = c.position + uv.y * axis;
+        out.position = centre + c.position + uv.y * axis;
         out.normal = cross(c.tangent, axis);
         return out;
     }
-    let centre = s.origin.xyz;
     let c = profile_point(s.ids.w, uv.y);
-    let q = rotate_about(c.position - centre, axis, uv.x);
+    let q = rotate_about(c.position, axis, uv.x);
     var su = cross(axis, q);
     var sv = rotate_about(c.tangent, axis, uv.x);
     out.position = centre + q;
@@ -85,7 +86,7 @@ fn sweep_point(s: TrimSurface, uv: vec2<f32>) -> SurfacePoint {
         let middle = s.uv.y + 0.5 * s.uv.w;
         let v = uv.y + 1e-4 * s.uv.w * select(1.0, -1.0, middle < uv.y);
         let near = profile_point(s.ids.w, v);
-        su = cross(axis, rotate_about(near.position - centre, axis, uv.x));
+        su = cross(axis, rotate_about(near.position, axis, uv.x));
         sv = rotate_about(near.tangent, axis, uv.x);
     }
     out.normal = cross(su, sv);

@@ -169,7 +169,7 @@ fn cs_points(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_ind
     for (var i = lane + 64u * wg.z; i < count; i += 64u * POINT_CHUNKS) {
         let g = vec2<u32>(i % row, i / row);
         let local = vec2<f32>(grid_param(s, spans, 0u, g.x, per.x), grid_param(s, spans, 1u, g.y, per.y));
-        let p = face_point(s, s.uv.xy + local);
+        let p = face_point(s, local);
         grid_points[2u * (base + i)] = vec4<f32>(p.position, local.x);
         grid_points[2u * (base + i) + 1u] = vec4<f32>(p.normal, local.y);
     }

@@ -72,7 +72,7 @@ fn trim_vertex(vertex: u32, instance: u32) -> TrimOut {
         point = SurfacePoint(a.xyz, b.xyz);
     } else {
         local = vec2<f32>(grid_param(s, spans, 0u, grid.x, per.x), grid_param(s, spans, 1u, grid.y, per.y));
-        point = face_point(s, s.uv.xy + local);
+        point = face_point(s, local);
     }
     // The cell against the tree, the same at its six corners: the tessellation pass's
     // verdict, or (no room there) worked out here.
