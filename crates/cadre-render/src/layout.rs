@@ -81,6 +81,12 @@ pub fn pass_shaders() -> Vec<PassShader> {
             true,
         ),
         shader(
+            "visibility/trim crack fill faces",
+            visibility::trim::crack_faces_source(),
+            visibility::trim::CRACK_FACES_BINDINGS,
+            true,
+        ),
+        shader(
             "cracks detection",
             cracks::detect_source(),
             cracks::DETECT_BINDINGS,

@@ -124,6 +124,12 @@ impl Step {
 /// A 40 × 40 plate (z = 0) with a bore of radius 8 through it, 6 deep, and a floor plate
 /// below (z = −12) for the cracks to show.
 fn plate_with_bore() -> Vec<u8> {
+    plate_with_bore_and_tab(false)
+}
+
+/// [`plate_with_bore`], with a 4 × 4 tab off the plate's corner (x, y 32 to 36) when `tab`:
+/// a face far from the cracks.
+fn plate_with_bore_and_tab(tab: bool) -> Vec<u8> {
     let mut s = Step::default();
     let (r, depth) = (8.0, 6.0);
     let square = [[-20.0, -20.0], [20.0, -20.0], [20.0, 20.0], [-20.0, 20.0]];
@@ -171,7 +177,14 @@ fn plate_with_bore() -> Vec<u8> {
         -12.0,
         &[[-20.0, -20.0], [20.0, -20.0], [20.0, 20.0], [-20.0, 20.0]],
     );
-    s.file(&[plate, bore, floor])
+    let mut faces = vec![plate, bore, floor];
+    if tab {
+        faces.push(s.polygon_face(
+            0.0,
+            &[[32.0, 32.0], [36.0, 32.0], [36.0, 36.0], [32.0, 36.0]],
+        ));
+    }
+    s.file(&faces)
 }
 
 /// Two 20 × 30 plates side by side in z = 0 apart by `gap` along a slanted line (so that
@@ -321,6 +334,32 @@ fn the_exact_fill_closes_the_wider_cracks_of_coarser_grids() {
             "{level} lines: the exact fill closes the cracks ({before} → {after})"
         );
     }
+}
+
+/// The exact fill draws again only the faces whose projected bounding sphere reaches a
+/// crack: with a tab far from the bore's crack line, three faces of four (the floor's and
+/// the plate's spheres cover the view), and the cracks are closed as without the tab.
+#[test]
+fn the_exact_fill_draws_only_the_faces_about_the_cracks() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("renderer");
+    if !renderer.draws_trims() {
+        eprintln!("skipped: this adapter draws no trimmed faces");
+        return;
+    }
+    let renderer = renderer.with_trim_variant(&gpu, (true, 8, true));
+    let fixture = exact_scene(plate_with_bore_and_tab(true));
+    let scene = (&fixture.0, &fixture.1);
+    let camera = camera_of(&fixture.1, ViewPreset::Iso);
+    let (_, before, _) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Off));
+    let (_, after, counts) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Exact));
+    eprintln!("cracks: {before} → {after}; {counts:?}");
+    assert!(
+        before >= 5,
+        "the fixture has a crack line ({before} pixels)"
+    );
+    assert!(after * 10 <= before, "{before} → {after}");
+    assert_eq!(counts.fill_faces, 3, "{counts:?}");
 }
 
 #[test]

@@ -14,6 +14,7 @@ const CRACK_COUNT_EXACT: u32 = 4u;
 const CRACK_COUNT_FAST: u32 = 5u;
 const CRACK_COUNT_GAPS: u32 = 6u;
 const CRACK_COUNT_OPEN: u32 = 7u;
+const CRACK_COUNT_FILL_FACES: u32 = 8u;
 // An entry's words: mailbox slots (faces solved) first, then the head of its hits and its
 // two least miss distances.
 const CRACK_MAILBOX_SLOTS: u32 = 4u;

@@ -112,6 +112,9 @@ pub struct CrackCounts {
     pub gaps: u32,
     /// Crack pixels left open: a gap wider than the tolerance, or no solution found.
     pub open: u32,
+    /// Tessellation tasks (a face of a mesh call) the exact fill drew again: those whose
+    /// projected bounding sphere reaches a crack (`visibility/trim/crack_faces.wgsl`).
+    pub fill_faces: u32,
 }
 
 /// The detection's bind group 0: frame, the depth, ids and normal targets, the crack map,
@@ -548,6 +551,7 @@ impl CrackPass {
             fast: w[5],
             gaps: w[6],
             open: w[7],
+            fill_faces: w[8],
         }
     }
 }

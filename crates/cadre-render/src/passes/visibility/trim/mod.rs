@@ -53,6 +53,20 @@ pub(crate) const CRACK_BINDINGS: &[Binding] = &[
     Binding::StorageWrite("vec4<u32>"),
 ];
 
+/// The pass that picks the exact crack fill's faces (`crack_faces.wgsl`), bind group 0:
+/// frame, surfaces, tasks, the tessellation's indirect draws, the fill's (written), the
+/// crack entries and state (`passes::cracks`), the packed B-splines; group 1: the instances.
+pub(crate) const CRACK_FACES_BINDINGS: &[Binding] = &[
+    Binding::Uniform(FrameUniform::WGSL_NAME),
+    Binding::Storage(TrimSurface::WGSL_NAME),
+    Binding::Storage(TrimTask::WGSL_NAME),
+    Binding::Storage("u32"),
+    Binding::StorageWrite("u32"),
+    Binding::Storage("vec4<u32>"),
+    Binding::AtomicStorage,
+    Binding::Storage("f32"),
+];
+
 /// Storage buffers the exact crack fill's fragment stage binds: the render shader's nine,
 /// the crack buffers' four and the instances' two.
 pub(crate) const CRACK_STORAGE_BUFFERS: u32 = 15;
@@ -145,6 +159,16 @@ pub(crate) fn crack_source() -> String {
     ])
 }
 
+/// The WGSL of the pass that picks the exact crack fill's faces.
+pub(crate) fn crack_faces_source() -> String {
+    wgsl(&[
+        INSTANCES_WGSL,
+        SURFACE_WGSL,
+        crate::passes::cracks::LAYOUT_WGSL,
+        include_str!("crack_faces.wgsl"),
+    ])
+}
+
 /// The tessellation pass's whole WGSL.
 pub(crate) fn tessellate_source() -> String {
     wgsl(&[
@@ -222,6 +246,9 @@ pub(crate) struct TrimDraw {
 pub(crate) struct FrameTrim {
     tasks: wgpu::Buffer,
     args: wgpu::Buffer,
+    /// The exact crack fill's draws: `args` where a face is about a crack, else empty
+    /// (`crack_faces.wgsl`).
+    crack_args: wgpu::Buffer,
     levels: wgpu::Buffer,
     count: u32,
     pub draws: Vec<TrimDraw>,
@@ -249,6 +276,11 @@ impl FrameTrim {
                 "trim draws",
                 16 * u64::from(count),
                 wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
+            ),
+            crack_args: written(
+                "trim crack fill draws",
+                16 * u64::from(count),
+                wgpu::BufferUsages::INDIRECT,
             ),
             levels: written(
                 "trim levels",
@@ -318,6 +350,9 @@ struct CrackFill {
     layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
     pipelines: [OnceLock<wgpu::RenderPipeline>; 2],
+    /// The pass that picks its faces (`crack_faces.wgsl`) and its bind group's layout.
+    faces: wgpu::ComputePipeline,
+    faces_layout: wgpu::BindGroupLayout,
 }
 
 impl CrackFill {
@@ -342,11 +377,33 @@ impl CrackFill {
             group.push(e);
         }
         let (layout, pipeline_layout) = layouts(device, "trim crack fill", &group, Some(instances));
+        let (faces_layout, faces_pipeline_layout) = layouts(
+            device,
+            "trim crack fill faces",
+            &entries(CRACK_FACES_BINDINGS, wgpu::ShaderStages::COMPUTE),
+            Some(instances),
+        );
+        let faces = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("trim crack fill faces"),
+            layout: Some(&faces_pipeline_layout),
+            module: &shader(device, "trim crack fill faces", &crack_faces_source()),
+            entry_point: Some("cs_crack_faces"),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &[(
+                    "CRACK_ENTRY_CAPACITY",
+                    f64::from(crate::passes::cracks::ENTRY_CAPACITY),
+                )],
+                ..Default::default()
+            },
+            cache: None,
+        });
         CrackFill {
             module,
             layout,
             pipeline_layout,
             pipelines: Default::default(),
+            faces,
+            faces_layout,
         }
     }
 }
@@ -592,8 +649,9 @@ impl TrimBackend {
         }
     }
 
-    /// Records the exact crack fill (`crack.wgsl`): every trimmed face of the frame drawn
-    /// again over its whole box, its fragments next to the crack pixels of `buffers`
+    /// Records the exact crack fill (`crack.wgsl`): the trimmed faces about the cracks
+    /// (`crack_faces.wgsl` empties the others' draws) drawn again over their whole boxes,
+    /// their fragments next to the crack pixels of `buffers`
     /// solving for the exact surface seen there; into a pass over the crack mask
     /// (`buffers.mask`, tested, not written: only the fragments about a crack run).
     pub fn draw_cracks(
@@ -663,6 +721,32 @@ impl TrimBackend {
             ]
             .concat(),
         );
+        // The faces about the cracks: their draws copied, the others' emptied.
+        let faces_bind = binds.get(
+            device,
+            "trim crack fill faces",
+            &fill.faces_layout,
+            &[
+                inputs.frame.as_entire_binding(),
+                geometry.surfaces.as_entire_binding(),
+                trim.tasks.as_entire_binding(),
+                trim.args.as_entire_binding(),
+                trim.crack_args.as_entire_binding(),
+                buffers.entries.as_entire_binding(),
+                buffers.state.as_entire_binding(),
+                geometry.bspline.as_entire_binding(),
+            ],
+        );
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("trim crack fill faces"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&fill.faces);
+            pass.set_bind_group(0, &faces_bind, &[]);
+            pass.set_bind_group(1, &inputs.scene.instances.bind, &[0]);
+            pass.dispatch_workgroups(trim.count.div_ceil(64), 1, 1);
+        }
         let mut pass =
             crate::passes::cracks::depth_only_pass(encoder, "trim crack fill", &buffers.mask, None);
         pass.set_pipeline(pipeline);
@@ -670,7 +754,11 @@ impl TrimBackend {
         let instances = &inputs.scene.instances;
         for draw in &trim.draws {
             pass.set_bind_group(1, &instances.bind, &[instances.offset(draw.slot)]);
-            pass.multi_draw_indirect(&trim.args, 16 * u64::from(draw.task_first), draw.faces);
+            pass.multi_draw_indirect(
+                &trim.crack_args,
+                16 * u64::from(draw.task_first),
+                draw.faces,
+            );
         }
     }
 }
