@@ -311,19 +311,12 @@ fn the_exact_fill_closes_a_bores_crack_line() {
 #[test]
 fn the_exact_fill_closes_the_wider_cracks_of_coarser_grids() {
     let gpu = gpu();
-    if !Renderer::new(&gpu).expect("renderer").draws_trims() {
-        eprintln!("skipped: this adapter draws no trimmed faces");
-        return;
-    }
     let fixture = exact_scene(plate_with_bore());
-    let scene = (&fixture.0, &fixture.1);
-    let camera = camera_of(&fixture.1, ViewPreset::Iso);
     for level in [7, 6] {
-        let renderer = Renderer::new(&gpu)
-            .expect("renderer")
-            .with_trim_variant(&gpu, (true, level, true));
-        let (_, before, _) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Off));
-        let (_, after, counts) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Exact));
+        let Some(renderer) = coarse_renderer(&gpu, level) else {
+            return;
+        };
+        let (before, after, counts) = iso_off_and_exact(&gpu, &renderer, &fixture);
         eprintln!("{level} lines: {before} → {after}; {counts:?}");
         assert!(
             before >= 10,
@@ -336,23 +329,42 @@ fn the_exact_fill_closes_the_wider_cracks_of_coarser_grids() {
     }
 }
 
+/// A renderer whose faces' grids are held to `lines` lines a span, or `None` (said on
+/// stderr) where the adapter draws no trimmed faces.
+fn coarse_renderer(gpu: &cadre_render::Gpu, lines: u32) -> Option<Renderer> {
+    let renderer = Renderer::new(gpu).expect("renderer");
+    if !renderer.draws_trims() {
+        eprintln!("skipped: this adapter draws no trimmed faces");
+        return None;
+    }
+    Some(renderer.with_trim_variant(gpu, (true, lines, true)))
+}
+
+/// The crack pixels of `fixture`'s iso view with the crack pass off and with the exact
+/// fill, and what the exact fill counted.
+fn iso_off_and_exact(
+    gpu: &cadre_render::Gpu,
+    renderer: &Renderer,
+    fixture: &(cadre_brep::Model, RenderScene),
+) -> (usize, usize, cadre_render::CrackCounts) {
+    let scene = (&fixture.0, &fixture.1);
+    let camera = camera_of(&fixture.1, ViewPreset::Iso);
+    let (_, before, _) = draw((gpu, renderer), scene, &camera, mode(CrackMode::Off));
+    let (_, after, counts) = draw((gpu, renderer), scene, &camera, mode(CrackMode::Exact));
+    (before, after, counts)
+}
+
 /// The exact fill draws again only the faces whose projected bounding sphere reaches a
 /// crack: with a tab far from the bore's crack line, three faces of four (the floor's and
 /// the plate's spheres cover the view), and the cracks are closed as without the tab.
 #[test]
 fn the_exact_fill_draws_only_the_faces_about_the_cracks() {
     let gpu = gpu();
-    let renderer = Renderer::new(&gpu).expect("renderer");
-    if !renderer.draws_trims() {
-        eprintln!("skipped: this adapter draws no trimmed faces");
+    let Some(renderer) = coarse_renderer(&gpu, 8) else {
         return;
-    }
-    let renderer = renderer.with_trim_variant(&gpu, (true, 8, true));
+    };
     let fixture = exact_scene(plate_with_bore_and_tab(true));
-    let scene = (&fixture.0, &fixture.1);
-    let camera = camera_of(&fixture.1, ViewPreset::Iso);
-    let (_, before, _) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Off));
-    let (_, after, counts) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Exact));
+    let (before, after, counts) = iso_off_and_exact(&gpu, &renderer, &fixture);
     eprintln!("cracks: {before} → {after}; {counts:?}");
     assert!(
         before >= 5,
