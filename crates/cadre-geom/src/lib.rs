@@ -19,6 +19,7 @@ pub mod frame;
 mod invert;
 pub mod nurbs;
 pub mod point;
+pub mod quadric;
 pub mod surface;
 pub mod tolerance;
 
@@ -29,6 +30,7 @@ pub use eval::curve::CurveDerivs;
 pub use eval::surface::SurfaceDerivs;
 pub use frame::{Frame, Transform};
 pub use point::GeomPoint;
+pub use quadric::{CutKind, CutQuadric, HalfSpace, Quadric, QuadricClass};
 pub use surface::Surface;
 pub use tolerance::Accuracy;
 
