@@ -96,6 +96,8 @@ pub(crate) struct FrameBuffers {
     pub primitives: GrowingBuffer,
     /// The see-through analytic primitives' records.
     pub see_through_primitives: GrowingBuffer,
+    /// The cutting planes of the frame's quadrics, in their boxes' frames.
+    pub primitive_planes: GrowingBuffer,
 }
 
 impl FrameBuffers {
@@ -116,6 +118,7 @@ impl FrameBuffers {
                 "see-through primitives",
                 U::STORAGE,
             ),
+            primitive_planes: GrowingBuffer::new(device, "primitive planes", U::STORAGE),
         }
     }
 }

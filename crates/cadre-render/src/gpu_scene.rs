@@ -500,18 +500,23 @@ impl PreparedScene {
         (self.placements.instances + k) as u32
     }
 
-    /// The visible primitives' records for a frame seen by `camera`, opaque ones written into
-    /// `buffers.0` and see-through ones (their material's or the view's colour has an opacity
-    /// below 1) into `buffers.1`; a view's colour becomes a material of its own in
-    /// `materials`, as for the meshes.
+    /// The visible primitives' records for a frame seen by `camera` in an image of `aspect`,
+    /// opaque ones written into `buffers.0` and see-through ones (their material's or the
+    /// view's colour has an opacity below 1) into `buffers.1`, the quadrics' cutting planes
+    /// into `buffers.2`; a view's colour becomes a material of its own in `materials`, as for
+    /// the meshes.
     fn frame_primitives(
         &self,
         gpu: &crate::Gpu,
-        (opaque_buffer, see_through_buffer): (&mut GrowingBuffer, &mut GrowingBuffer),
-        (camera, state): (&Camera, &ViewState),
+        (opaque_buffer, see_through_buffer, planes_buffer): (
+            &mut GrowingBuffer,
+            &mut GrowingBuffer,
+            &mut GrowingBuffer,
+        ),
+        (camera, aspect, state): (&Camera, f64, &ViewState),
         materials: &mut Vec<Material>,
     ) -> Result<FramePrimitives, RenderError> {
-        let (mut opaque, mut see_through) = (Vec::new(), Vec::new());
+        let (mut opaque, mut see_through, mut planes) = (Vec::new(), Vec::new(), Vec::new());
         for (k, p) in self.primitives.iter().enumerate() {
             let instance = self.primitive_instance(k);
             let style = state
@@ -532,7 +537,7 @@ impl PreparedScene {
                 }
                 None => self.primitive_materials + k as u32,
             };
-            let record = p.record(camera, (instance, material));
+            let record = p.record((camera, aspect), (instance, material), &mut planes);
             if materials[material as usize].base_color[3] < SEE_THROUGH_BELOW {
                 see_through.push(record);
             } else {
@@ -541,7 +546,13 @@ impl PreparedScene {
         }
         opaque_buffer.write(gpu, bytemuck::cast_slice(&opaque))?;
         see_through_buffer.write(gpu, bytemuck::cast_slice(&see_through))?;
+        // Storage bindings may not be empty.
+        if planes.is_empty() {
+            planes.push([0.0; 4]);
+        }
+        planes_buffer.write(gpu, bytemuck::cast_slice(&planes))?;
         Ok(FramePrimitives {
+            planes: planes_buffer.buffer().clone(),
             opaque: (opaque_buffer.buffer().clone(), opaque.len() as u32),
             see_through: (
                 see_through_buffer.buffer().clone(),
@@ -823,7 +834,7 @@ impl<'a> FrameScene<'a> {
         (layout, binds): (&InstanceLayout, &BindCache),
         buffers: &mut FrameBuffers,
         geometry: &'a PreparedScene,
-        (camera, state): (&Camera, &ViewState),
+        (camera, state, aspect): (&Camera, &ViewState, f64),
         with_edges: bool,
     ) -> Result<FrameScene<'a>, RenderError> {
         let mut materials = geometry.materials.clone();
@@ -1050,8 +1061,12 @@ impl<'a> FrameScene<'a> {
         )?;
         let primitives = geometry.frame_primitives(
             gpu,
-            (&mut buffers.primitives, &mut buffers.see_through_primitives),
-            (camera, state),
+            (
+                &mut buffers.primitives,
+                &mut buffers.see_through_primitives,
+                &mut buffers.primitive_planes,
+            ),
+            (camera, aspect, state),
             &mut materials,
         )?;
         buffers

@@ -494,9 +494,24 @@ pub struct Primitive {
     pub to_local: [[f32; 4]; 4],
     /// Shape-local normals → view space (columns, xyz used).
     pub normal: [[f32; 4]; 3],
-    /// Sphere: radius (x); rectangle: half width and half height (x, y); unused lanes 0.
+    /// Sphere: radius (x); rectangle: half width and half height (x, y); quadric: λ (xyz)
+    /// and c (w) of Σ λᵢ zᵢ² + 2 bᵀz + c in its box's frame; unused lanes 0.
     pub size: [f32; 4],
-    /// [`crate::analytic::PRIMITIVE_SPHERE`] or [`crate::analytic::PRIMITIVE_RECTANGLE`].
+    /// Quadric: b (xyz); w unused.
+    pub linear: [f32; 4],
+    /// The pixel's ray in the shape's frame, affine in its normalised device coordinates
+    /// (x, y): origin o₀ + x oₓ + y o_y, direction d₀ + x dₓ + y d_y (xyz of each column, in
+    /// that order; see `analytic::pixel_ray`).
+    pub ray: [[f32; 4]; 6],
+    /// The hit's reverse-Z depth from the ray parameter s: (Z, N, P₂₂, unused), depth =
+    /// (N − P₂₂ s) / (Z + s) in perspective, N − P₂₂ s in orthographic projection.
+    pub depth: [f32; 4],
+    /// Quadric: the screen rectangle holding it, normalised device coordinates (low x, low y,
+    /// high x, high y).
+    pub screen: [f32; 4],
+    /// [`crate::analytic::PRIMITIVE_SPHERE`], [`crate::analytic::PRIMITIVE_RECTANGLE`],
+    /// [`crate::analytic::PRIMITIVE_QUADRIC_PATCH`] or
+    /// [`crate::analytic::PRIMITIVE_QUADRIC_VOLUME`].
     pub kind: u32,
     /// Face id written into the visibility buffer.
     pub face: u32,
@@ -504,10 +519,12 @@ pub struct Primitive {
     pub instance: u32,
     /// Index into the material buffer.
     pub material: u32,
-    /// [`DRAW_CLOSED`] for spheres (section planes cap them).
+    /// Quadric: its first cutting plane in the frame's plane buffer, and their count.
+    pub planes: [u32; 2],
+    /// [`DRAW_CLOSED`] for spheres and quadric volumes (section planes cap them).
     pub flags: u32,
     /// Padding to the struct's 16-byte alignment.
-    pub pad: [u32; 3],
+    pub pad: u32,
 }
 
 /// A metallic-roughness material.
@@ -582,6 +599,7 @@ gpu_struct!(
     Primitive,
     "Primitive",
     [
-        model, to_local, normal, size, kind, face, instance, material, flags, pad
+        model, to_local, normal, size, linear, ray, depth, screen, kind, face, instance, material,
+        planes, flags, pad
     ]
 );

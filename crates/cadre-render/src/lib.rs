@@ -70,7 +70,7 @@ mod vertex_cache;
 mod view;
 mod viewport;
 
-pub use analytic::{AnalyticPrimitive, AnalyticShape};
+pub use analytic::{AnalyticPrimitive, AnalyticShape, QuadricShape};
 pub use bounds::scene_bounds;
 pub use camera::{Camera, Projection, ViewPreset};
 pub use coverage::MAX_IMAGE_COVERAGE;

@@ -9,7 +9,7 @@ use cadre_mesh::ModelMesh;
 use cadre_mesh::scene::{Scene, SceneIds};
 use glam::DVec3;
 
-use crate::analytic::{AnalyticPrimitive, AnalyticShape};
+use crate::analytic::AnalyticPrimitive;
 
 /// A scene for the renderer: everything [`crate::Renderer::prepare`] uploads.
 ///
@@ -138,23 +138,10 @@ impl RenderScene {
         let meshes = crate::scene_bounds(&self.assembly);
         self.primitives
             .iter()
-            .map(primitive_bounds)
+            .map(AnalyticPrimitive::world_box)
             .chain(meshes)
             .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
     }
-}
-
-/// The world box of one primitive.
-fn primitive_bounds(p: &AnalyticPrimitive) -> (DVec3, DVec3) {
-    let f = &p.frame;
-    let half = match p.shape {
-        AnalyticShape::Sphere { radius } => DVec3::splat(radius.abs()),
-        AnalyticShape::Rectangle {
-            half_width,
-            half_height,
-        } => (f.x * half_width).abs() + (f.y * half_height).abs(),
-    };
-    (f.origin - half, f.origin + half)
 }
 
 #[cfg(test)]
@@ -226,7 +213,7 @@ mod tests {
     #[test]
     fn bounds_hold_the_primitives() {
         let sphere = AnalyticPrimitive {
-            shape: AnalyticShape::Sphere { radius: 2.0 },
+            shape: crate::AnalyticShape::Sphere { radius: 2.0 },
             frame: cadre_geom::Frame {
                 origin: DVec3::new(10.0, 0.0, 0.0),
                 ..cadre_geom::Frame::WORLD

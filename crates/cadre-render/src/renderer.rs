@@ -511,7 +511,7 @@ impl Renderer {
             (&self.instances, &self.binds),
             buffers,
             scene,
-            (camera, state),
+            (camera, state, f64::from(w) / f64::from(h)),
             with_edges,
         )?;
         let mut selection: Vec<[u32; 4]> = state

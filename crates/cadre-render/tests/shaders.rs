@@ -383,6 +383,14 @@ fn the_shaders_flags_are_the_rust_flags() {
             "PRIMITIVE_RECTANGLE",
             cadre_render::analytic::PRIMITIVE_RECTANGLE,
         ),
+        (
+            "PRIMITIVE_QUADRIC_PATCH",
+            cadre_render::analytic::PRIMITIVE_QUADRIC_PATCH,
+        ),
+        (
+            "PRIMITIVE_QUADRIC_VOLUME",
+            cadre_render::analytic::PRIMITIVE_QUADRIC_VOLUME,
+        ),
         ("DRAW_CLOSED", DRAW_CLOSED),
     ] {
         assert_eq!(constant_u32(&analytic, name), Some(value), "{name}");

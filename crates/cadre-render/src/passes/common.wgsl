@@ -68,13 +68,17 @@ struct Primitive {
     to_local: mat4x4<f32>,
     normal: array<vec4<f32>, 3>,
     size: vec4<f32>,
+    linear: vec4<f32>,
+    ray: array<vec4<f32>, 6>,
+    depth: vec4<f32>,
+    screen: vec4<f32>,
     kind: u32,
     face: u32,
     instance: u32,
     material: u32,
+    planes: vec2<u32>,
     flags: u32,
-    // Not vec3<u32>, which would align to 16 bytes: the Rust twin is [u32; 3].
-    pad: array<u32, 3>,
+    pad: u32,
 }
 
 struct PickRegion {

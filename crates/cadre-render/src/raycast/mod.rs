@@ -50,6 +50,17 @@ pub struct RayCaster {
     pub skipped: Vec<u64>,
     /// Refined cells kept by every face's tree, shared so their memory is bounded.
     cache: RefineCache,
+    /// Quadric primitives, cast exactly ([`cadre_geom::CutQuadric::hit`]).
+    quadrics: Vec<CastQuadric>,
+}
+
+/// A quadric primitive ready to be hit: its id, world → frame map, the primitive in its
+/// frame's coordinates and its box there.
+struct CastQuadric {
+    id: u64,
+    to_frame: glam::DAffine3,
+    cut: cadre_geom::CutQuadric,
+    bounds: (DVec3, DVec3),
 }
 
 impl RayCaster {
@@ -143,6 +154,7 @@ impl RayCaster {
             instances,
             skipped,
             cache,
+            quadrics: Vec::new(),
         }
     }
 
@@ -153,16 +165,34 @@ impl RayCaster {
         use std::f64::consts::{FRAC_PI_2, TAU};
         let frame = primitive.frame;
         // The trim: a rectangle of (u, v); a sphere's covers its whole domain.
-        let (surface, (u0, u1), (v0, v1)) = match primitive.shape {
+        let (surface, (u0, u1), (v0, v1)) = match &primitive.shape {
+            AnalyticShape::Quadric(q) => {
+                let corners = q.bounds().corners();
+                let bounds = corners
+                    .iter()
+                    .fold((corners[0], corners[0]), |(lo, hi), &p| {
+                        (lo.min(p), hi.max(p))
+                    });
+                self.quadrics.push(CastQuadric {
+                    id: u64::from(primitive.face_id),
+                    to_frame: primitive.placement().inverse(),
+                    cut: q.cut().clone(),
+                    bounds,
+                });
+                return;
+            }
             AnalyticShape::Sphere { radius } => (
-                Surface::Sphere { frame, radius },
+                Surface::Sphere {
+                    frame,
+                    radius: *radius,
+                },
                 (-0.1, TAU + 0.1),
                 (-FRAC_PI_2 - 0.1, FRAC_PI_2 + 0.1),
             ),
             AnalyticShape::Rectangle {
                 half_width: a,
                 half_height: b,
-            } => (Surface::Plane { frame }, (-a, a), (-b, b)),
+            } => (Surface::Plane { frame }, (-*a, *a), (-*b, *b)),
         };
         let rectangle = vec![
             DVec2::new(u0, v0),
@@ -403,6 +433,20 @@ impl RayCaster {
         // Faces are searched a tie's width beyond the nearest hit so far, so that a
         // coincident face is seen whichever comes first.
         let reach = |t: f64| t + TIE * t;
+        let consider = |best: &mut (f64, u64, bool), t: f64, id: u64| {
+            if reach(t) < best.0 {
+                *best = (t, id, false);
+            } else {
+                // Within a tie of the nearest: the nearer stays, marked as tied unless both
+                // are the same face (another instance of it).
+                let tied = best.2 || id != best.1;
+                *best = if t < best.0 {
+                    (t, id, tied)
+                } else {
+                    (best.0, best.1, tied)
+                };
+            }
+        };
         for (to_part, ids) in &self.instances {
             let o = to_part.transform_point3(origin);
             let d = to_part.transform_vector3(dir);
@@ -414,20 +458,19 @@ impl RayCaster {
                     continue;
                 }
                 if let Some(t) = face.nearest_hit(o, d, t_max) {
-                    let id = face.step_id;
-                    if reach(t) < best.0 {
-                        best = (t, id, false);
-                    } else {
-                        // Within a tie of the nearest: the nearer stays, marked as tied
-                        // unless both are the same face (another instance of it).
-                        let tied = best.2 || id != best.1;
-                        best = if t < best.0 {
-                            (t, id, tied)
-                        } else {
-                            (best.0, best.1, tied)
-                        };
-                    }
+                    consider(&mut best, t, face.step_id);
                 }
+            }
+        }
+        for q in &self.quadrics {
+            // The frame is rigid: the ray parameter is the world's.
+            let o = q.to_frame.transform_point3(origin);
+            let d = q.to_frame.transform_vector3(dir);
+            if slab(q.bounds.0, q.bounds.1, o, d.recip(), reach(best.0)).is_none() {
+                continue;
+            }
+            if let Some(hit) = q.cut.hit(o, d, 0.0) {
+                consider(&mut best, hit.t, q.id);
             }
         }
         best.0.is_finite().then_some(best)

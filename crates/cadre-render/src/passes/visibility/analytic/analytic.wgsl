@@ -1,6 +1,7 @@
-// Analytic back-end: spheres and rectangles ray cast per pixel. Each primitive draws a proxy
-// that covers it on screen (a sphere's bounding cube, both sides; a rectangle itself), and
-// each proxy fragment casts the pixel's view ray in the primitive's own frame. Into the
+// Analytic back-end: spheres, rectangles and quadrics cut by planes ray cast per pixel. Each
+// primitive draws a proxy that covers it on screen (a sphere's bounding cube, both sides; a
+// rectangle itself; a quadric's screen rectangle, quadric.wgsl), and each proxy fragment
+// casts the pixel's view ray in the primitive's own frame. Into the
 // visibility buffer (`fs_main`) it keeps the nearest hit in front of the near plane and
 // outside every section plane, writes that hit's depth (not the proxy's) and goes through
 // `visibility_texel` (texel.wgsl, before this file) like a mesh fragment. In the see-through
@@ -54,6 +55,13 @@ fn cube_corner(vi: u32) -> vec3<f32> {
 @vertex
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) index: u32) -> ProxyOut {
     let p = primitives[index];
+    var out: ProxyOut;
+    out.index = index;
+    if is_quadric(p) {
+        out.clip = quadric_proxy(p, vi);
+        out.world = vec3<f32>(0.0);
+        return out;
+    }
     var local: vec3<f32>;
     if p.kind == PRIMITIVE_SPHERE {
         local = cube_corner(vi) * p.size.x;
@@ -64,10 +72,8 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) index: u32) 
         local = vec3<f32>(0.0);
     }
     let world = p.model * vec4<f32>(local, 1.0);
-    var out: ProxyOut;
     out.clip = frame.view_proj * world;
     out.world = world.xyz;
-    out.index = index;
     return out;
 }
 
@@ -176,34 +182,78 @@ fn view_normal(p: Primitive, n: vec3<f32>) -> vec3<f32> {
     return mat3x3<f32>(p.normal[0].xyz, p.normal[1].xyz, p.normal[2].xyz) * n;
 }
 
+// The surface point a fragment shows: camera-relative position, view-space normal, (u, v),
+// whether it is seen from the side its normal points to, and its depth; `found` false for
+// none.
+struct ShownPoint {
+    found: bool,
+    world: vec3<f32>,
+    normal: vec3<f32>,
+    uv: vec2<f32>,
+    front: bool,
+    depth: f32,
+}
+
+// The point hit number `layer` (0 the nearest) of the proxy fragment at `pixel` (its
+// position) and `world` (its camera-relative point).
+fn shown_point(p: Primitive, pixel: vec2<f32>, world: vec3<f32>, layer: u32) -> ShownPoint {
+    var out = ShownPoint(false, vec3<f32>(0.0), vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0), true, 0.0);
+    if is_quadric(p) {
+        let ray = quadric_ray(p, pixel);
+        let hit = quadric_hit(p, ray, layer);
+        if hit.found {
+            let local = ray.o + hit.s * ray.d;
+            out = ShownPoint(
+                true,
+                (p.model * vec4<f32>(local, 1.0)).xyz,
+                view_normal(p, hit.n),
+                local.xy,
+                dot(hit.n, ray.d) < 0.0,
+                hit.depth,
+            );
+        }
+        return out;
+    }
+    let ray = pixel_ray(p, world);
+    let hit = layer_hit(p, ray, layer);
+    if hit.found {
+        let local = ray.o + hit.t * ray.d;
+        let surface = surface_point(p, local);
+        // Seen from the side the normal points to, unless the ray leaves the sphere (inside).
+        out = ShownPoint(
+            true,
+            ray.origin + hit.t * ray.dir,
+            view_normal(p, surface.n),
+            surface.uv,
+            dot(surface.n, ray.d) < 0.0,
+            hit.depth,
+        );
+    }
+    return out;
+}
+
 @fragment
 fn fs_main(in: ProxyOut) -> AnalyticOut {
     let p = primitives[in.index];
-    let ray = pixel_ray(p, in.world);
-    let hit = layer_hit(p, ray, 0u);
-    if !hit.found {
+    let shown = shown_point(p, in.clip.xy, in.world, 0u);
+    if !shown.found {
         discard;
     }
-    let local = ray.o + hit.t * ray.d;
-    let surface = surface_point(p, local);
-    // Seen from the side the normal points to, unless the ray leaves the sphere (inside).
-    let front = dot(surface.n, ray.d) < 0.0;
-    let normal = view_normal(p, surface.n);
     let ids = InstanceIds(p.material, p.instance, p.flags);
     let texel = visibility_texel(
-        ray.origin + hit.t * ray.dir,
-        normal,
+        shown.world,
+        shown.normal,
         p.face,
         ids,
-        hit.depth,
-        surface.uv,
-        front,
+        shown.depth,
+        shown.uv,
+        shown.front,
     );
     var out: AnalyticOut;
     out.normal = texel.normal;
     out.ids = texel.ids;
     out.uv = texel.uv;
-    out.depth = select(in.clip.z, hit.depth, EXACT_DEPTH);
+    out.depth = select(in.clip.z, shown.depth, EXACT_DEPTH);
     if !EXACT_DEPTH {
         out.ids.w = bitcast<u32>(in.clip.z);
     }
@@ -213,10 +263,11 @@ fn fs_main(in: ProxyOut) -> AnalyticOut {
 // Whether this proxy fragment draws its pixel in a see-through phase, where no depth test
 // keeps one of a sphere's cube's two sides: the one on the cube's far side along the ray
 // (whose face's outward normal the ray runs along), seen once from outside and from inside.
-fn draws_pixel(p: Primitive, world: vec3<f32>, ray: PixelRay) -> bool {
+fn draws_pixel(p: Primitive, world: vec3<f32>) -> bool {
     if p.kind != PRIMITIVE_SPHERE {
         return true;
     }
+    let ray = pixel_ray(p, world);
     let q = (p.to_local * vec4<f32>(world, 1.0)).xyz;
     let a = abs(q);
     var axis = 0u;
@@ -236,17 +287,16 @@ struct SeeThroughHit {
     depth: f32,
 }
 
-fn see_through_hit(p: Primitive, world: vec3<f32>) -> SeeThroughHit {
-    let ray = pixel_ray(p, world);
+fn see_through_hit(p: Primitive, pixel: vec2<f32>, world: vec3<f32>) -> SeeThroughHit {
     var out = SeeThroughHit(false, vec3<f32>(0.0, 0.0, 1.0), 0.0);
-    if !draws_pixel(p, world, ray) {
+    if !draws_pixel(p, world) {
         return out;
     }
-    let hit = layer_hit(p, ray, LAYER);
-    if hit.found {
+    let shown = shown_point(p, pixel, world, LAYER);
+    if shown.found {
         out.found = true;
-        out.normal = view_normal(p, surface_point(p, ray.o + hit.t * ray.d).n);
-        out.depth = hit.depth;
+        out.normal = shown.normal;
+        out.depth = shown.depth;
     }
     return out;
 }
@@ -254,7 +304,7 @@ fn see_through_hit(p: Primitive, world: vec3<f32>) -> SeeThroughHit {
 @fragment
 fn fs_xray(in: ProxyOut) -> @location(0) vec4<f32> {
     let p = primitives[in.index];
-    let hit = see_through_hit(p, in.world);
+    let hit = see_through_hit(p, in.clip.xy, in.world);
     if !hit.found {
         discard;
     }
@@ -269,7 +319,7 @@ struct TransparentOut {
 @fragment
 fn fs_transparent(in: ProxyOut) -> TransparentOut {
     let p = primitives[in.index];
-    let hit = see_through_hit(p, in.world);
+    let hit = see_through_hit(p, in.clip.xy, in.world);
     if !hit.found {
         discard;
     }

@@ -13,11 +13,12 @@ use crate::layout::{Binding, FrameUniform, GpuStruct, Material, Primitive};
 use crate::passes::common::{PipelineSpec, blended, entries, layouts, pipeline, shader, wgsl};
 
 /// Bind group 0: the frame, the frame's primitives (opaque or see-through ones), the
-/// frame's materials.
+/// frame's materials, the quadrics' cutting planes.
 pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(Primitive::WGSL_NAME),
     Binding::Storage(Material::WGSL_NAME),
+    Binding::Storage("vec4<f32>"),
 ];
 
 /// Vertices of a primitive's proxy: a bounding cube's 12 triangles (a rectangle uses 2).
@@ -26,7 +27,12 @@ const PROXY_VERTICES: u32 = 36;
 /// The back-end's whole WGSL: the shared declarations, the texel writer, the see-through
 /// colours, its own source.
 pub(crate) fn source() -> String {
-    wgsl(&[TEXEL_WGSL, SEE_THROUGH_WGSL, include_str!("analytic.wgsl")])
+    wgsl(&[
+        TEXEL_WGSL,
+        SEE_THROUGH_WGSL,
+        include_str!("quadric.wgsl"),
+        include_str!("analytic.wgsl"),
+    ])
 }
 
 /// The back-end's pipelines (with and without the (u, v) target; with the proxy's depth for
@@ -48,6 +54,8 @@ pub(crate) struct AnalyticBackend {
 pub(crate) struct FramePrimitives {
     pub opaque: (wgpu::Buffer, u32),
     pub see_through: (wgpu::Buffer, u32),
+    /// The quadrics' cutting planes (in their boxes' frames), indexed by their records.
+    pub planes: wgpu::Buffer,
 }
 
 impl AnalyticBackend {
@@ -91,7 +99,7 @@ impl AnalyticBackend {
                     recorder,
                     pass,
                     pipeline,
-                    (inputs.frame, materials),
+                    (inputs.frame, materials, &primitives.planes),
                     &primitives.opaque,
                 );
             }
@@ -109,7 +117,7 @@ impl AnalyticBackend {
                             recorder,
                             pass,
                             pipeline,
-                            (inputs.frame, materials),
+                            (inputs.frame, materials, &primitives.planes),
                             records,
                         );
                     }
@@ -124,7 +132,7 @@ impl AnalyticBackend {
         (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
         pass: &mut wgpu::RenderPass<'_>,
         pipeline: &wgpu::RenderPipeline,
-        (frame, materials): (&wgpu::Buffer, &wgpu::Buffer),
+        (frame, materials, planes): (&wgpu::Buffer, &wgpu::Buffer, &wgpu::Buffer),
         (records, count): &(wgpu::Buffer, u32),
     ) {
         if *count == 0 {
@@ -138,6 +146,7 @@ impl AnalyticBackend {
                 frame.as_entire_binding(),
                 records.as_entire_binding(),
                 materials.as_entire_binding(),
+                planes.as_entire_binding(),
             ],
         );
         pass.set_pipeline(pipeline);
