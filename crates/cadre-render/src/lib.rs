@@ -62,6 +62,7 @@ mod position_key;
 pub mod raycast;
 mod render_scene;
 mod renderer;
+pub mod scene_file;
 mod smooth;
 mod solid;
 pub mod trim_surfaces;

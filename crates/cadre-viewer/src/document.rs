@@ -12,6 +12,13 @@ use glam::{DAffine3, DVec3};
 
 use crate::ViewerError;
 
+/// Whether `path` names a scene file of quadric primitives (`.json`) rather than STEP.
+pub fn is_scene_file(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+}
+
 /// Default tessellation: 0.05 % of the model's diagonal, like `cadre render`.
 pub const DEFLECTION_RELATIVE: f64 = 0.0005;
 
@@ -101,6 +108,9 @@ impl Document {
     ) -> Result<Document, ViewerError> {
         let t0 = Instant::now();
         progress(LoadStage::Reading);
+        if is_scene_file(path) {
+            return Document::load_scene(path, t0);
+        }
         let file = cadre_step::syntax::StepFile::read(path).map_err(|e| ViewerError::Load {
             path: path.to_path_buf(),
             message: e.to_string(),
@@ -136,6 +146,26 @@ impl Document {
             mesh,
             scene,
             warnings,
+            t0.elapsed().as_secs_f64(),
+        ))
+    }
+
+    /// A scene file of quadric primitives (`cadre_render::scene_file`): no B-Rep, no mesh.
+    fn load_scene(path: &Path, t0: Instant) -> Result<Document, ViewerError> {
+        let load_error = |message: String| ViewerError::Load {
+            path: path.to_path_buf(),
+            message,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| load_error(e.to_string()))?;
+        let loaded =
+            cadre_render::scene_file::load_scene(&text).map_err(|e| load_error(e.to_string()))?;
+        let scene = RenderScene::default().with_primitives(loaded.primitives);
+        Ok(Document::assemble(
+            path.to_path_buf(),
+            Model::default(),
+            ModelMesh::default(),
+            scene,
+            loaded.warnings,
             t0.elapsed().as_secs_f64(),
         ))
     }
@@ -296,6 +326,15 @@ mod tests {
 
     fn example() -> PathBuf {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pin-assembly.step")
+    }
+
+    #[test]
+    fn a_scene_file_of_quadrics_opens_as_a_document() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/scenes/teapot.json");
+        let doc = Document::load(&path, &|_| {}).expect("loads");
+        assert_eq!(doc.scene.primitives.len(), 10);
+        assert!(doc.bounds.is_some() && doc.warnings.is_empty());
+        assert!(doc.model.faces.is_empty());
     }
 
     #[test]

@@ -489,3 +489,58 @@ fn every_antialiasing_choice_renders_and_smoothing_changes_the_image() {
     // `--supersample 1` alone is an explicit choice of one sample: the aliased image.
     assert_eq!(render("one.png", &["--supersample", "1"]), none);
 }
+
+#[test]
+fn render_draws_a_scene_file_and_names_the_bad_line_or_object() {
+    let dir = scratch_dir("cadre-render-scene");
+    let teapot = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/scenes/teapot.json"
+    );
+    let out = dir.join("teapot.png");
+    let run = cadre()
+        .args(["render", teapot, "--size", "64x48", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(stderr.contains("10 quadric(s) ray cast"), "{stderr}");
+    let image = image::open(&out).unwrap().to_rgba8();
+    assert_eq!(image.dimensions(), (64, 48));
+    // Not a blank image: the teapot covers part of it.
+    let background = *image.get_pixel(0, 0);
+    assert!(image.pixels().filter(|p| **p != background).count() > 200);
+    // An object the planes leave open is named and left out; a malformed file names its line.
+    let scene = dir.join("open.json");
+    std::fs::write(
+        &scene,
+        r#"{"objects": [{"shape": {"sphere": 1}}, {"shape": {"cylinder": 1}}]}"#,
+    )
+    .unwrap();
+    let run = cadre()
+        .args(["render"])
+        .arg(&scene)
+        .args(["--size", "32x24", "-o"])
+        .arg(dir.join("open.png"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("object 1: the primitive is unbounded"),
+        "{stderr}"
+    );
+    std::fs::write(&scene, "{\n\"objects\": [\n{\"shape\": 7}\n]}").unwrap();
+    let run = cadre()
+        .args(["render"])
+        .arg(&scene)
+        .args(["--size", "32x24", "-o"])
+        .arg(dir.join("bad.png"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success());
+    assert!(stderr.contains("line 3"), "{stderr}");
+    assert!(!dir.join("bad.png").exists());
+}
