@@ -235,6 +235,23 @@ impl Renderer {
             trim_test,
             max_level,
             grid_points,
+            ray_cast: false,
+        };
+        self.visibility
+            .set_trim_variant(&gpu.device, &self.instances, variant);
+        self
+    }
+
+    /// This renderer with the plane, cylinder, cone and sphere faces of trimmed scenes
+    /// ([`RenderScene::with_trims`]) ray cast against their support quadric and trimmed at
+    /// each hit (seed 001 applied to B-Rep faces: exact silhouettes at any zoom, no
+    /// tessellation) instead of tessellated; the other faces take the trim back-end's way.
+    /// `trim_test` off is the tests' negative control (every face over its whole (u, v) box).
+    pub fn with_ray_cast_faces(mut self, gpu: &Gpu, trim_test: bool) -> Renderer {
+        let variant = crate::passes::visibility::trim::TrimVariant {
+            trim_test,
+            ray_cast: true,
+            ..Default::default()
         };
         self.visibility
             .set_trim_variant(&gpu.device, &self.instances, variant);

@@ -208,6 +208,66 @@ fn trimmed_faces_agree_with_the_exact_ray_caster() {
     );
 }
 
+#[test]
+fn ray_cast_faces_agree_with_the_exact_ray_caster_at_every_zoom() {
+    // `--method raycast`: plane, cylinder, cone and sphere faces ray cast against their
+    // support quadric and trimmed at the hit; the torus elbow's torus keeps the trim
+    // back-end's grid. Negative control: the faces over their whole (u, v) boxes.
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu)
+        .expect("pipelines")
+        .with_ray_cast_faces(&gpu, true);
+    if !renderer.draws_trims() {
+        eprintln!("skipped: the adapter runs no compute shaders, its scenes keep their meshes");
+        return;
+    }
+    let untrimmed = Renderer::new(&gpu)
+        .expect("pipelines")
+        .with_ray_cast_faces(&gpu, false);
+    let mut compared = 0;
+    let mut worst_untrimmed: f64 = 0.0;
+    for name in [
+        "examples/pin-assembly.step",
+        "crates/cadre-render/tests/data/dome-and-cone.step",
+        "crates/cadre-mesh/tests/data/cylinder_hole_across_seam.step",
+        "crates/cadre-mesh/tests/data/cone_patch_clockwise.step",
+        "crates/cadre-mesh/tests/data/half_cones_wrong_sense.step",
+        "crates/cadre-mesh/tests/data/unit_cube.step",
+        "crates/cadre-render/tests/data/torus-elbow.step",
+        "crates/cadre-mesh/tests/data/quarter_sphere_collapsed_sides.step",
+    ] {
+        let bytes = std::fs::read(common::root().join(name)).expect("fixture reads");
+        let (model, mesh_scene) = common::model_and_scene_of(bytes, 0.01);
+        let scene = mesh_scene.with_trims(&model, TRIM_TOLERANCE);
+        let (lo, hi) = scene.bounds().expect("geometry");
+        for view in [ViewPreset::Iso, ViewPreset::Top, ViewPreset::Front] {
+            let fitted = Camera::fit(lo, hi, view, false, 4.0 / 3.0);
+            for zoom in [1.0, 100.0, 1000.0] {
+                let camera = zoomed(&model, fitted, zoom, (lo, hi));
+                if zoom > 1.0 && covered(&model, &camera) < 1000 {
+                    continue;
+                }
+                let cast = agreement(&gpu, &renderer, (&model, &scene), &camera);
+                if cast.is_nan() {
+                    continue;
+                }
+                compared += 1;
+                eprintln!("{name} {view:?} ×{zoom}: ray cast {:.2} %", 100.0 * cast);
+                assert!(cast >= 0.995, "{name} {view:?} ×{zoom}: {cast}");
+                if zoom == 1.0 {
+                    let wrong = agreement(&gpu, &untrimmed, (&model, &scene), &camera);
+                    worst_untrimmed = worst_untrimmed.min(wrong - cast);
+                }
+            }
+        }
+    }
+    assert!(compared >= 30, "{compared} views compared");
+    assert!(
+        worst_untrimmed < -0.05,
+        "untrimmed faces lost at most {worst_untrimmed} of the pixels"
+    );
+}
+
 /// B-spline faces (no ray-caster oracle for them yet): the trimmed faces' ids against a
 /// mesh of a micrometre's deflection, on the pixels whose 3 × 3 neighbourhood holds one face
 /// id in the mesh's image: the bundled quarter sphere (one untrimmed patch), and when the

@@ -329,3 +329,19 @@ fn screen_triangle(vi: u32) -> vec4<f32> {
     let uv = vec2<f32>(f32((vi << 1u) & 2u), f32(vi & 2u));
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
 }
+
+// Corner `vi` (0..36) of the cube [−1, 1]³ as 12 triangles (the ray casters' proxies): face `vi / 6` (axis, sign),
+// corner `vi % 6` of its two triangles.
+fn cube_corner(vi: u32) -> vec3<f32> {
+    let face = vi / 6u;
+    let quad = array<u32, 6>(0u, 1u, 2u, 0u, 2u, 3u)[vi % 6u];
+    let axis = face / 2u;
+    let sign = select(-1.0, 1.0, (face & 1u) == 1u);
+    let a = select(-1.0, 1.0, quad == 1u || quad == 2u);
+    let b = select(-1.0, 1.0, quad >= 2u);
+    var p = vec3<f32>(0.0);
+    p[axis] = sign;
+    p[(axis + 1u) % 3u] = a;
+    p[(axis + 2u) % 3u] = b;
+    return p;
+}

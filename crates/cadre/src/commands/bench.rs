@@ -265,8 +265,9 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
 
 /// `cadre bench render`: see [`BenchWhat::Render`].
 /// FILE meshed at 0.001 × its diagonal and placed `grid` × `grid` times, with its box; with
-/// `Method::Trim`, its faces drawn from their exact surfaces (trims within 10⁻⁵ of the
-/// diagonal, `cadre render`'s default).
+/// `Method::Trim` or `Method::Raycast`, its faces drawn from their exact surfaces (trims
+/// within 10⁻⁵ of the diagonal, `cadre render`'s default). A scene file of quadrics (`.json`)
+/// is its objects as they are.
 fn grid_scene(
     file: &Path,
     (grid, method): (u32, crate::commands::render::Method),
@@ -276,6 +277,18 @@ fn grid_scene(
     use cadre_render::RenderScene;
     use glam::{DAffine3, DVec3};
 
+    if file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+    {
+        let text =
+            std::fs::read_to_string(file).with_context(|| format!("reading {}", file.display()))?;
+        let loaded = cadre_render::scene_file::load_scene(&text)
+            .with_context(|| format!("reading {}", file.display()))?;
+        let scene = RenderScene::default().with_primitives(loaded.primitives);
+        let (lo, hi) = scene.bounds().context("the scene has no object")?;
+        return Ok((scene, lo, hi));
+    }
     let loaded = crate::load::load_step(file)?;
     let model = &loaded.model;
     let params = MeshParams {
@@ -284,7 +297,7 @@ fn grid_scene(
     };
     let mesh = mesh_model(model, &params, None);
     let mut render_scene = RenderScene::from_model(model, &mesh);
-    if method == crate::commands::render::Method::Trim {
+    if method.exact() {
         render_scene = render_scene.with_trims(model, 1e-5 * deflection_diagonal(model));
     }
     let scene = &mut render_scene.assembly;
@@ -335,7 +348,7 @@ fn bench_view(
     let fitted = Camera::fit(lo, hi, ViewPreset::Iso, false, aspect);
     let gpu = Gpu::headless()?;
     let renderer = match variant {
-        TrimVariant::Full => Renderer::new(&gpu)?,
+        TrimVariant::Full => method.renderer(&gpu)?,
         TrimVariant::NoTest => Renderer::new(&gpu)?.with_trim_variant(&gpu, (false, 256, true)),
         TrimVariant::Least => Renderer::new(&gpu)?.with_trim_variant(&gpu, (true, 1, true)),
         TrimVariant::VertexEval => Renderer::new(&gpu)?.with_trim_variant(&gpu, (true, 256, false)),
@@ -470,7 +483,7 @@ fn bench_render(
         crate::commands::render::CrackArg,
     ),
 ) -> Result<()> {
-    use cadre_render::{Camera, FrameOptions, Gpu, Renderer, ViewPreset, ViewState};
+    use cadre_render::{Camera, FrameOptions, Gpu, ViewPreset, ViewState};
 
     let (scene, lo, hi) = grid_scene(file, grid)?;
     let camera = Camera::fit(
@@ -483,7 +496,7 @@ fn bench_render(
     let gpu = Gpu::headless()?;
     // Each frame's stages timed on the GPU where the adapter writes timestamps (a readback
     // waits for the frame anyway).
-    let renderer = Renderer::new(&gpu)?.with_pass_timings(&gpu);
+    let renderer = grid.1.renderer(&gpu)?.with_pass_timings(&gpu);
     let options = FrameOptions {
         width,
         height,

@@ -113,6 +113,26 @@ pub enum Method {
     Mesh,
     /// The exact faces: surfaces tessellated on the GPU to the screen, trimmed per pixel.
     Trim,
+    /// The exact faces, the analytic ones (planes, cylinders, cones, spheres) ray cast per
+    /// pixel against their support quadric and trimmed at the hit, the others as `trim`.
+    Raycast,
+}
+
+impl Method {
+    /// Whether faces are drawn from their exact surfaces (`trim` or `raycast`).
+    pub fn exact(self) -> bool {
+        self != Method::Mesh
+    }
+
+    /// The renderer that draws with this method on `gpu`.
+    pub fn renderer(self, gpu: &Gpu) -> Result<Renderer> {
+        let renderer = Renderer::new(gpu)?;
+        Ok(if self == Method::Raycast {
+            renderer.with_ray_cast_faces(gpu, true)
+        } else {
+            renderer
+        })
+    }
 }
 
 /// The crack pass's options (`cadre render`, `cadre verify`).
@@ -273,11 +293,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         crate::output::check(sheet, &["png"])?;
     }
     if args.input.is_dir() {
-        let (gpu, renderer) = open_gpu()?;
+        let (gpu, renderer) = open_gpu(args.method)?;
         return render_folder(&gpu, &renderer, args);
     }
     if is_scene_file(&args.input) {
-        let (gpu, renderer) = open_gpu()?;
+        let (gpu, renderer) = open_gpu(args.method)?;
         let image = render_scene_file(&gpu, &renderer, args)?;
         save(&image, &args.output)?;
         println!("wrote {} ({})", args.output.display(), gpu.info.name);
@@ -287,7 +307,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     // before (on lavapipe they take about 0.08 s, as long as loading a 6.5 MB file of
     // polyline edges).
     std::thread::scope(|threads| {
-        let opening = threads.spawn(open_gpu);
+        let opening = threads.spawn(|| open_gpu(args.method));
         let meshed = mesh_file(&args.input, args);
         let (gpu, renderer) = opening
             .join()
@@ -371,9 +391,9 @@ pub(crate) fn render_scene_file(
 }
 
 /// The headless device and the renderer's pipelines on it.
-fn open_gpu() -> Result<(Gpu, Renderer)> {
+fn open_gpu(method: Method) -> Result<(Gpu, Renderer)> {
     let gpu = Gpu::headless()?;
-    let renderer = Renderer::new(&gpu)?;
+    let renderer = method.renderer(&gpu)?;
     Ok((gpu, renderer))
 }
 
@@ -560,7 +580,7 @@ fn draw_file(
     };
     let scene = match args.method {
         Method::Mesh => scene,
-        Method::Trim => {
+        Method::Trim | Method::Raycast => {
             let relative = view_trim_tolerance(args.trim_tolerance_rel, (w, h), args.zoom);
             with_trims(renderer, scene, model, relative, input)
         }
@@ -594,7 +614,7 @@ fn draw_file(
     let image = renderer
         .render(gpu, &prepared, &camera, &options, &ViewState::default())
         .with_context(|| format!("{}: nothing was drawn", input.display()))?;
-    if args.method == Method::Trim && options.cracks.mode != CrackMode::Off {
+    if args.method.exact() && options.cracks.mode != CrackMode::Off {
         let c = renderer.last_crack_counts(gpu);
         if c.detected > 0 {
             eprintln!(

@@ -9,8 +9,7 @@ use anyhow::{Context, Result};
 use cadre_mesh::{Deflection, MeshParams, deflection_diagonal, mesh_model};
 use cadre_render::raycast::RayCaster;
 use cadre_render::{
-    Camera, CrackMode, CrackOptions, FrameOptions, Gpu, RenderScene, Renderer, ViewPreset,
-    ViewState,
+    Camera, CrackMode, CrackOptions, FrameOptions, Gpu, RenderScene, ViewPreset, ViewState,
 };
 use serde_json::json;
 
@@ -107,7 +106,7 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
     };
     let mesh = mesh_model(model, &params, None);
     let gpu = Gpu::headless().context("no GPU adapter")?;
-    let renderer = Renderer::new(&gpu)?;
+    let renderer = args.method.renderer(&gpu)?;
     let scene = RenderScene::from_model(model, &mesh);
     let (lo, hi) = scene
         .bounds()
@@ -160,7 +159,7 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
             caster = caster_at(zoom);
         }
         let caster = &caster.1;
-        let scene = if args.method == Method::Trim {
+        let scene = if args.method.exact() {
             let relative = view_trim_tolerance(args.trim_tolerance_rel, (w, h), zoom);
             with_trims(&renderer, scene.clone(), model, relative, input)
         } else {

@@ -39,6 +39,9 @@ struct CrackOut {
     @location(1) @interpolate(flat) surface: u32,
     // The draw's instance index (`instance_draw` places the solution as the vertices).
     @location(2) @interpolate(flat) instance: u32,
+    // A ray-cast face's proxy (trim.wgsl's `TrimOut`).
+    @location(3) ray_point: vec3<f32>,
+    @location(4) @interpolate(flat) ray_eye: vec4<f32>,
 }
 
 @vertex
@@ -49,6 +52,8 @@ fn vs_crack(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instanc
     out.local = t.local;
     out.surface = t.surface;
     out.instance = instance;
+    out.ray_point = t.ray_point;
+    out.ray_eye = t.ray_eye;
     return out;
 }
 
@@ -91,8 +96,20 @@ fn crack_unwrapped(s: TrimSurface, local: vec2<f32>) -> vec2<f32> {
 fn fs_crack(in: CrackOut) {
     // The (u, v) change over a pixel step, before any early return (derivatives need every
     // lane): the miss distance of a solution off the face.
-    let jx = dpdx(in.local);
-    let jy = dpdy(in.local);
+    // A ray-cast face's fragment starts from the (u, v) of its own ray's nearest hit (its
+    // proxy's parameters are none).
+    let face = surfaces[in.surface];
+    var start = in.local;
+    if is_ray_cast(face) {
+        let ray = frame_ray(in.ray_point, in.ray_eye);
+        start = cast_face(face, ray.o, ray.d).local[0];
+    }
+    var jx = dpdx(start);
+    var jy = dpdy(start);
+    if is_ray_cast(face) {
+        jx = short_way(face, jx);
+        jy = short_way(face, jy);
+    }
     let width = u32(frame.viewport.x);
     let height = u32(frame.viewport.y);
     let p = vec2<i32>(floor(in.clip.xy));
@@ -132,7 +149,7 @@ fn fs_crack(in: CrackOut) {
         let goal = vec2<f32>(q) + 0.5;
         // h: a thousandth of the box, for the Jacobian's differences.
         let h = max(abs(s.uv.zw) * 1e-3, vec2<f32>(1e-6));
-        var local = in.local;
+        var local = start;
         var at_goal = false;
         var screen = crack_screen(s, d, local);
         for (var step = 0u; step < CRACK_NEWTON_STEPS; step++) {

@@ -139,6 +139,7 @@ pub(crate) fn source() -> String {
         SURFACE_WGSL,
         include_str!("bspline.wgsl"),
         include_str!("sweep.wgsl"),
+        include_str!("raycast.wgsl"),
         include_str!("trim.wgsl"),
         cadre_trim::TRIM_WGSL,
     ])
@@ -152,6 +153,7 @@ pub(crate) fn crack_source() -> String {
         SURFACE_WGSL,
         include_str!("bspline.wgsl"),
         include_str!("sweep.wgsl"),
+        include_str!("raycast.wgsl"),
         include_str!("trim.wgsl"),
         cadre_trim::TRIM_WGSL,
         crate::passes::cracks::LAYOUT_WGSL,
@@ -304,6 +306,9 @@ pub struct TrimVariant {
     /// Grid points evaluated in the tessellation pass (off: room for none, so that every
     /// face takes the vertex shader's way, which the tests check as well).
     pub grid_points: bool,
+    /// Plane, cylinder, cone and sphere faces ray cast against their support quadric and
+    /// trimmed at the hit (`raycast.wgsl`, `--method raycast`) instead of tessellated.
+    pub ray_cast: bool,
 }
 
 impl Default for TrimVariant {
@@ -312,6 +317,7 @@ impl Default for TrimVariant {
             trim_test: true,
             max_level: 256,
             grid_points: true,
+            ray_cast: false,
         }
     }
 }
@@ -336,6 +342,8 @@ pub(crate) struct TrimBackend {
     trim_test: bool,
     /// Whether the tessellation pass evaluates grid points ([`TrimVariant::grid_points`]).
     grid_points: bool,
+    /// Whether analytic faces are ray cast ([`TrimVariant::ray_cast`]).
+    ray_cast: bool,
     /// The last frame's indirect draws and their count, for [`TrimBackend::last_triangles`].
     last: std::sync::Mutex<Option<(wgpu::Buffer, u32)>>,
     /// The exact crack fill, built on the first frame that asks for it.
@@ -436,6 +444,7 @@ impl TrimBackend {
                     ("TOLERANCE_REL", TOLERANCE_REL),
                     ("MAX_LEVEL", f64::from(variant.max_level.clamp(1, 256))),
                     ("MIN_LEVEL", f64::from(variant.max_level.clamp(1, 4))),
+                    ("RAYCAST", if variant.ray_cast { 1.0 } else { 0.0 }),
                 ],
                 ..Default::default()
             },
@@ -467,6 +476,7 @@ impl TrimBackend {
             pipelines: Default::default(),
             trim_test,
             grid_points: variant.grid_points,
+            ray_cast: variant.ray_cast,
             last: std::sync::Mutex::new(None),
             cracks: OnceLock::new(),
             instances: instances.clone(),
@@ -609,7 +619,12 @@ impl TrimBackend {
                     vertex: "vs_main",
                     // Both sides: the face's side is decided from its normal.
                     cull: None,
-                    fragment: "fs_main",
+                    // The ray-cast variant writes its hits' depth.
+                    fragment: if self.ray_cast {
+                        "fs_raycast"
+                    } else {
+                        "fs_main"
+                    },
                     buffers: &[],
                     depth: Some(depth_state()),
                     targets: if inputs.with_uv {
@@ -621,6 +636,7 @@ impl TrimBackend {
                         ("SECTIONS", if inputs.sections { 1.0 } else { 0.0 }),
                         ("TRIM_TEST", if self.trim_test { 1.0 } else { 0.0 }),
                         ("COVERAGE", if inputs.coverage { 1.0 } else { 0.0 }),
+                        ("RAYCAST", if self.ray_cast { 1.0 } else { 0.0 }),
                     ],
                 },
             )
@@ -698,6 +714,7 @@ impl TrimBackend {
                         ("TRIM_TEST", 0.0),
                         ("TRIM_TEST_CRACKS", if self.trim_test { 1.0 } else { 0.0 }),
                         ("COVERAGE", 0.0),
+                        ("RAYCAST", if self.ray_cast { 1.0 } else { 0.0 }),
                         (
                             "CRACK_HIT_CAPACITY",
                             f64::from(crate::passes::cracks::HIT_CAPACITY),

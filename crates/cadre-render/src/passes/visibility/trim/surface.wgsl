@@ -36,6 +36,15 @@ const SURFACE_TORUS: u32 = 4u;
 // largest grid, 256² cells (tessellate.wgsl's `MAX_LEVEL` at most).
 const TRIM_VERTICES: u32 = 393216u;
 
+// Plane, cylinder, cone and sphere faces are ray cast, not tessellated (raycast.wgsl;
+// `TrimVariant::ray_cast`, `--method raycast`).
+override RAYCAST: bool = false;
+
+// Whether face `s` is ray cast.
+fn is_ray_cast(s: TrimSurface) -> bool {
+    return RAYCAST && (s.ids.x <= SURFACE_SPHERE);
+}
+
 // A task whose grid points found no room in `grid_points` (tessellate.wgsl).
 const NO_POINTS: u32 = 0xffffffffu;
 

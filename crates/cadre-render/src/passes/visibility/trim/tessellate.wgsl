@@ -92,6 +92,16 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         near = min(near, length(c) - r);
         scale = max(scale, k);
     }
+    // A ray-cast face: its box's 36 vertices, no grid (raycast.wgsl).
+    if is_ray_cast(s) {
+        args[4u * t] = select(0u, 36u, visible);
+        args[4u * t + 1u] = task.instances;
+        args[4u * t + 2u] = task.slot * TRIM_VERTICES;
+        args[4u * t + 3u] = 0u;
+        levels[2u * t] = 1u | (1u << 16u);
+        levels[2u * t + 1u] = NO_POINTS;
+        return;
+    }
     // The near plane's distance (reverse Z: depth 1), below which nothing is drawn.
     let near_h = frame.inv_proj * vec4<f32>(0.0, 0.0, 1.0, 1.0);
     let z_near = abs(near_h.z / near_h.w);

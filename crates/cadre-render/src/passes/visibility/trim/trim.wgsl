@@ -33,6 +33,12 @@ struct TrimOut {
     // Whether the fragment must be tested against the tree: its cell is crossed by the trim
     // (cells wholly on the face are not tested, those wholly off it are not drawn).
     @location(6) @interpolate(flat) crossed: u32,
+    // A ray-cast face's proxy (raycast.wgsl's `RayFrame`; zeros for a tessellated face).
+    @location(7) ray_point: vec3<f32>,
+    @location(8) @interpolate(flat) ray_eye: vec4<f32>,
+    @location(9) @interpolate(flat) normal_x: vec3<f32>,
+    @location(10) @interpolate(flat) normal_y: vec3<f32>,
+    @location(11) @interpolate(flat) normal_z: vec3<f32>,
 }
 
 @vertex
@@ -49,6 +55,9 @@ fn trim_vertex(vertex: u32, instance: u32) -> TrimOut {
     let local_vertex = vertex % TRIM_VERTICES;
     let index = call.range.x + k;
     let s = surfaces[index];
+    if is_ray_cast(s) {
+        return ray_cast_vertex(index, s, local_vertex, instance);
+    }
     let task = call.range.y + k;
     let level = levels[2u * task];
     let base = levels[2u * task + 1u];
@@ -119,6 +128,12 @@ fn fs_main(in: TrimOut) -> VisibilityOut {
     // cells of a distant perforated face still merge into their majority (no moiré).
     let jx = dpdx(in.local);
     let jy = dpdy(in.local);
+    return trim_fragment(in, jx, jy);
+}
+
+// A tessellated face's fragment, (u, v) changing by `jx`, `jy` to the next pixels: trimmed
+// (discarded off the face) and written.
+fn trim_fragment(in: TrimOut, jx: vec2<f32>, jy: vec2<f32>) -> VisibilityOut {
     let footprint = 0.25 * (abs(jx) + abs(jy));
     let s = surfaces[in.surface];
     if TRIM_TEST && (in.crossed != 0u) && !trim_classify_within(s.ids.z, in.local, footprint) {
@@ -136,4 +151,108 @@ fn fs_main(in: TrimOut) -> VisibilityOut {
         out.normal.z = clamp(0.5 + trim_edge_pixels(s.ids.z, in.local, jx, jy), 0.5, 1.0);
     }
     return out;
+}
+
+// A ray-cast face's proxy vertex: corner `corner` of its box, placed by instance `instance`.
+fn ray_cast_vertex(index: u32, s: TrimSurface, corner: u32, instance: u32) -> TrimOut {
+    let d = instance_draw(instance);
+    let ray = ray_cast_corner(s, d, min(corner, 35u));
+    let position = s.origin.xyz + ray.point.x * s.axis_x.xyz + ray.point.y * s.axis_y.xyz
+        + ray.point.z * s.axis_z.xyz;
+    let placed = place_vertex(d, position, s.axis_z.xyz);
+    var out: TrimOut;
+    out.clip = placed.clip;
+    // Vertices past the box's 36 (a draw reserves TRIM_VERTICES) are out of the view.
+    if corner >= 36u {
+        out.clip = vec4<f32>(2.0, 2.0, 2.0, 1.0);
+    }
+    out.normal = placed.normal;
+    out.local = vec2<f32>(0.0);
+    out.surface = index;
+    out.instance = pack_instance(d);
+    out.world = placed.world;
+    out.facing = 0.0;
+    out.crossed = 1u;
+    out.ray_point = ray.point;
+    out.ray_eye = ray.eye;
+    out.normal_x = ray.normal_x;
+    out.normal_y = ray.normal_y;
+    out.normal_z = ray.normal_z;
+    return out;
+}
+
+struct RayCastOut {
+    @location(0) normal: vec4<f32>,
+    @location(1) ids: vec4<u32>,
+    @location(2) uv: vec2<u32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+// The fragment of the ray-cast variant (`--method raycast`): a ray-cast face's nearest hit
+// that its trim tree keeps, at the hit's own depth; a tessellated face's as `fs_main` writes
+// it, at its own depth.
+@fragment
+fn fs_raycast(in: TrimOut) -> RayCastOut {
+    let s = surfaces[in.surface];
+    let analytic = is_ray_cast(s);
+    var hits: FaceCast;
+    var local = in.local;
+    let ray = frame_ray(in.ray_point, in.ray_eye);
+    var first = 0.0;
+    if analytic {
+        hits = cast_face(s, ray.o, ray.d);
+        local = hits.local[0];
+        first = f32(hits.count > 0u);
+    }
+    // Derivatives before any discard (every lane of the quad takes part); a ray-cast
+    // face's are of its first hit's (u, v), and hold only where the neighbours have one too.
+    var jx = dpdx(local);
+    var jy = dpdy(local);
+    let steady = (dpdx(first) == 0.0) && (dpdy(first) == 0.0);
+    var out: RayCastOut;
+    if !analytic {
+        let texel = trim_fragment(in, jx, jy);
+        out.normal = texel.normal;
+        out.ids = texel.ids;
+        out.uv = texel.uv;
+        out.depth = in.clip.z;
+        return out;
+    }
+    jx = short_way(s, jx);
+    jy = short_way(s, jy);
+    for (var i = 0u; i < hits.count; i++) {
+        let t = hits.t[i];
+        let local = hits.local[i];
+        let world = ray_world(in.world, in.ray_eye, t);
+        let footprint = cast_footprint(s, ray.o + t * ray.d, ray.d, in.world, in.ray_eye);
+        let clip = frame.view_proj * vec4<f32>(world, 1.0);
+        let depth = clip.z / clip.w;
+        // In front of the near plane (reverse Z) and not behind the eye.
+        if clip.w <= 0.0 || depth > 1.0 || depth < 0.0 {
+            continue;
+        }
+        let in_box = all(local >= vec2<f32>(0.0)) && all(local <= s.uv.zw);
+        if !in_box || (TRIM_TEST && !trim_classify_within(s.ids.z, local, footprint)) {
+            continue;
+        }
+        if SECTIONS && section_cut(world) {
+            continue;
+        }
+        let n = hits.n[i] * s.axis_y.w;
+        let normal = n.x * in.normal_x + n.y * in.normal_y + n.z * in.normal_z;
+        let front = dot(n, ray.d) < 0.0;
+        let ids = unpack_instance(in.instance);
+        let texel = visibility_texel(world, normal, s.ids.y, ids, depth, s.uv.xy + local, front);
+        out.normal = texel.normal;
+        out.ids = texel.ids;
+        out.uv = texel.uv;
+        out.depth = depth;
+        // Analytic coverage of a pixel on a trimmed edge, as `trim_fragment` gives it (where
+        // the derivatives are this hit's).
+        if COVERAGE && TRIM_TEST && steady && (i == 0u) && ((out.ids.z & SECTION_CAP) == 0u) {
+            out.normal.z = clamp(0.5 + trim_edge_pixels(s.ids.z, local, jx, jy), 0.5, 1.0);
+        }
+        return out;
+    }
+    discard;
 }
