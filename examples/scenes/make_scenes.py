@@ -70,6 +70,7 @@ def dna():
         objects.append(sphere([0.0, 0.0, -3.0 - 2.6 * k], 1.2, [0.6, 0.6, 0.65]))
     assert len(objects) == 483
     return {
+        "shadows": True,
         "camera": {"eye": [95, -80, 130], "target": [0, 0, 100], "up": [0, 0, 1], "fov": 62},
         "lights": [
             {"point": {"position": [80, -60, 220], "intensity": [22000, 21000, 20000]}},
@@ -169,6 +170,7 @@ def robot():
         ellipsoid([lx + 0.1 * side, -0.2, 0.55], [0.35, 0.6, 0.25], red, cut=[[0, 0, -1, -0.1]])  # 34, 39
     assert len(objects) == 39, len(objects)
     return {
+        "shadows": True,
         "camera": {"eye": [9, -14, 8], "target": [0, 0, 3.6], "up": [0, 0, 1], "fov": 35},
         "lights": [
             {"point": {"position": [6, -8, 12], "intensity": [320, 310, 300]}},

@@ -288,12 +288,19 @@ pub struct PreparedScene {
     trimmed_faces: usize,
     /// The scene's bounding-box diagonal (0 when empty): the crack pass's d_min follows it.
     diagonal: f64,
+    /// The scene's world box (what the key light's shadow map covers).
+    bounds: Option<(DVec3, DVec3)>,
 }
 
 impl PreparedScene {
     /// The scene's bounding-box diagonal, world units (0 when it is empty).
     pub fn diagonal(&self) -> f64 {
         self.diagonal
+    }
+
+    /// The scene's world box, `None` when it is empty.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        self.bounds
     }
 
     /// Uploads `scene`'s geometry: its meshes' and its primitives'; past `flat_limit`
@@ -309,7 +316,8 @@ impl PreparedScene {
         let primitives = &scene.primitives;
         let trim_scene = scene.trim.as_deref().filter(|_| trims);
         let face_records = &scene.faces;
-        let diagonal = scene.bounds().map_or(0.0, |(lo, hi)| (hi - lo).length());
+        let bounds = scene.bounds();
+        let diagonal = bounds.map_or(0.0, |(lo, hi)| (hi - lo).length());
         // The exact face a dense face id is drawn from by the trim back-end, if any.
         let trimmed = |id: u32| -> Option<&crate::trim_surfaces::TrimFaceSurface> {
             let trim = trim_scene?;
@@ -481,6 +489,7 @@ impl PreparedScene {
             primitives: primitives.clone(),
             primitive_materials,
             diagonal,
+            bounds,
             trimmed_faces: surfaces.len(),
             trim: trim_scene
                 .filter(|_| !surfaces.is_empty())

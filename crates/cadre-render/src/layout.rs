@@ -216,6 +216,11 @@ pub struct FrameUniform {
     /// Section caps: hatch spacing and hatch line width, outline width (target pixels),
     /// unused.
     pub section: [f32; 4],
+    /// The key light's shadow map: view space → the light's clip space (column-major).
+    pub shadow: [[f32; 4]; 4],
+    /// The shadow map's world size of a texel per unit of the light's clip w (x), unused (y),
+    /// the key light's share that shadows remove (z), its size in texels (w; 0: no shadows).
+    pub shadow_params: [f32; 4],
 }
 
 /// [`FrameUniform::modes`]`[0]`: perspective projection.
@@ -558,6 +563,8 @@ gpu_struct!(
         plane_normals,
         forward,
         section,
+        shadow,
+        shadow_params,
     ]
 );
 gpu_struct!(LightGpu, "Light", [position, direction, colour, params]);

@@ -63,6 +63,7 @@ pub mod raycast;
 mod render_scene;
 mod renderer;
 pub mod scene_file;
+pub mod shadows;
 mod smooth;
 mod solid;
 pub mod trim_surfaces;

@@ -92,6 +92,9 @@ pub struct FrameOptions {
     /// How the cracks between faces drawn by the trim back-end are closed (exact by
     /// default; frames without trimmed faces have none).
     pub cracks: CrackOptions,
+    /// The first light (the key light) casts shadows, from a shadow map every back-end
+    /// writes ([`crate::shadows`]); off by default (CAD views are read without them).
+    pub shadows: bool,
 }
 
 impl Default for FrameOptions {
@@ -108,6 +111,7 @@ impl Default for FrameOptions {
             edge_width: 1.5,
             lights: Light::cad_rig(),
             cracks: CrackOptions::default(),
+            shadows: false,
         }
     }
 }
@@ -521,6 +525,15 @@ impl Renderer {
         // Trimmed edges carry their coverage only where faces are trimmed per pixel.
         let coverage = options.analytic_coverage && scene.trim.is_some() && self.draws_trims();
         frame.counts[3] = u32::from(coverage);
+        let shadow = if options.shadows && readback.shaded() {
+            self.shadow_map(gpu, scene, (camera, options, state))?
+        } else {
+            None
+        };
+        if let Some((_, matrix, params)) = &shadow {
+            frame.shadow = *matrix;
+            frame.shadow_params = *params;
+        }
         buffers.frame.write(gpu, bytemuck::bytes_of(&frame))?;
         let with_edges = edge_mode.is_some() && readback.shaded();
         let frame_scene = FrameScene::new(
@@ -638,6 +651,7 @@ impl Renderer {
             scene: &frame_scene,
             selection: buffers.selection.buffer(),
             lights: (buffers.lights.buffer(), &lights.lights),
+            shadow: shadow.as_ref().map(|(targets, _, _)| &targets.depth),
             draw_lines,
         };
         let bytes = match readback {
@@ -799,6 +813,9 @@ fn frame_uniform(
         forward: forward.as_vec3().extend(0.0).to_array(),
         // Hatch lines every 8 output pixels, 1 wide; cap outlines 1 wide.
         section: [8.0 * scale, scale, scale, 0.0],
+        // No shadows unless the frame draws a shadow map (`Renderer::shadow_map`).
+        shadow: [[0.0; 4]; 4],
+        shadow_params: [0.0; 4],
     }
 }
 
@@ -870,9 +887,64 @@ struct Shading<'a> {
     /// The light buffer and the lights in it (the frame's count of them lit, the rest zero).
     lights: (&'a wgpu::Buffer, &'a [LightGpu]),
     draw_lines: bool,
+    /// The key light's shadow map (its depth), when the frame has shadows.
+    shadow: Option<&'a wgpu::TextureView>,
 }
 
 impl Renderer {
+    /// The key light's shadow map for a frame of `scene` seen by `camera`: the visibility
+    /// pass drawn from the light ([`crate::shadows::light_camera`]) into targets of its
+    /// own, with buffers of its own, and submitted before the frame (so the frame's passes,
+    /// which share the back-ends' per-frame buffers, run after it); its depth target and the
+    /// frame's shadow terms. `None` without a light or anything to draw.
+    #[allow(clippy::type_complexity)]
+    fn shadow_map(
+        &self,
+        gpu: &Gpu,
+        scene: &PreparedScene,
+        (camera, options, state): (&Camera, &FrameOptions, &ViewState),
+    ) -> Result<Option<(VisibilityTargets, [[f32; 4]; 4], [f32; 4])>, RenderError> {
+        use crate::shadows::{SHADOW_MAP_SIZE, light_camera, shadow_terms};
+        let (Some(bounds), Some(key)) = (scene.bounds(), options.lights.first()) else {
+            return Ok(None);
+        };
+        let Some(light) = light_camera(key, camera, bounds) else {
+            return Ok(None);
+        };
+        let device = &gpu.device;
+        let size = (SHADOW_MAP_SIZE, SHADOW_MAP_SIZE);
+        let mut buffers = FrameBuffers::new(device);
+        let targets = VisibilityTargets::new(device, size, false);
+        let frame = frame_uniform(&light, options, state, size);
+        buffers.frame.write(gpu, bytemuck::bytes_of(&frame))?;
+        let frame_scene = FrameScene::new(
+            gpu,
+            (&self.instances, &self.binds),
+            &mut buffers,
+            scene,
+            (&light, state, 1.0),
+            false,
+        )?;
+        let mut encoder = device.create_command_encoder(&Default::default());
+        self.visibility.record(
+            (device, &self.binds),
+            &mut encoder,
+            &targets,
+            (
+                buffers.frame.buffer(),
+                frame.counts[2] > 0,
+                self.proxy_depth,
+                true,
+                false,
+            ),
+            &frame_scene,
+            None,
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let (matrix, params) = shadow_terms(camera, &light);
+        Ok(Some((targets, matrix, params)))
+    }
+
     /// Records the passes after the visibility pass (shade, see-through parts or x-ray,
     /// edges) into `colour_view`.
     fn shade_into(
@@ -891,6 +963,7 @@ impl Renderer {
             selection,
             lights: (light_buffer, lights),
             draw_lines,
+            shadow,
         } = *s;
         let inputs = ShadeInputs {
             frame,
@@ -902,6 +975,7 @@ impl Renderer {
                 wgpu::Color { r, g, b, a }
             },
             variant: ShadeVariant::of(uniform, lights),
+            shadow,
         };
         let recorder = (device, &self.binds);
         self.shade

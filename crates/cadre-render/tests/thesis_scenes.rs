@@ -1,6 +1,6 @@
 //! The thesis' scenes (seed 001), bundled in `examples/scenes`: each loads from its scene
 //! file, shows the CPU ray caster's primitive at every pixel away from the boundaries, and
-//! matches its golden image (`CADRE_BLESS=1` rewrites them).
+//! matches its golden image, its shadows included (`CADRE_BLESS=1` rewrites them).
 
 mod common;
 
@@ -91,6 +91,7 @@ fn the_thesis_scenes_match_their_golden_images() {
         if !loaded.lights.is_empty() {
             options.lights = loaded.lights.clone();
         }
+        options.shadows = loaded.shadows;
         let image = renderer
             .render(&gpu, &prepared, &camera, &options, &ViewState::default())
             .expect("image");

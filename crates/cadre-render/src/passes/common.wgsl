@@ -20,6 +20,8 @@ struct FrameUniform {
     plane_normals: array<vec4<f32>, 3>,
     forward: vec4<f32>,
     section: vec4<f32>,
+    shadow: mat4x4<f32>,
+    shadow_params: vec4<f32>,
 }
 
 struct Draw {

@@ -61,6 +61,9 @@ pub struct SceneFile {
     /// Crowds of generated objects.
     #[serde(default)]
     pub generate: Vec<Generate>,
+    /// The first light casts shadows.
+    #[serde(default)]
+    pub shadows: bool,
 }
 
 /// A perspective camera.
@@ -247,6 +250,8 @@ pub struct LoadedScene {
     pub lights: Vec<Light>,
     /// Objects left out, and why (each names the object's index).
     pub warnings: Vec<String>,
+    /// The first light casts shadows ([`crate::FrameOptions::shadows`]).
+    pub shadows: bool,
 }
 
 /// Reads a scene file's text.
@@ -271,6 +276,7 @@ pub fn load_scene(text: &str) -> Result<LoadedScene, SceneFileError> {
             )
         }),
         lights: file.lights.iter().map(LightSpec::light).collect(),
+        shadows: file.shadows,
         ..LoadedScene::default()
     };
     for (k, object) in file.objects.iter().enumerate() {

@@ -100,6 +100,10 @@ pub struct RenderArgs {
     /// How the cracks between faces of `--method trim` are closed.
     #[command(flatten)]
     cracks: CrackArgs,
+    /// The key light (the first) casts shadows, from a shadow map every back-end writes
+    /// (scene files may ask for them with `"shadows": true`).
+    #[arg(long)]
+    shadows: bool,
     /// With a folder: also write every image into one contact sheet (a grid of tiles, row by
     /// row in file-name order; SHEET.txt lists which file each tile is).
     #[arg(long, value_name = "SHEET.png")]
@@ -372,6 +376,7 @@ pub(crate) fn render_scene_file(
         background: args.background,
         mode: args.mode,
         edge_width: args.edge_width,
+        shadows: args.shadows || loaded.shadows,
         ..FrameOptions::default()
     };
     if !loaded.lights.is_empty() {
@@ -608,6 +613,7 @@ fn draw_file(
         mode: args.mode,
         edge_width: args.edge_width,
         cracks: args.cracks.options(),
+        shadows: args.shadows,
         ..FrameOptions::default()
     };
     let prepared = renderer.prepare(gpu, &scene);

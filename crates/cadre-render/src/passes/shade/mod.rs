@@ -17,6 +17,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
     Binding::Uniform(LightRig::WGSL_NAME),
     Binding::Storage("vec4<u32>"),
     Binding::FloatTexture,
+    Binding::FloatTexture,
 ];
 
 /// The pass's whole WGSL: the shared declarations and its own sources, by job (lighting,
@@ -44,6 +45,8 @@ pub(crate) struct ShadeInputs<'a> {
     pub background: wgpu::Color,
     /// The shader's parts the frame needs.
     pub variant: ShadeVariant,
+    /// The key light's shadow map, when the frame has one.
+    pub shadow: Option<&'a wgpu::TextureView>,
 }
 
 /// The shade pass's depth state: its screen triangle lies on the far plane (depth 0 in reverse
@@ -81,6 +84,8 @@ pub(crate) struct ShadeVariant {
     /// Trimmed edges' pixels are blended by their coverage (`COVERAGE`, the frame's
     /// `counts[3] > 0`).
     pub coverage: bool,
+    /// The key light casts shadows (`SHADOWS`, the frame's `shadow_params[3] > 0`).
+    pub shadows: bool,
 }
 
 impl ShadeVariant {
@@ -98,11 +103,12 @@ impl ShadeVariant {
             lights: frame.counts[0],
             selection: frame.counts[1] > 0,
             coverage: frame.counts[3] > 0,
+            shadows: frame.shadow_params[3] > 0.0,
         }
     }
 
     /// The pipeline constants of `shade.wgsl` for this variant.
-    fn constants(self) -> [(&'static str, f64); 6] {
+    fn constants(self) -> [(&'static str, f64); 7] {
         [
             ("SECTIONS", f64::from(u8::from(self.sections))),
             ("SILHOUETTES", f64::from(u8::from(self.silhouettes))),
@@ -113,6 +119,7 @@ impl ShadeVariant {
             ("LIGHTS", f64::from(self.lights)),
             ("SELECTION", f64::from(u8::from(self.selection))),
             ("COVERAGE", f64::from(u8::from(self.coverage))),
+            ("SHADOWS", f64::from(u8::from(self.shadows))),
         ]
     }
 }
@@ -159,6 +166,7 @@ impl ShadePass {
                     lights: rig_lights,
                     selection: false,
                     coverage: false,
+                    shadows: false,
                 },
             );
         }
@@ -209,6 +217,7 @@ impl ShadePass {
             selection,
             background,
             variant,
+            shadow,
         } = inputs;
         let bind = binds.get(
             device,
@@ -222,6 +231,7 @@ impl ShadePass {
                 lights.as_entire_binding(),
                 selection.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&visibility.depth),
+                wgpu::BindingResource::TextureView(shadow.unwrap_or(&visibility.depth)),
             ],
         );
         // Read only: the depth test keeps the shader off the background.
@@ -253,6 +263,7 @@ mod tests {
                 lights: 0,
                 selection: false,
                 coverage: false,
+                shadows: false,
             }
         );
         frame.counts = [2, 1, 1, 1];
@@ -262,7 +273,7 @@ mod tests {
         assert!(all.coverage);
         assert_eq!(
             all.constants().map(|(_, v)| v),
-            [1.0, 1.0, 1.0, 2.0, 1.0, 1.0],
+            [1.0, 1.0, 1.0, 2.0, 1.0, 1.0, 0.0],
             "every part compiled in, two lights"
         );
         // A light past the frame's count is not lit: it does not ask for positional code.

@@ -29,6 +29,8 @@ override SELECTION: bool = true;
 // Trimmed edges' pixels blended by their coverage (`counts.w > 0`: the frame draws faces
 // trimmed per pixel and asks for analytic anti-aliasing).
 override COVERAGE: bool = true;
+// The key light (the first) casts shadows from the frame's shadow map (`shadow_params.w > 0`).
+override SHADOWS: bool = false;
 
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
 @group(0) @binding(2) var normal_tex: texture_2d<f32>;
@@ -37,6 +39,9 @@ override COVERAGE: bool = true;
 @group(0) @binding(5) var<storage, read> selection: array<vec4<u32>>;
 // The visibility depth (also the pass's read-only depth attachment): 0 where nothing is.
 @group(0) @binding(6) var depth_tex: texture_2d<f32>;
+// The key light's shadow map: the depth every back-end wrote, seen from the light (reverse
+// Z); any texture when the frame has no shadows.
+@group(0) @binding(7) var shadow_tex: texture_2d<f32>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
@@ -81,6 +86,34 @@ fn fs_main(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
 }
 
 // The colour of the visibility texel at `p` (whose centre is `pos`).
+// How much of the key light reaches the view-space point `view_pos` of normal `n`: its
+// shadow map looked up 3 × 3 texels about the point (percentage-closer filtering), the point
+// first moved 1.5 texels along its normal (no self-shadowing acne on surfaces the light
+// grazes). Outside the map: lit.
+fn key_light_shadow(view_pos: vec3<f32>, n: vec3<f32>) -> f32 {
+    let size = frame.shadow_params.w;
+    let at = frame.shadow * vec4<f32>(view_pos, 1.0);
+    let texel = max(at.w, 1e-6) * frame.shadow_params.x;
+    let c = frame.shadow * vec4<f32>(view_pos + n * (1.5 * texel), 1.0);
+    if c.w <= 0.0 {
+        return 1.0;
+    }
+    let ndc = c.xyz / c.w;
+    if any(abs(ndc.xy) > vec2<f32>(1.0)) {
+        return 1.0;
+    }
+    let centre = vec2<i32>(floor(vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y) * size));
+    let last = i32(size) - 1;
+    var lit = 0.0;
+    for (var k = 0; k < 9; k++) {
+        let q = clamp(centre + vec2<i32>(k % 3 - 1, k / 3 - 1), vec2<i32>(0), vec2<i32>(last));
+        let nearest = textureLoad(shadow_tex, q, 0).x;
+        // Reverse Z: the point is lit when it is no farther from the light than the map.
+        lit += select(0.0, 1.0, ndc.z >= nearest - 1e-6);
+    }
+    return 1.0 - frame.shadow_params.z * (1.0 - lit / 9.0);
+}
+
 fn shade_pixel(p: vec2<i32>, pos: vec2<f32>) -> vec4<f32> {
     let ids = textureLoad(ids_tex, p, 0);
     let depth = bitcast<f32>(ids.w);
@@ -148,6 +181,9 @@ fn shade_pixel(p: vec2<i32>, pos: vec2<f32>) -> vec4<f32> {
             let falloff = select(1.0, w * w, range > 0.0) / (d * d);
             let cone = smoothstep(li.colour.w, li.params.x, dot(-l, normalize(li.direction.xyz)));
             radiance *= select(1.0, falloff * select(1.0, cone, kind == 2u), positional);
+        }
+        if SHADOWS && (i == 0u) {
+            radiance *= key_light_shadow(view_pos, n);
         }
         colour += light(lit, l, radiance);
     }
