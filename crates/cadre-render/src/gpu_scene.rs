@@ -298,6 +298,13 @@ impl PreparedScene {
         self.diagonal
     }
 
+    /// Whether the scene has quadric primitives (their silhouettes carry their coverage).
+    pub fn has_quadrics(&self) -> bool {
+        self.primitives
+            .iter()
+            .any(|p| matches!(p.shape, crate::AnalyticShape::Quadric(_)))
+    }
+
     /// The scene's world box, `None` when it is empty.
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
         self.bounds

@@ -502,7 +502,8 @@ pub struct Primitive {
     /// Sphere: radius (x); rectangle: half width and half height (x, y); quadric: λ (xyz)
     /// and c (w) of Σ λᵢ zᵢ² + 2 bᵀz + c in its box's frame; unused lanes 0.
     pub size: [f32; 4],
-    /// Quadric: b (xyz); w unused.
+    /// Quadric: b (xyz); 1 (w) when its tangent rays are its silhouettes (0 for two
+    /// intersecting planes), which then carry their analytic coverage.
     pub linear: [f32; 4],
     /// The pixel's ray in the shape's frame, affine in its normalised device coordinates
     /// (x, y): origin o₀ + x oₓ + y o_y, direction d₀ + x dₓ + y d_y (xyz of each column, in

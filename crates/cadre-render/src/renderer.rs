@@ -522,8 +522,10 @@ impl Renderer {
         let crack_mode = self.crack_mode(scene, options);
         [frame.tolerances[2], frame.tolerances[3]] =
             crate::passes::cracks::tolerances(&options.cracks, scene.diagonal());
-        // Trimmed edges carry their coverage only where faces are trimmed per pixel.
-        let coverage = options.analytic_coverage && scene.trim.is_some() && self.draws_trims();
+        // Edges carry their coverage only where faces are trimmed per pixel, or quadrics ray
+        // cast.
+        let coverage = options.analytic_coverage
+            && ((scene.trim.is_some() && self.draws_trims()) || scene.has_quadrics());
         frame.counts[3] = u32::from(coverage);
         let shadow = if options.shadows && readback.shaded() {
             self.shadow_map(gpu, scene, (camera, options, state))?

@@ -368,3 +368,50 @@ fn a_wrong_oracle_or_a_wrong_depth_is_caught() {
     let c = compare(&gpu, &proxy, &grid, &camera);
     assert!(c.depth_error > 1e-3, "{c:?}");
 }
+
+#[test]
+fn silhouettes_carry_their_analytic_coverage() {
+    // A 1× image with the quadrics' coverage (F / |∇F| in pixels from the silhouette conic
+    // and the cut edges) is nearer a 4 × 4 supersampled one than the same image without it:
+    // the thesis' robot (39 quadrics of 7 classes, cut by planes, patches and volumes).
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let text = std::fs::read_to_string(common::root().join("examples/scenes/robot.json"))
+        .expect("scene reads");
+    let loaded = cadre_render::scene_file::load_scene(&text).expect("scene loads");
+    let scene = RenderScene::default().with_primitives(loaded.primitives);
+    let (lo, hi) = scene.bounds().expect("objects");
+    let prepared = renderer.prepare(&gpu, &scene);
+    let (eye, target, up, fov) = loaded.camera.expect("camera");
+    let camera = Camera::looking((eye, target, up), fov, (lo, hi));
+    let image = |supersample: u32, analytic_coverage: bool| {
+        let options = FrameOptions {
+            width: W,
+            height: H,
+            supersample,
+            smooth: false,
+            analytic_coverage,
+            ..FrameOptions::default()
+        };
+        renderer
+            .render(&gpu, &prepared, &camera, &options, &ViewState::default())
+            .expect("image")
+    };
+    let reference = image(4, false);
+    let error = |img: &image::RgbaImage| -> f64 {
+        img.pixels()
+            .zip(reference.pixels())
+            .map(|(a, b)| {
+                (0..3)
+                    .map(|c| (f64::from(a[c]) - f64::from(b[c])).abs())
+                    .sum::<f64>()
+            })
+            .sum()
+    };
+    let (plain, covered) = (error(&image(1, false)), error(&image(1, true)));
+    eprintln!("error against 4x4 supersampling: plain {plain:.0}, analytic coverage {covered:.0}");
+    // Measured 0.84: the coverage blends the pixels whose centres are on the surface (as
+    // the trimmed edges'); those just off it, the volumes' plane edges and the intersections
+    // between primitives are left to supersampling.
+    assert!(covered < 0.9 * plain, "{covered} vs {plain}");
+}

@@ -165,7 +165,8 @@ impl AnalyticPrimitive {
                 // A bounded volume is a closed solid: section planes cap it.
                 record.flags = if volume { DRAW_CLOSED } else { 0 };
                 record.size = local.lambda.extend(local.constant).as_vec4().to_array();
-                record.linear = local.linear.extend(0.0).as_vec4().to_array();
+                let smooth = if local.smooth { 1.0 } else { 0.0 };
+                record.linear = local.linear.extend(smooth).as_vec4().to_array();
                 record.planes = [planes.len() as u32, local.planes.len() as u32];
                 record.screen = quadric_screen((camera, aspect), relative, local);
                 planes.extend(local.planes.iter().map(|p| p.as_vec4().to_array()));

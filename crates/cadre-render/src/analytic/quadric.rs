@@ -38,6 +38,9 @@ pub(crate) struct LocalQuadric {
     pub planes: Vec<DVec4>,
     /// Whether the uncut quadric is an ellipsoid (its screen bounds then come from its dual).
     pub ellipsoid: bool,
+    /// Whether the rays tangent to it are its silhouettes: not for two intersecting planes,
+    /// whose rays through their common line are double roots inside the surface.
+    pub smooth: bool,
 }
 
 impl QuadricShape {
@@ -70,6 +73,7 @@ impl QuadricShape {
             constant,
             planes,
             ellipsoid: canon.class == QuadricClass::Ellipsoid,
+            smooth: canon.class != QuadricClass::IntersectingPlanes,
         };
         Ok(Arc::new(QuadricShape { cut, bounds, local }))
     }

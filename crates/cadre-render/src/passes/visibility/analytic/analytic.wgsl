@@ -21,6 +21,8 @@ override EXACT_DEPTH: bool = true;
 
 // The hit a see-through pipeline draws: 0 the nearer, 1 the farther.
 override LAYER: u32 = 0u;
+// Quadrics' silhouettes and cut edges carry their analytic coverage (the frame blends them).
+override COVERAGE: bool = true;
 
 struct ProxyOut {
     @builtin(position) clip: vec4<f32>,
@@ -176,15 +178,19 @@ struct ShownPoint {
     uv: vec2<f32>,
     front: bool,
     depth: f32,
+    // A quadric's boundary functions and boundary point (`QuadricHit::edge`); large for the
+    // other kinds.
+    edge: vec3<f32>,
 }
 
 // The point hit number `layer` (0 the nearest) of the proxy fragment at `pixel` (its
 // position) and `world` (its camera-relative point).
 fn shown_point(p: Primitive, pixel: vec2<f32>, world: vec3<f32>, layer: u32) -> ShownPoint {
-    var out = ShownPoint(false, vec3<f32>(0.0), vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0), true, 0.0);
+    var out = ShownPoint(false, vec3<f32>(0.0), vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0), true, 0.0, vec3<f32>(QUADRIC_FAR));
     if is_quadric(p) {
         let ray = quadric_ray(p, pixel);
         let hit = quadric_hit(p, ray, layer);
+        out.edge = hit.edge;
         if hit.found {
             let local = ray.o + hit.s * ray.d;
             out = ShownPoint(
@@ -194,6 +200,7 @@ fn shown_point(p: Primitive, pixel: vec2<f32>, world: vec3<f32>, layer: u32) -> 
                 local.xy,
                 dot(hit.n, ray.d) < 0.0,
                 hit.depth,
+                hit.edge,
             );
         }
         return out;
@@ -211,6 +218,7 @@ fn shown_point(p: Primitive, pixel: vec2<f32>, world: vec3<f32>, layer: u32) -> 
             surface.uv,
             dot(surface.n, ray.d) < 0.0,
             hit.depth,
+            vec3<f32>(QUADRIC_FAR),
         );
     }
     return out;
@@ -220,6 +228,9 @@ fn shown_point(p: Primitive, pixel: vec2<f32>, world: vec3<f32>, layer: u32) -> 
 fn fs_main(in: ProxyOut) -> AnalyticOut {
     let p = primitives[in.index];
     let shown = shown_point(p, in.clip.xy, in.world, 0u);
+    // The boundary functions' screen derivatives, before any discard (every lane takes part).
+    let ex = dpdx(shown.edge);
+    let ey = dpdy(shown.edge);
     if !shown.found {
         discard;
     }
@@ -238,6 +249,21 @@ fn fs_main(in: ProxyOut) -> AnalyticOut {
     out.ids = texel.ids;
     out.uv = texel.uv;
     out.depth = select(in.clip.z, shown.depth, EXACT_DEPTH);
+    // Analytic coverage (F / |∇F| in pixels from each boundary, ½ on it): the shade pass
+    // blends the rest of the pixel with what its neighbours across the boundary show.
+    if COVERAGE && is_quadric(p) && ((out.ids.z & SECTION_CAP) == 0u) {
+        // The silhouette's function is one polynomial across it; a cut edge's margin is
+        // the neighbours' only where they show the same boundary point.
+        let steady = (ex.z == 0.0) && (ey.z == 0.0);
+        var covered = 1.0;
+        for (var k = 0u; k < 2u; k++) {
+            let g = length(vec2<f32>(ex[k], ey[k]));
+            if g > 0.0 && shown.edge[k] < 0.5 * QUADRIC_FAR && (k == 0u || steady) {
+                covered = min(covered, 0.5 + shown.edge[k] / g);
+            }
+        }
+        out.normal.z = clamp(covered, 0.5, 1.0);
+    }
     if !EXACT_DEPTH {
         out.ids.w = bitcast<u32>(in.clip.z);
     }

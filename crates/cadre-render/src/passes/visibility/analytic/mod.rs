@@ -43,8 +43,8 @@ pub(crate) struct AnalyticBackend {
     layout: wgpu::BindGroupLayout,
     /// Format of the colour target of the see-through phases.
     colour: wgpu::TextureFormat,
-    /// Indexed by `with_uv + 2 × proxy_depth`.
-    pipelines: [OnceLock<wgpu::RenderPipeline>; 4],
+    /// Indexed by `with_uv + 2 × proxy_depth + 4 × coverage`.
+    pipelines: [OnceLock<wgpu::RenderPipeline>; 8],
     /// Indexed by `layer + 2 × transparent` (x-ray otherwise).
     see_through: [OnceLock<wgpu::RenderPipeline>; 4],
 }
@@ -200,7 +200,8 @@ impl AnalyticBackend {
         inputs: &PhaseInputs<'_>,
     ) -> &wgpu::RenderPipeline {
         let (with_uv, proxy_depth) = (inputs.with_uv, inputs.proxy_depth);
-        let k = usize::from(with_uv) + 2 * usize::from(proxy_depth);
+        let k =
+            usize::from(with_uv) + 2 * usize::from(proxy_depth) + 4 * usize::from(inputs.coverage);
         self.pipelines[k].get_or_init(|| {
             pipeline(
                 device,
@@ -215,7 +216,10 @@ impl AnalyticBackend {
                     buffers: &[],
                     depth: Some(depth_state()),
                     targets: if with_uv { &TARGETS } else { &TARGETS_NO_UV },
-                    constants: &[("EXACT_DEPTH", if proxy_depth { 0.0 } else { 1.0 })],
+                    constants: &[
+                        ("EXACT_DEPTH", if proxy_depth { 0.0 } else { 1.0 }),
+                        ("COVERAGE", if inputs.coverage { 1.0 } else { 0.0 }),
+                    ],
                 },
             )
         })

@@ -75,6 +75,13 @@ struct QuadricHit {
     s: f32,
     depth: f32,
     n: vec3<f32>,
+    // Functions of the pixel whose zeros are the boundaries about the hit, positive on the
+    // hit's side: the ray's discriminant (its zeros, the silhouette conic) and, on a patch,
+    // the nearest plane's margin at the hit (its zeros, the cut edges); their screen
+    // derivatives give the pixel's distance to them (F / |∇F|, the analytic coverage); and
+    // which boundary point it is (the margin's derivatives hold only where the neighbours
+    // show the same one: the candidate's rank and what it lies on).
+    edge: vec3<f32>,
 }
 
 // What a quadric of the record keeps of the ray: the boundary points, ascending, of the patch
@@ -91,6 +98,9 @@ fn quadric_hit(p: Primitive, ray: QuadricRay, layer: u32) -> QuadricHit {
     let qa = dot(lambda, d * d);
     let qb = dot(lambda, o * d) + dot(b, d);
     let qc = dot(lambda, o * o) + 2.0 * dot(b, o) + c;
+    // A hit's side of the silhouette: the discriminant, scaled so that it does not
+    // underflow for tiny quadrics (only its zero and its sign matter).
+    let disc_edge = select(QUADRIC_FAR, (qb * qb - qa * qc) / max(qa * qa, 1e-30), p.linear.w > 0.5);
     // Roots, ascending, in the ray's own parameter.
     var roots = vec2<f32>(0.0);
     var count = 0u;
@@ -207,9 +217,21 @@ fn quadric_hit(p: Primitive, ray: QuadricRay, layer: u32) -> QuadricHit {
             if list[i].on >= 0 {
                 normal = quadric_planes[p.planes.x + u32(list[i].on)].xyz;
             }
-            return QuadricHit(true, s, depth, normal);
+            // The nearest cut edge of a patch (a volume's plane faces meet the quadric along
+            // edges that are not silhouettes: left to supersampling).
+            var margin = QUADRIC_FAR;
+            if p.kind == PRIMITIVE_QUADRIC_PATCH {
+                for (var k = 0u; k < p.planes.y; k++) {
+                    let plane = quadric_planes[p.planes.x + k];
+                    margin = min(margin, -(dot(plane.xyz, local) + plane.w));
+                }
+            }
+            let which = f32(i) + 8.0 * f32(list[i].on + 1);
+            // A volume's plane face goes on across the quadric's silhouette.
+            let silhouette = select(QUADRIC_FAR, disc_edge, list[i].on < 0);
+            return QuadricHit(true, s, depth, normal, vec3<f32>(silhouette, margin, which));
         }
         seen += 1u;
     }
-    return QuadricHit(false, 0.0, 0.0, vec3<f32>(0.0, 0.0, 1.0));
+    return QuadricHit(false, 0.0, 0.0, vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(disc_edge, 0.0, -1.0));
 }
