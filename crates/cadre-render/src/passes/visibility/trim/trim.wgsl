@@ -195,8 +195,11 @@ struct RayCastOut {
 fn fs_raycast(in: TrimOut) -> RayCastOut {
     let s = surfaces[in.surface];
     let analytic = is_ray_cast(s);
+    // A tessellated face's derivatives, taken first, as `fs_main` takes them.
+    let tx = dpdx(in.local);
+    let ty = dpdy(in.local);
     var hits: FaceCast;
-    var local = in.local;
+    var local = vec2<f32>(0.0);
     let ray = frame_ray(in.ray_point, in.ray_eye);
     var first = 0.0;
     if analytic {
@@ -211,7 +214,7 @@ fn fs_raycast(in: TrimOut) -> RayCastOut {
     let steady = (dpdx(first) == 0.0) && (dpdy(first) == 0.0);
     var out: RayCastOut;
     if !analytic {
-        let texel = trim_fragment(in, jx, jy);
+        let texel = trim_fragment(in, tx, ty);
         out.normal = texel.normal;
         out.ids = texel.ids;
         out.uv = texel.uv;
