@@ -11,6 +11,19 @@ use common::{OneShot, gpu};
 /// Object-space tolerance of the trims (mm).
 const TRIM_TOLERANCE: f64 = 0.001;
 
+/// The fixtures both exact ways are checked on: every closed-form surface, seams, apexes,
+/// poles, a hole across a seam.
+const FIXTURES: [&str; 8] = [
+    "examples/pin-assembly.step",
+    "crates/cadre-render/tests/data/dome-and-cone.step",
+    "crates/cadre-mesh/tests/data/cylinder_hole_across_seam.step",
+    "crates/cadre-mesh/tests/data/cone_patch_clockwise.step",
+    "crates/cadre-mesh/tests/data/half_cones_wrong_sense.step",
+    "crates/cadre-mesh/tests/data/unit_cube.step",
+    "crates/cadre-render/tests/data/torus-elbow.step",
+    "crates/cadre-mesh/tests/data/quarter_sphere_collapsed_sides.step",
+];
+
 fn options(width: u32, height: u32) -> FrameOptions {
     FrameOptions {
         width,
@@ -143,16 +156,7 @@ fn trimmed_faces_agree_with_the_exact_ray_caster() {
     let vertex_eval = Renderer::new(&gpu)
         .expect("pipelines")
         .with_trim_variant(&gpu, (true, 256, false));
-    for name in [
-        "examples/pin-assembly.step",
-        "crates/cadre-render/tests/data/dome-and-cone.step",
-        "crates/cadre-mesh/tests/data/cylinder_hole_across_seam.step",
-        "crates/cadre-mesh/tests/data/cone_patch_clockwise.step",
-        "crates/cadre-mesh/tests/data/half_cones_wrong_sense.step",
-        "crates/cadre-mesh/tests/data/unit_cube.step",
-        "crates/cadre-render/tests/data/torus-elbow.step",
-        "crates/cadre-mesh/tests/data/quarter_sphere_collapsed_sides.step",
-    ] {
+    for name in FIXTURES {
         let bytes = std::fs::read(common::root().join(name)).expect("fixture reads");
         let (model, mesh_scene) = common::model_and_scene_of(bytes, 0.01);
         let trim_scene = mesh_scene.clone().with_trims(&model, TRIM_TOLERANCE);
@@ -226,16 +230,7 @@ fn ray_cast_faces_agree_with_the_exact_ray_caster_at_every_zoom() {
         .with_ray_cast_faces(&gpu, false);
     let mut compared = 0;
     let mut worst_untrimmed: f64 = 0.0;
-    for name in [
-        "examples/pin-assembly.step",
-        "crates/cadre-render/tests/data/dome-and-cone.step",
-        "crates/cadre-mesh/tests/data/cylinder_hole_across_seam.step",
-        "crates/cadre-mesh/tests/data/cone_patch_clockwise.step",
-        "crates/cadre-mesh/tests/data/half_cones_wrong_sense.step",
-        "crates/cadre-mesh/tests/data/unit_cube.step",
-        "crates/cadre-render/tests/data/torus-elbow.step",
-        "crates/cadre-mesh/tests/data/quarter_sphere_collapsed_sides.step",
-    ] {
+    for name in FIXTURES {
         let bytes = std::fs::read(common::root().join(name)).expect("fixture reads");
         let (model, mesh_scene) = common::model_and_scene_of(bytes, 0.01);
         let scene = mesh_scene.with_trims(&model, TRIM_TOLERANCE);

@@ -265,6 +265,17 @@ pub enum CutKind {
     Volume,
 }
 
+impl CutKind {
+    /// `Volume` when `volume`, else `Patch`.
+    pub fn volume_if(volume: bool) -> CutKind {
+        if volume {
+            CutKind::Volume
+        } else {
+            CutKind::Patch
+        }
+    }
+}
+
 /// A quadric cut by planes: the thesis' primitive.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CutQuadric {

@@ -183,11 +183,7 @@ impl Generate {
         let cut = CutQuadric {
             quadric,
             planes,
-            kind: if self.volume {
-                CutKind::Volume
-            } else {
-                CutKind::Patch
-            },
+            kind: CutKind::volume_if(self.volume),
         };
         QuadricShape::new(cut).map_err(|e| e.to_string())
     }

@@ -354,11 +354,7 @@ impl ObjectSpec {
         let cut = CutQuadric {
             quadric,
             planes,
-            kind: if self.volume {
-                CutKind::Volume
-            } else {
-                CutKind::Patch
-            },
+            kind: CutKind::volume_if(self.volume),
         };
         let shape = QuadricShape::new(cut).map_err(|e| e.to_string())?;
         let axis = DVec3::from(self.axis.unwrap_or([0.0, 0.0, 1.0]));
