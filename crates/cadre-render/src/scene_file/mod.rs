@@ -414,6 +414,71 @@ mod tests {
     }
 
     #[test]
+    fn hostile_numbers_leave_objects_out_without_a_panic() {
+        // Every shape with zero, negative, huge, tiny and non-finite-making sizes, and planes
+        // that are zero, parallel or far: each object loads or is named and left out.
+        let sizes = ["0", "-1", "1e300", "1e-300", "3", "1e-12"];
+        let shapes = [
+            "sphere",
+            "cylinder",
+            "parabolic_cylinder",
+            "parallel_planes",
+        ];
+        let pairs = [
+            "elliptic_cylinder",
+            "hyperbolic_cylinder",
+            "elliptic_paraboloid",
+            "hyperbolic_paraboloid",
+            "intersecting_planes",
+        ];
+        let triples = [
+            "ellipsoid",
+            "cone",
+            "hyperboloid_one_sheet",
+            "hyperboloid_two_sheets",
+        ];
+        let planes = [
+            "[]",
+            "[[0, 0, 0, 1]]",
+            "[[0, 0, 1, -1e300], [0, 0, -1, -1e300]]",
+            "[[0, 0, 1, 1], [0, 0, -1, 1]]",
+            "[[1e300, 0, 0, 1], [0, 1e-300, 0, 1], [0, 0, 1, -2], [0, 0, -1, -2]]",
+        ];
+        let mut objects = Vec::new();
+        for size in sizes {
+            for p in planes {
+                for volume in [false, true] {
+                    for shape in shapes {
+                        objects.push(format!(r#"{{"shape": {{"{shape}": {size}}}, "planes": {p}, "volume": {volume}}}"#));
+                    }
+                    for shape in pairs {
+                        objects.push(format!(r#"{{"shape": {{"{shape}": [{size}, 1]}}, "planes": {p}, "volume": {volume}}}"#));
+                    }
+                    for shape in triples {
+                        objects.push(format!(r#"{{"shape": {{"{shape}": [1, {size}, 2]}}, "planes": {p}, "volume": {volume}}}"#));
+                    }
+                }
+            }
+        }
+        objects.push(r#"{"shape": {"coefficients": [0, 0, 0, 0, 0, 0, 0, 0, 0, 0]}}"#.into());
+        objects.push(
+            r#"{"shape": {"bernstein": {"vertices": [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0]], "weights": [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]}}}"#
+                .into(),
+        );
+        let text = format!(r#"{{"objects": [{}]}}"#, objects.join(", "));
+        let scene = load_scene(&text).expect("valid JSON of the format");
+        assert_eq!(
+            scene.primitives.len() + scene.warnings.len(),
+            objects.len(),
+            "every object loads or is named"
+        );
+        assert!(scene.primitives.iter().all(|p| {
+            let (c, r) = p.bounding_sphere();
+            c.is_finite() && r.is_finite()
+        }));
+    }
+
+    #[test]
     fn too_many_generated_objects_are_refused() {
         let text = r#"{"generate": [{"count": 100000000000, "kinds": ["sphere"]}]}"#;
         assert!(matches!(
