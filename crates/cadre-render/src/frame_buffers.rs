@@ -73,6 +73,14 @@ impl GrowingBuffer {
         Ok(())
     }
 
+    /// An empty buffer of this one's label and usage (another chunk of the same records).
+    pub fn sibling(&self, device: &wgpu::Device) -> Self {
+        GrowingBuffer {
+            bound_whole: self.bound_whole,
+            ..GrowingBuffer::new(device, self.label, self.usage)
+        }
+    }
+
     /// This buffer, bound at dynamic offsets one window wide (only the buffer limit caps it).
     pub fn windowed(mut self) -> Self {
         self.bound_whole = false;
@@ -93,9 +101,10 @@ pub(crate) struct FrameBuffers {
     pub materials: GrowingBuffer,
     pub lights: GrowingBuffer,
     pub selection: GrowingBuffer,
-    pub primitives: GrowingBuffer,
-    /// The see-through analytic primitives' records.
-    pub see_through_primitives: GrowingBuffer,
+    /// The opaque analytic primitives' records, in chunks of at most a storage binding.
+    pub primitives: Vec<GrowingBuffer>,
+    /// The see-through analytic primitives' records, in chunks.
+    pub see_through_primitives: Vec<GrowingBuffer>,
     /// The cutting planes of the frame's quadrics, in their boxes' frames.
     pub primitive_planes: GrowingBuffer,
 }
@@ -112,12 +121,12 @@ impl FrameBuffers {
             materials: GrowingBuffer::new(device, "materials", U::STORAGE),
             lights: GrowingBuffer::new(device, "lights", U::UNIFORM),
             selection: GrowingBuffer::new(device, "selection", U::STORAGE),
-            primitives: GrowingBuffer::new(device, "primitives", U::STORAGE),
-            see_through_primitives: GrowingBuffer::new(
+            primitives: vec![GrowingBuffer::new(device, "primitives", U::STORAGE)],
+            see_through_primitives: vec![GrowingBuffer::new(
                 device,
                 "see-through primitives",
                 U::STORAGE,
-            ),
+            )],
             primitive_planes: GrowingBuffer::new(device, "primitive planes", U::STORAGE),
         }
     }

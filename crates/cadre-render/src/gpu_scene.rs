@@ -279,9 +279,10 @@ pub struct PreparedScene {
     /// [`Placements::locals`] on the GPU.
     pub(crate) locals: wgpu::Buffer,
     /// Analytic primitives drawn by ray casting, instances after the meshes' (each with its
-    /// material at `primitive_materials + k`).
+    /// material at `primitive_materials[k]`: one a distinct colour, so that a crowd of 10⁷
+    /// primitives in a few colours does not take 10⁷ materials).
     primitives: Vec<AnalyticPrimitive>,
-    primitive_materials: u32,
+    primitive_materials: Vec<u32>,
     /// The trimmed faces' records and trees, when the trim back-end draws some.
     pub(crate) trim: Option<TrimGeometry>,
     /// Faces the trim back-end draws (0 without trims).
@@ -453,11 +454,21 @@ impl PreparedScene {
                 params: [m.metallic, m.roughness, 0.0, 0.0],
             })
             .collect();
-        let primitive_materials = materials.len() as u32;
-        materials.extend(primitives.iter().map(|p| Material {
-            base_color: p.colour,
-            params: DEFAULT_MATERIAL.params,
-        }));
+        let mut by_colour: std::collections::HashMap<[u32; 4], u32> = Default::default();
+        let primitive_materials: Vec<u32> = primitives
+            .iter()
+            .map(|p| {
+                *by_colour
+                    .entry(p.colour.map(f32::to_bits))
+                    .or_insert_with(|| {
+                        materials.push(Material {
+                            base_color: p.colour,
+                            params: DEFAULT_MATERIAL.params,
+                        });
+                        materials.len() as u32 - 1
+                    })
+            })
+            .collect();
         materials.push(DEFAULT_MATERIAL);
         // A call draws at most one mesh's lines, edges or points.
         let longest = meshes
@@ -518,21 +529,23 @@ impl PreparedScene {
 
     /// The visible primitives' records for a frame seen by `camera` in an image of `aspect`,
     /// opaque ones written into `buffers.0` and see-through ones (their material's or the
-    /// view's colour has an opacity below 1) into `buffers.1`, the quadrics' cutting planes
-    /// into `buffers.2`; a view's colour becomes a material of its own in `materials`, as for
-    /// the meshes.
+    /// view's colour has an opacity below 1) into `buffers.1` — each in buffers of at most
+    /// the device's storage binding size, as many as they take — the quadrics' cutting planes
+    /// into `buffers.2` (once per shape); a view's colour becomes a material of its own in
+    /// `materials`, as for the meshes.
     fn frame_primitives(
         &self,
         gpu: &crate::Gpu,
-        (opaque_buffer, see_through_buffer, planes_buffer): (
-            &mut GrowingBuffer,
-            &mut GrowingBuffer,
+        (opaque_buffers, see_through_buffers, planes_buffer): (
+            &mut Vec<GrowingBuffer>,
+            &mut Vec<GrowingBuffer>,
             &mut GrowingBuffer,
         ),
         (camera, aspect, state): (&Camera, f64, &ViewState),
         materials: &mut Vec<Material>,
     ) -> Result<FramePrimitives, RenderError> {
-        let (mut opaque, mut see_through, mut planes) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut opaque, mut see_through) = (Vec::new(), Vec::new());
+        let mut planes = crate::analytic::FramePlanes::default();
         for (k, p) in self.primitives.iter().enumerate() {
             let instance = self.primitive_instance(k);
             let style = state
@@ -551,7 +564,7 @@ impl PreparedScene {
                     });
                     materials.len() as u32 - 1
                 }
-                None => self.primitive_materials + k as u32,
+                None => self.primitive_materials[k],
             };
             let record = p.record((camera, aspect), (instance, material), &mut planes);
             if materials[material as usize].base_color[3] < SEE_THROUGH_BELOW {
@@ -560,8 +573,7 @@ impl PreparedScene {
                 opaque.push(record);
             }
         }
-        opaque_buffer.write(gpu, bytemuck::cast_slice(&opaque))?;
-        see_through_buffer.write(gpu, bytemuck::cast_slice(&see_through))?;
+        let mut planes = planes.planes;
         // Storage bindings may not be empty.
         if planes.is_empty() {
             planes.push([0.0; 4]);
@@ -569,11 +581,8 @@ impl PreparedScene {
         planes_buffer.write(gpu, bytemuck::cast_slice(&planes))?;
         Ok(FramePrimitives {
             planes: planes_buffer.buffer().clone(),
-            opaque: (opaque_buffer.buffer().clone(), opaque.len() as u32),
-            see_through: (
-                see_through_buffer.buffer().clone(),
-                see_through.len() as u32,
-            ),
+            opaque: write_chunks(gpu, opaque_buffers, &opaque)?,
+            see_through: write_chunks(gpu, see_through_buffers, &see_through)?,
         })
     }
 
@@ -1100,6 +1109,29 @@ impl<'a> FrameScene<'a> {
             trim: FrameTrim::new(&gpu.device, &out.trim_tasks, out.trim_draws),
         })
     }
+}
+
+/// `records` written into `buffers` (grown by copies of its first's kind as needed) in chunks
+/// of at most the device's storage binding size: each chunk's buffer and record count (none
+/// when there is no record).
+fn write_chunks(
+    gpu: &crate::Gpu,
+    buffers: &mut Vec<GrowingBuffer>,
+    records: &[crate::layout::Primitive],
+) -> Result<Vec<(wgpu::Buffer, u32)>, RenderError> {
+    let limit = buffer_limit(&gpu.device.limits(), wgpu::BufferUsages::STORAGE);
+    let per_chunk =
+        (limit / std::mem::size_of::<crate::layout::Primitive>() as u64).max(1) as usize;
+    let mut out = Vec::new();
+    for (k, chunk) in records.chunks(per_chunk).enumerate() {
+        if buffers.len() <= k {
+            let more = buffers[0].sibling(&gpu.device);
+            buffers.push(more);
+        }
+        buffers[k].write(gpu, bytemuck::cast_slice(chunk))?;
+        out.push((buffers[k].buffer().clone(), chunk.len() as u32));
+    }
+    Ok(out)
 }
 
 /// A sphere around placed bounding spheres (the box of their boxes' centre, the farthest

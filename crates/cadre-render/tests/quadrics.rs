@@ -415,3 +415,43 @@ fn silhouettes_carry_their_analytic_coverage() {
     // between primitives are left to supersampling.
     assert!(covered < 0.9 * plain, "{covered} vs {plain}");
 }
+
+#[test]
+fn a_crowd_past_one_storage_binding_is_drawn_in_chunks() {
+    // 400,000 records of 368 bytes are more than lavapipe's 128 MiB binding: the records go
+    // in chunks, each drawn; the last chunk's objects show (face ids past the first chunk's).
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let text =
+        r#"{"generate": [{"count": 400000, "kinds": ["sphere"], "extent": 200, "size": 1.5}]}"#;
+    let loaded = cadre_render::scene_file::load_scene(text).expect("scene");
+    let scene = RenderScene::default().with_primitives(loaded.primitives);
+    let (lo, hi) = scene.bounds().expect("objects");
+    let prepared = renderer.prepare(&gpu, &scene);
+    let camera = Camera::fit(lo, hi, ViewPreset::Top, true, 1.0);
+    let options = FrameOptions {
+        width: 96,
+        height: 96,
+        supersample: 1,
+        ..FrameOptions::default()
+    };
+    let ids = renderer
+        .render_ids(&gpu, &prepared, &camera, &options, &ViewState::default())
+        .expect("a crowd past one binding renders");
+    let limit = gpu.device.limits().max_storage_buffer_binding_size;
+    let per_chunk = limit as usize / std::mem::size_of::<cadre_render::layout::Primitive>();
+    let last = ids
+        .iter()
+        .filter(|g| g[1] != 0)
+        .map(|g| g[0])
+        .max()
+        .unwrap_or(0);
+    eprintln!("{per_chunk} records a chunk; largest face id shown {last}");
+    if per_chunk < 400_000 {
+        assert!(last as usize > per_chunk, "the second chunk is drawn");
+    }
+    let covered = ids.iter().filter(|g| g[1] != 0).count();
+    eprintln!("covered {covered}");
+    // The cube fills about a third of the fitted view (fitted to its bounding sphere).
+    assert!(covered > 96 * 96 / 4, "{covered}");
+}

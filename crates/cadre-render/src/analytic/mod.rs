@@ -113,13 +113,13 @@ impl AnalyticPrimitive {
 
     /// Its record for a frame seen by `camera` in an image of `aspect` (width / height):
     /// placed relative to the eye (in `f64`, so primitives far from the origin keep their
-    /// precision), with its `instance` and `material`; a quadric's planes are appended to
-    /// `planes` (the frame's plane buffer, which the record indexes).
+    /// precision), with its `instance` and `material`; a quadric's planes go into `planes`
+    /// (the frame's plane buffer, which the record indexes) once per shape.
     pub(crate) fn record(
         &self,
         (camera, aspect): (&Camera, f64),
         (instance, material): (u32, u32),
-        planes: &mut Vec<[f32; 4]>,
+        planes: &mut FramePlanes,
     ) -> Primitive {
         let rotation = DMat3::from_mat4(camera.view_rotation());
         // The shape's own frame: a quadric's is its box's.
@@ -167,13 +167,34 @@ impl AnalyticPrimitive {
                 record.size = local.lambda.extend(local.constant).as_vec4().to_array();
                 let smooth = if local.smooth { 1.0 } else { 0.0 };
                 record.linear = local.linear.extend(smooth).as_vec4().to_array();
-                record.planes = [planes.len() as u32, local.planes.len() as u32];
+                record.planes = [planes.of(q), local.planes.len() as u32];
                 record.screen = quadric_screen((camera, aspect), relative, local);
-                planes.extend(local.planes.iter().map(|p| p.as_vec4().to_array()));
             }
         }
         record.face = self.face_id;
         record
+    }
+}
+
+/// A frame's cutting planes of its quadrics, each shape's once (the primitives of a crowd
+/// share a few shapes).
+#[derive(Default)]
+pub(crate) struct FramePlanes {
+    /// The planes (n, d) in their shapes' box frames.
+    pub planes: Vec<[f32; 4]>,
+    /// Where each shape's planes start, by the shape's address.
+    first: std::collections::HashMap<*const QuadricShape, u32>,
+}
+
+impl FramePlanes {
+    /// Where `shape`'s planes start, adding them the first time.
+    fn of(&mut self, shape: &Arc<QuadricShape>) -> u32 {
+        *self.first.entry(Arc::as_ptr(shape)).or_insert_with(|| {
+            let at = self.planes.len() as u32;
+            self.planes
+                .extend(shape.local().planes.iter().map(|p| p.as_vec4().to_array()));
+            at
+        })
     }
 }
 

@@ -134,7 +134,8 @@ impl Generate {
             let origin = (DVec3::new(rng.unit(), rng.unit(), rng.unit()) - 0.5) * self.extent;
             let axis = rng.direction();
             let frame = Frame::from_axis(origin, axis, None).ok_or("a degenerate axis")?;
-            let hue = rng.unit() as f32;
+            // 32 colours: each a material, shared by the objects that have it.
+            let hue = (rng.next() % 32) as f32 / 31.0;
             out.push(AnalyticPrimitive {
                 shape: AnalyticShape::Quadric(Arc::clone(&shapes[kind][variant])),
                 frame,

@@ -345,7 +345,7 @@ impl VisibilityPass {
             Phase::Visibility => return,
             Phase::XRay => None,
             Phase::Transparent => {
-                if scene.transparent.is_empty() && scene.primitives.see_through.1 == 0 {
+                if scene.transparent.is_empty() && scene.primitives.see_through.is_empty() {
                     return;
                 }
                 Some(wgpu::RenderPassDepthStencilAttachment {

@@ -49,11 +49,11 @@ pub(crate) struct AnalyticBackend {
     see_through: [OnceLock<wgpu::RenderPipeline>; 4],
 }
 
-/// One frame's primitives on the GPU: the opaque and the see-through ones' records, each
-/// with their count.
+/// One frame's primitives on the GPU: the opaque and the see-through ones' records, each in
+/// chunks of at most a storage binding, with their counts.
 pub(crate) struct FramePrimitives {
-    pub opaque: (wgpu::Buffer, u32),
-    pub see_through: (wgpu::Buffer, u32),
+    pub opaque: Vec<(wgpu::Buffer, u32)>,
+    pub see_through: Vec<(wgpu::Buffer, u32)>,
     /// The quadrics' cutting planes (in their boxes' frames), indexed by their records.
     pub planes: wgpu::Buffer,
 }
@@ -95,24 +95,30 @@ impl AnalyticBackend {
         match phase {
             Phase::Visibility => {
                 let pipeline = self.visibility_pipeline(recorder.0, inputs);
-                self.draw_records(
-                    recorder,
-                    pass,
-                    pipeline,
-                    (inputs.frame, materials, &primitives.planes),
-                    &primitives.opaque,
-                );
+                for chunk in &primitives.opaque {
+                    self.draw_records(
+                        recorder,
+                        pass,
+                        pipeline,
+                        (inputs.frame, materials, &primitives.planes),
+                        chunk,
+                    );
+                }
             }
             Phase::Transparent | Phase::XRay => {
                 let transparent = phase == Phase::Transparent;
-                let sets: &[&(wgpu::Buffer, u32)] = if transparent {
-                    &[&primitives.see_through]
+                let sets: Vec<&(wgpu::Buffer, u32)> = if transparent {
+                    primitives.see_through.iter().collect()
                 } else {
-                    &[&primitives.opaque, &primitives.see_through]
+                    primitives
+                        .opaque
+                        .iter()
+                        .chain(&primitives.see_through)
+                        .collect()
                 };
                 for layer in [1, 0] {
                     let pipeline = self.see_through_pipeline(recorder.0, transparent, layer);
-                    for records in sets {
+                    for records in &sets {
                         self.draw_records(
                             recorder,
                             pass,
