@@ -455,3 +455,86 @@ fn a_crowd_past_one_storage_binding_is_drawn_in_chunks() {
     // The cube fills about a third of the fitted view (fitted to its bounding sphere).
     assert!(covered > 96 * 96 / 4, "{covered}");
 }
+
+#[test]
+fn sections_cap_quadric_volumes_and_see_through_quadrics_blend() {
+    // The house rule: a ray-cast quadric is cut and capped by section planes like a meshed
+    // solid (a volume), and a see-through one leaves the ids to what is behind it.
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let cylinder = |volume: bool, colour: [f32; 4], id: u32, x: f64| AnalyticPrimitive {
+        shape: AnalyticShape::Quadric(
+            QuadricShape::new(CutQuadric {
+                quadric: Quadric::cylinder(1.0),
+                planes: vec![
+                    HalfSpace::through(DVec3::new(0.0, 0.0, 1.5), DVec3::Z),
+                    HalfSpace::through(DVec3::new(0.0, 0.0, -1.5), -DVec3::Z),
+                ],
+                kind: CutKind::volume_if(volume),
+            })
+            .expect("bounded"),
+        ),
+        frame: Frame {
+            origin: DVec3::new(x, 0.0, 0.0),
+            ..Frame::WORLD
+        },
+        face_id: id,
+        colour,
+    };
+    let scene = RenderScene::default().with_primitives(vec![
+        cylinder(true, [0.8, 0.3, 0.2, 1.0], 1, -1.5),
+        cylinder(false, [0.2, 0.3, 0.8, 1.0], 2, 1.5),
+    ]);
+    let prepared = renderer.prepare(&gpu, &scene);
+    let (lo, hi) = scene.bounds().expect("objects");
+    let camera = Camera::fit(lo, hi, ViewPreset::Iso, false, 1.0);
+    let options = FrameOptions {
+        width: 96,
+        height: 96,
+        supersample: 1,
+        ..FrameOptions::default()
+    };
+    // Cut away the half facing the eye through both: the volume shows caps, the patch none.
+    let towards_eye = (camera.eye - 0.5 * (lo + hi)).normalize();
+    let state = ViewState {
+        sections: vec![cadre_render::SectionPlane::through(
+            0.5 * (lo + hi),
+            towards_eye,
+        )],
+        ..ViewState::default()
+    };
+    let ids = renderer
+        .render_ids(&gpu, &prepared, &camera, &options, &state)
+        .expect("ids");
+    let caps = |instance: u32| {
+        ids.iter()
+            .filter(|g| g[1] == instance + 1 && g[2] & cadre_render::SECTION_CAP != 0)
+            .count()
+    };
+    let (volume, patch) = (
+        caps(prepared.primitive_instance(0)),
+        caps(prepared.primitive_instance(1)),
+    );
+    eprintln!("cap pixels: volume {volume}, patch {patch}");
+    assert!(volume > 100 && patch == 0, "{volume} {patch}");
+    // See-through: the patch at half opacity is left out of the ids (the volume stays).
+    let faint = RenderScene::default().with_primitives(vec![
+        cylinder(true, [0.8, 0.3, 0.2, 1.0], 1, -1.5),
+        cylinder(false, [0.2, 0.3, 0.8, 0.5], 2, 1.5),
+    ]);
+    let prepared = renderer.prepare(&gpu, &faint);
+    let ids = renderer
+        .render_ids(&gpu, &prepared, &camera, &options, &ViewState::default())
+        .expect("ids");
+    let shown = |id: u32| ids.iter().filter(|g| g[1] != 0 && g[0] == id).count();
+    assert!(shown(1) > 100 && shown(2) == 0, "{} {}", shown(1), shown(2));
+    let image = renderer
+        .render(&gpu, &prepared, &camera, &options, &ViewState::default())
+        .expect("image");
+    // Where the faint cylinder is, the image is tinted blue, not the white background.
+    let bluish = image
+        .pixels()
+        .filter(|p| p[2] > p[0] + 20 && p[0] < 240)
+        .count();
+    assert!(bluish > 100, "{bluish} blended pixels");
+}
