@@ -547,6 +547,7 @@ impl App {
                 2
             },
             mode: self.session.mode,
+            shadows: self.session.shadows,
             ..FrameOptions::default()
         };
         // The window's framing at the screenshot's aspect.
@@ -640,6 +641,7 @@ impl App {
                 },
                 ..CrackOptions::default()
             },
+            shadows: self.session.shadows,
             ..FrameOptions::default()
         };
         if let (Some(prepared), Some(nav), Some(target)) =

@@ -31,6 +31,8 @@ pub(crate) struct Session {
     /// Faces drawn from their exact surfaces, trimmed per pixel (the trim back-end), instead
     /// of their static meshes.
     pub exact_faces: bool,
+    /// The key light casts shadows (a shadow map every back-end writes).
+    pub shadows: bool,
     /// Per scene node: hidden by the user.
     pub hidden: Vec<bool>,
     /// Per instance: a colour (sRGB + opacity) the user gave it.
@@ -120,6 +122,7 @@ impl Session {
             nav: None,
             mode: DisplayMode::ShadedEdges,
             exact_faces: false,
+            shadows: false,
             hidden: Vec::new(),
             colours: Vec::new(),
             hover: None,

@@ -57,6 +57,9 @@ pub(super) fn menu_bar(
                             "Faces drawn from their exact surfaces, tessellated to the \
                              screen each frame and trimmed per pixel, instead of their meshes",
                         );
+                    ui.checkbox(&mut s.shadows, "Shadows").on_hover_text(
+                        "The key light casts shadows (a shadow map drawn each frame)",
+                    );
                 });
                 ui.menu_button("Measure", |ui| {
                     ui.label("Keys: D distance, L edge length, R radius, A angle");
