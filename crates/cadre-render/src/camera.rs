@@ -86,6 +86,41 @@ pub struct Camera {
     pub far: f64,
 }
 
+/// The view volume of a camera seen for an image of some aspect, as planes for culling:
+/// the four sides and the near plane, each (n, d) keeping the camera-relative points p with
+/// n·p + d ≥ 0, n unit.
+#[derive(Clone, Copy, Debug)]
+pub struct Frustum {
+    eye: DVec3,
+    planes: [(DVec3, f64); 5],
+}
+
+impl Frustum {
+    /// The view volume of `camera` for an image of `aspect` (width / height).
+    pub fn new(camera: &Camera, aspect: f64) -> Frustum {
+        let m = camera.projection_matrix(aspect) * camera.view_rotation();
+        let row = |i: usize| glam::DVec4::new(m.x_axis[i], m.y_axis[i], m.z_axis[i], m.w_axis[i]);
+        let (x, y, z, w) = (row(0), row(1), row(2), row(3));
+        // −w ≤ x ≤ w, −w ≤ y ≤ w, and reverse Z: depth ≤ 1 in front of the near plane.
+        let planes = [w + x, w - x, w + y, w - y, w - z].map(|p| {
+            let n = p.truncate();
+            let len = n.length().max(f64::MIN_POSITIVE);
+            (n / len, p.w / len)
+        });
+        Frustum {
+            eye: camera.eye,
+            planes,
+        }
+    }
+
+    /// Whether the sphere (world centre, radius) may show: it is not wholly outside one of
+    /// the planes.
+    pub fn holds(&self, (centre, radius): (DVec3, f64)) -> bool {
+        let p = centre - self.eye;
+        self.planes.iter().all(|(n, d)| n.dot(p) + d >= -radius)
+    }
+}
+
 /// Default vertical field of view of a fitted perspective camera (30°).
 const FIT_FOV: f64 = std::f64::consts::PI / 6.0;
 
@@ -268,6 +303,23 @@ mod tests {
                 let far = project(&cam, centre - dir * 0.5);
                 assert!(near.z > far.z, "{preset:?} {ortho}");
             }
+        }
+    }
+
+    #[test]
+    fn the_frustum_keeps_what_the_view_shows_and_culls_the_rest() {
+        let (lo, hi) = (DVec3::splat(-1.0), DVec3::splat(1.0));
+        for ortho in [false, true] {
+            let camera = Camera::fit(lo, hi, ViewPreset::Iso, ortho, 1.5);
+            let f = Frustum::new(&camera, 1.5);
+            let forward = (camera.target - camera.eye).normalize();
+            assert!(f.holds((DVec3::ZERO, 0.1)));
+            assert!(f.holds((DVec3::ONE, 0.01)), "a corner of the fitted box");
+            // Behind the eye, far to a side: culled; a large sphere reaching in: kept.
+            assert!(!f.holds((camera.eye - forward * 5.0, 0.5)));
+            let side = forward.cross(DVec3::Z).normalize();
+            assert!(!f.holds((side * 50.0, 1.0)));
+            assert!(f.holds((side * 50.0, 60.0)));
         }
     }
 

@@ -546,7 +546,12 @@ impl PreparedScene {
     ) -> Result<FramePrimitives, RenderError> {
         let (mut opaque, mut see_through) = (Vec::new(), Vec::new());
         let mut planes = crate::analytic::FramePlanes::default();
+        // Primitives wholly outside the view get no record (a close-up of a crowd of 10⁶).
+        let frustum = crate::camera::Frustum::new(camera, aspect);
         for (k, p) in self.primitives.iter().enumerate() {
+            if !frustum.holds(p.bounding_sphere()) {
+                continue;
+            }
             let instance = self.primitive_instance(k);
             let style = state
                 .instances

@@ -74,7 +74,7 @@ mod viewport;
 
 pub use analytic::{AnalyticPrimitive, AnalyticShape, QuadricShape};
 pub use bounds::scene_bounds;
-pub use camera::{Camera, Projection, ViewPreset};
+pub use camera::{Camera, Frustum, Projection, ViewPreset};
 pub use coverage::MAX_IMAGE_COVERAGE;
 pub use error::RenderError;
 pub use gpu::Gpu;
