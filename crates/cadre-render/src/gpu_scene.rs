@@ -548,6 +548,7 @@ impl PreparedScene {
         let mut planes = crate::analytic::FramePlanes::default();
         // Primitives wholly outside the view get no record (a close-up of a crowd of 10⁶).
         let frustum = crate::camera::Frustum::new(camera, aspect);
+        let view = crate::analytic::FrameView::new(camera, aspect);
         for (k, p) in self.primitives.iter().enumerate() {
             if !frustum.holds(p.bounding_sphere()) {
                 continue;
@@ -571,7 +572,7 @@ impl PreparedScene {
                 }
                 None => self.primitive_materials[k],
             };
-            let record = p.record((camera, aspect), (instance, material), &mut planes);
+            let record = p.record(&view, (instance, material), &mut planes);
             if materials[material as usize].base_color[3] < SEE_THROUGH_BELOW {
                 see_through.push(record);
             } else {

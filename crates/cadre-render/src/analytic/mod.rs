@@ -111,17 +111,17 @@ impl AnalyticPrimitive {
         (f.origin - half, f.origin + half)
     }
 
-    /// Its record for a frame seen by `camera` in an image of `aspect` (width / height):
-    /// placed relative to the eye (in `f64`, so primitives far from the origin keep their
+    /// Its record for a frame seen through `view`: placed relative to the eye (in `f64`, so primitives far from the origin keep their
     /// precision), with its `instance` and `material`; a quadric's planes go into `planes`
     /// (the frame's plane buffer, which the record indexes) once per shape.
     pub(crate) fn record(
         &self,
-        (camera, aspect): (&Camera, f64),
+        view: &FrameView,
         (instance, material): (u32, u32),
         planes: &mut FramePlanes,
     ) -> Primitive {
-        let rotation = DMat3::from_mat4(camera.view_rotation());
+        let camera = &view.camera;
+        let rotation = DMat3::from_mat4(view.rotation);
         // The shape's own frame: a quadric's is its box's.
         let world = match &self.shape {
             AnalyticShape::Quadric(q) => self.placement() * q.local().placement,
@@ -140,7 +140,7 @@ impl AnalyticPrimitive {
             material,
             ..Primitive::default()
         };
-        (record.ray, record.depth) = pixel_ray(camera, aspect, relative);
+        (record.ray, record.depth) = pixel_ray(view, relative);
         match &self.shape {
             AnalyticShape::Sphere { radius } => {
                 record.kind = PRIMITIVE_SPHERE;
@@ -168,11 +168,33 @@ impl AnalyticPrimitive {
                 let smooth = if local.smooth { 1.0 } else { 0.0 };
                 record.linear = local.linear.extend(smooth).as_vec4().to_array();
                 record.planes = [planes.of(q), local.planes.len() as u32];
-                record.screen = quadric_screen((camera, aspect), relative, local);
+                record.screen = quadric_screen(view, relative, local);
             }
         }
         record.face = self.face_id;
         record
+    }
+}
+
+/// What every primitive's record of a frame reads of its camera, worked out once a frame
+/// (10⁶ records would build the same matrices 10⁶ times).
+pub(crate) struct FrameView {
+    /// The camera.
+    pub camera: Camera,
+    /// Its rotation-only view matrix.
+    pub rotation: DMat4,
+    /// Its projection for the frame's aspect.
+    pub projection: DMat4,
+}
+
+impl FrameView {
+    /// `camera` seen in an image of `aspect` (width / height).
+    pub fn new(camera: &Camera, aspect: f64) -> FrameView {
+        FrameView {
+            camera: *camera,
+            rotation: camera.view_rotation(),
+            projection: camera.projection_matrix(aspect),
+        }
     }
 }
 
@@ -203,12 +225,8 @@ impl FramePlanes {
 /// corners projected (the whole screen when the box reaches behind the eye), narrowed for an
 /// ellipsoid to the planes x = X w and y = Y w tangent to it, which its dual quadric
 /// C = T Q⁻¹ Tᵀ gives (T: box frame → clip; Sigg et al. 2006): C_ii − 2X C_i3 + X² C_33 = 0.
-fn quadric_screen(
-    (camera, aspect): (&Camera, f64),
-    relative: DAffine3,
-    local: &quadric::LocalQuadric,
-) -> [f32; 4] {
-    let to_clip = camera.projection_matrix(aspect) * camera.view_rotation() * DMat4::from(relative);
+fn quadric_screen(view: &FrameView, relative: DAffine3, local: &quadric::LocalQuadric) -> [f32; 4] {
+    let to_clip = view.projection * view.rotation * DMat4::from(relative);
     let whole = [-1.0, -1.0, 1.0, 1.0];
     let (mut lo, mut hi) = (
         glam::DVec2::splat(f64::INFINITY),
@@ -257,15 +275,16 @@ fn quadric_screen(
 /// All of it is computed in `f64` and is of the shape's size near the shape, so the `f32`
 /// rays stay exact to a fraction of a pixel at any magnification: a ray from the eye in
 /// `f32` would carry the eye's rounding (10⁻⁷ of its distance, a pixel at 10⁴×).
-fn pixel_ray(camera: &Camera, aspect: f64, relative: DAffine3) -> ([[f32; 4]; 6], [f32; 4]) {
-    let view = DMat3::from_mat4(camera.view_rotation());
+fn pixel_ray(frame: &FrameView, relative: DAffine3) -> ([[f32; 4]; 6], [f32; 4]) {
+    let camera = &frame.camera;
+    let view = DMat3::from_mat4(frame.rotation);
     // Shape frame → view space, and back.
     let to_view = DAffine3 {
         matrix3: view * relative.matrix3,
         translation: view * relative.translation,
     };
     let to_shape = to_view.inverse();
-    let projection: DMat4 = camera.projection_matrix(aspect);
+    let projection = frame.projection;
     let (p00, p11) = (projection.x_axis.x, projection.y_axis.y);
     let (p22, p32) = (projection.z_axis.z, projection.w_axis.z);
     // The view depth of the shape's origin, or just past the near plane when it is behind.
