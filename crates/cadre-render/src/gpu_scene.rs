@@ -291,6 +291,9 @@ pub struct PreparedScene {
     diagonal: f64,
     /// The scene's world box (what the key light's shadow map covers).
     bounds: Option<(DVec3, DVec3)>,
+    /// The scene's line set on the GPU ([`crate::RenderScene::lines`]), set by
+    /// [`crate::Renderer::prepare`].
+    pub(crate) lines: Option<crate::passes::lines::GpuLines>,
 }
 
 impl PreparedScene {
@@ -506,6 +509,7 @@ impl PreparedScene {
             placements,
             primitives: primitives.clone(),
             primitive_materials,
+            lines: None,
             diagonal,
             bounds,
             trimmed_faces: surfaces.len(),

@@ -42,7 +42,7 @@ pub struct PassShader {
 
 /// Every shader of the renderer, with what the Rust side binds to it (for the layout tests).
 pub fn pass_shaders() -> Vec<PassShader> {
-    use crate::passes::{cracks, edges, pick, shade, visibility};
+    use crate::passes::{cracks, edges, lines, pick, shade, visibility};
     let shader = |name, source, bindings, instanced| PassShader {
         name,
         source,
@@ -119,6 +119,13 @@ pub fn pass_shaders() -> Vec<PassShader> {
             true,
         ),
         shader("pick", pick::source(), pick::BINDINGS, true),
+        shader(
+            "lines scan",
+            lines::scan_source(),
+            lines::SCAN_BINDINGS,
+            false,
+        ),
+        shader("lines", lines::draw_source(), lines::DRAW_BINDINGS, false),
     ]
 }
 
@@ -543,6 +550,97 @@ pub struct Material {
     pub params: [f32; 4],
 }
 
+/// One point of a line set (`passes/lines`), set-local `f32` (relative to the set's
+/// origin, which each frame's matrix places in `f64`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct LinePoint {
+    /// Position relative to the set's origin, model units.
+    pub position: [f32; 3],
+    /// Its polyline's index in the set: a point whose polyline differs from the one before
+    /// starts a strip (and restarts the arc length).
+    pub polyline: u32,
+    /// Model-space distance along the set to this point ([`crate::LineView::up_to`]).
+    pub travel: f32,
+    /// sRGB colour (RGBA8, R in the low byte) of the segment from this point to the next,
+    /// where its style takes colours per segment.
+    pub colour: u32,
+    /// Padding to 32 bytes.
+    pub pad: [u32; 2],
+}
+
+/// A line style as the lines pass reads it ([`crate::LineStyle`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct LineStyleGpu {
+    /// Linear colour and alpha.
+    pub colour: [f32; 4],
+    /// Linear colour and alpha of the hidden parts.
+    pub hidden_colour: [f32; 4],
+    /// Width: output pixels, or model units with [`LINE_WORLD_WIDTH`].
+    pub width: f32,
+    /// Pixels per pattern bit (output pixels).
+    pub factor: f32,
+    /// Pixels per bit of the hidden parts' pattern.
+    pub hidden_factor: f32,
+    /// Miter limit in half widths (miter joins).
+    pub miter_limit: f32,
+    /// The 16-bit stipple pattern, bit 0 first.
+    pub pattern: u32,
+    /// The hidden parts' pattern.
+    pub hidden_pattern: u32,
+    /// [`LINE_JOIN_MITER`], [`LINE_JOIN_ROUND`] or [`LINE_JOIN_BEVEL`].
+    pub join: u32,
+    /// [`LINE_CAP_BUTT`], [`LINE_CAP_SQUARE`] or [`LINE_CAP_ROUND`].
+    pub cap: u32,
+    /// [`LINE_WORLD_WIDTH`], [`LINE_POINT_COLOURS`], [`LINE_HIDDEN_SHOWN`],
+    /// [`LINE_HIDDEN_STYLED`].
+    pub flags: u32,
+    /// Padding to 80 bytes.
+    pub pad: [u32; 3],
+}
+
+/// A line set's per-frame constants.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct LineFrame {
+    /// Set-local → clip space (the set's origin placed relative to the eye in `f64`).
+    pub to_clip: [[f32; 4]; 4],
+    /// Target width and height (pixels), target pixels per output pixel, depth tolerance.
+    pub viewport: [f32; 4],
+    /// The clip box's low corner, set-local; `w` = 1 when there is a box.
+    pub clip_lo: [f32; 4],
+    /// The clip box's high corner, set-local.
+    pub clip_hi: [f32; 4],
+    /// The travel shown up to ([`crate::LineView::up_to`]; +∞: all), the projection's
+    /// vertical scale in pixels (`proj[1][1] × height / 2`: pixels per model unit at w = 1),
+    /// unused, unused.
+    pub limits: [f32; 4],
+    /// Points, scan blocks, unused, unused.
+    pub counts: [u32; 4],
+}
+
+/// [`LineStyleGpu::join`]: miter.
+pub const LINE_JOIN_MITER: u32 = 0;
+/// [`LineStyleGpu::join`]: round.
+pub const LINE_JOIN_ROUND: u32 = 1;
+/// [`LineStyleGpu::join`]: bevel.
+pub const LINE_JOIN_BEVEL: u32 = 2;
+/// [`LineStyleGpu::cap`]: butt.
+pub const LINE_CAP_BUTT: u32 = 0;
+/// [`LineStyleGpu::cap`]: square.
+pub const LINE_CAP_SQUARE: u32 = 1;
+/// [`LineStyleGpu::cap`]: round.
+pub const LINE_CAP_ROUND: u32 = 2;
+/// [`LineStyleGpu::flags`]: the width is in model units.
+pub const LINE_WORLD_WIDTH: u32 = 1;
+/// [`LineStyleGpu::flags`]: segments take their points' colours.
+pub const LINE_POINT_COLOURS: u32 = 2;
+/// [`LineStyleGpu::flags`]: hidden parts drawn as the visible ones.
+pub const LINE_HIDDEN_SHOWN: u32 = 4;
+/// [`LineStyleGpu::flags`]: hidden parts drawn in the hidden colour and pattern.
+pub const LINE_HIDDEN_STYLED: u32 = 8;
+
 gpu_struct!(
     FrameUniform,
     "FrameUniform",
@@ -603,6 +701,34 @@ gpu_struct!(
     ]
 );
 gpu_struct!(PickRegion, "PickRegion", [origin, pad]);
+gpu_struct!(
+    LinePoint,
+    "LinePoint",
+    [position, polyline, travel, colour, pad]
+);
+gpu_struct!(
+    LineStyleGpu,
+    "LineStyle",
+    [
+        colour,
+        hidden_colour,
+        width,
+        factor,
+        hidden_factor,
+        miter_limit,
+        pattern,
+        hidden_pattern,
+        join,
+        cap,
+        flags,
+        pad
+    ]
+);
+gpu_struct!(
+    LineFrame,
+    "LineFrame",
+    [to_clip, viewport, clip_lo, clip_hi, limits, counts]
+);
 gpu_struct!(
     Primitive,
     "Primitive",

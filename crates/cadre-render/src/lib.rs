@@ -54,6 +54,7 @@ mod gpu;
 mod gpu_scene;
 pub mod layout;
 mod lights;
+pub mod lines;
 mod pass_timer;
 mod passes;
 mod pick;
@@ -80,6 +81,7 @@ pub use error::RenderError;
 pub use gpu::Gpu;
 pub use gpu_scene::{MAX_FRAME_TRIANGLES, PreparedScene};
 pub use lights::Light;
+pub use lines::{Cap, Hidden, Join, LineSet, LineStyle, LineView, LineWidth, Polyline, Stipple};
 pub use passes::cracks::{
     CrackCounts, CrackMode, CrackOptions, MIN_DEPTH_REL as CRACK_MIN_DEPTH_REL,
 };

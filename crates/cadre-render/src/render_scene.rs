@@ -31,6 +31,8 @@ pub struct RenderScene {
     /// The faces drawn from their exact surfaces and trim trees (`--method trim`), when the
     /// scene was built with them ([`RenderScene::with_trims`]); their meshes draw the rest.
     pub trim: Option<std::sync::Arc<crate::TrimScene>>,
+    /// Polylines drawn over the surfaces (toolpaths, sketches, wires) by the lines pass.
+    pub lines: crate::LineSet,
 }
 
 /// What one face id stands for.
@@ -88,6 +90,7 @@ impl RenderScene {
             faces,
             primitives: Vec::new(),
             trim: None,
+            lines: crate::LineSet::default(),
         }
     }
 
@@ -109,6 +112,12 @@ impl RenderScene {
             assembly,
             ..RenderScene::default()
         }
+    }
+
+    /// This scene with `lines` drawn over its surfaces.
+    pub fn with_lines(mut self, lines: crate::LineSet) -> RenderScene {
+        self.lines = lines;
+        self
     }
 
     /// This scene with `primitives` drawn beside its meshes.
@@ -140,6 +149,7 @@ impl RenderScene {
             .iter()
             .map(AnalyticPrimitive::world_box)
             .chain(meshes)
+            .chain(self.lines.bounds())
             .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
     }
 }

@@ -11,12 +11,13 @@ use crate::layout::{
 use crate::passes::cracks::{CrackCounts, CrackMode, CrackOptions, CrackPass};
 use crate::passes::edges::EdgesPass;
 use crate::passes::instances::InstanceLayout;
+use crate::passes::lines::{GpuLines, LinesPass};
 use crate::passes::pick::PickPass;
 use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass, ShadeVariant};
 use crate::passes::visibility::{Phase, VisibilityPass, VisibilityTargets};
 use crate::view::{MAX_HIGHLIGHTED, MAX_SECTIONS, ViewState};
 use crate::viewport::{LastFrame, Viewport};
-use crate::{Camera, Gpu, Light, RenderError, RenderScene};
+use crate::{Camera, Gpu, Light, LineView, RenderError, RenderScene};
 
 /// How faces and edges are drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -139,6 +140,8 @@ pub struct Renderer {
     /// Whether the adapter runs the crack pass (compute shaders, storage written by
     /// fragment shaders), and its exact fill (enough storage buffers a stage).
     crack_support: (bool, bool),
+    /// The lines pass, built on the first frame with lines.
+    lines: std::sync::OnceLock<LinesPass>,
 }
 
 impl Renderer {
@@ -165,6 +168,7 @@ impl Renderer {
             timer: None,
             cracks: std::sync::OnceLock::new(),
             crack_support: crack_support(gpu),
+            lines: std::sync::OnceLock::new(),
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e)),
@@ -175,12 +179,7 @@ impl Renderer {
     /// Uploads `scene`'s geometry (meshes and analytic primitives) once, for any number of
     /// frames ([`Renderer::draw`], [`Renderer::render`], [`Renderer::render_ids`]).
     pub fn prepare(&self, gpu: &Gpu, scene: &RenderScene) -> PreparedScene {
-        PreparedScene::new(
-            &gpu.device,
-            scene,
-            crate::FLAT_LIMIT,
-            self.visibility.draws_trims(),
-        )
+        self.prepare_with_flat_limit(gpu, scene, crate::FLAT_LIMIT)
     }
 
     /// This renderer timing each frame's stages on the GPU (timestamps between them, where
@@ -323,12 +322,14 @@ impl Renderer {
         scene: &RenderScene,
         flat_limit: usize,
     ) -> PreparedScene {
-        PreparedScene::new(
+        let mut prepared = PreparedScene::new(
             &gpu.device,
             scene,
             flat_limit,
             self.visibility.draws_trims(),
-        )
+        );
+        prepared.lines = GpuLines::new(gpu, &scene.lines, !gpu.compute);
+        prepared
     }
 
     /// Renders a prepared scene seen by `camera` in a view's state (colours, hidden parts,
@@ -394,6 +395,64 @@ impl Renderer {
         };
         let bytes = self.run(gpu, &frame, Readback::Ids, None)?;
         Ok(words4(&bytes))
+    }
+
+    /// The screen arc length (pixels of a `size` target) at every point of the scene's line
+    /// set as the frame's scan computes it (on the GPU where the adapter has compute shaders),
+    /// in the set's order; empty without lines. Only the first chunk of a set larger than a
+    /// storage binding. For the tests that hold it against [`crate::lines::reference`].
+    pub fn line_arc_lengths(
+        &self,
+        gpu: &Gpu,
+        scene: &PreparedScene,
+        camera: &Camera,
+        size: (u32, u32),
+    ) -> Result<Vec<f32>, RenderError> {
+        let Some(lines) = &scene.lines else {
+            return Ok(Vec::new());
+        };
+        let device = &gpu.device;
+        let pass = self.lines.get_or_init(|| LinesPass::new(gpu, self.colour));
+        let mut buffers = FrameBuffers::new(device);
+        let frame = frame_uniform(
+            camera,
+            &FrameOptions {
+                width: size.0,
+                height: size.1,
+                ..FrameOptions::default()
+            },
+            &ViewState::default(),
+            size,
+        );
+        buffers.frame.write(gpu, bytemuck::bytes_of(&frame))?;
+        let line_frame = lines.frame(camera, size, 1.0, &LineView::default());
+        let mut encoder = device.create_command_encoder(&Default::default());
+        pass.record_scan(
+            gpu,
+            &mut encoder,
+            (buffers.frame.buffer(), lines),
+            (camera, size, &line_frame),
+        );
+        let Some((buffer, count)) = LinesPass::copy_arc(device, &mut encoder, lines) else {
+            return Ok(Vec::new());
+        };
+        gpu.queue.submit([encoder.finish()]);
+        let (tx, rx) = std::sync::mpsc::channel();
+        buffer
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, move |r| drop(tx.send(r)));
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(RenderError::Poll)?;
+        rx.recv()
+            .map_err(RenderError::ReadbackLost)?
+            .map_err(RenderError::Map)?;
+        let mapped = buffer
+            .slice(..)
+            .get_mapped_range()
+            .map_err(RenderError::MapRange)?;
+        let out: Vec<f32> = bytemuck::cast_slice(&mapped[..4 * count as usize]).to_vec();
+        Ok(out)
     }
 
     /// The visibility buffer's (u, v) on the exact surface at every pixel (no supersampling),
@@ -644,7 +703,24 @@ impl Renderer {
                 t.resolve(encoder);
             }
         };
+        // The lines' arc lengths for this view, before the passes that draw them.
+        let lines = match (&scene.lines, readback.shaded()) {
+            (Some(lines), true) => {
+                let pass = self.lines.get_or_init(|| LinesPass::new(gpu, self.colour));
+                let scale = w as f32 / options.width.max(1) as f32;
+                let line_frame = lines.frame(camera, (w, h), scale, &state.lines);
+                pass.record_scan(
+                    gpu,
+                    &mut encoder,
+                    (frame_buffer, lines),
+                    (camera, (w, h), &line_frame),
+                );
+                Some((pass, lines))
+            }
+            _ => None,
+        };
         let shading = Shading {
+            lines,
             device,
             options,
             targets,
@@ -889,6 +965,8 @@ struct Shading<'a> {
     /// The light buffer and the lights in it (the frame's count of them lit, the rest zero).
     lights: (&'a wgpu::Buffer, &'a [LightGpu]),
     draw_lines: bool,
+    /// The lines pass and the scene's line set, when it has one (its scan recorded).
+    lines: Option<(&'a LinesPass, &'a GpuLines)>,
     /// The key light's shadow map (its depth), when the frame has shadows.
     shadow: Option<&'a wgpu::TextureView>,
 }
@@ -966,6 +1044,7 @@ impl Renderer {
             lights: (light_buffer, lights),
             draw_lines,
             shadow,
+            lines,
         } = *s;
         let inputs = ShadeInputs {
             frame,
@@ -1003,6 +1082,9 @@ impl Renderer {
                 (scene, uniform),
                 colour_view,
             );
+        }
+        if let Some((pass, set)) = lines {
+            pass.record_draw(device, encoder, (frame, set), &targets.depth, colour_view);
         }
     }
 }

@@ -91,6 +91,8 @@ pub struct ViewState {
     /// removing the half-space on its normal's side; closed solids show hatched caps where
     /// they are cut.
     pub sections: Vec<SectionPlane>,
+    /// What of the scene's line set is shown (all of it by default).
+    pub lines: crate::LineView,
 }
 
 /// Most section planes a frame applies; [`ViewState::sections`] past these are ignored.

@@ -7,8 +7,9 @@ use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders}
 use cadre_render::layout::{
     Call, DRAW_ATTRIBUTES, DRAW_CLOSED, DRAW_FIRST_LOCATION, DRAW_INSIDE_OUT, Draw, EDGES_ALL,
     EDGES_HIDDEN_DASHED, EDGES_VISIBLE, FILL_BACKGROUND, FILL_NONE, FILL_SHADED, FrameUniform,
-    GpuStruct, LightGpu, LightRig, Local, Material, Member, PROJECTION_ORTHOGRAPHIC,
-    PROJECTION_PERSPECTIVE, PickRegion, Primitive, Segment, TrimSurface, TrimTask,
+    GpuStruct, LightGpu, LightRig, LineFrame, LinePoint, LineStyleGpu, Local, Material, Member,
+    PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Primitive, Segment, TrimSurface,
+    TrimTask,
 };
 
 /// The renderer's shader named `name`, as it compiles it.
@@ -155,6 +156,9 @@ fn shaders_validate_and_share_the_rust_layouts() {
             ("Primitive", check::<Primitive>(pass, &m)),
             ("TrimSurface", check::<TrimSurface>(pass, &m)),
             ("TrimTask", check::<TrimTask>(pass, &m)),
+            ("LinePoint", check::<LinePoint>(pass, &m)),
+            ("LineStyle", check::<LineStyleGpu>(pass, &m)),
+            ("LineFrame", check::<LineFrame>(pass, &m)),
         ] {
             if hit.unwrap_or_else(|e| panic!("{e}")) {
                 *found.entry(name).or_default() += 1;
@@ -162,7 +166,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         }
     }
     // Every layout was really compared somewhere (naga drops nothing we rely on).
-    assert_eq!(found.len(), 12, "{found:?}");
+    assert_eq!(found.len(), 15, "{found:?}");
 }
 
 #[test]
@@ -245,6 +249,10 @@ fn naga_bindings(module: &naga::Module, group: u32) -> Result<Vec<(u32, Binding)
                 size: naga::VectorSize::Quad,
                 scalar: naga::Scalar::F32,
             } => Ok("vec4<f32>"),
+            naga::TypeInner::Vector {
+                size: naga::VectorSize::Bi,
+                scalar: naga::Scalar::U32,
+            } => Ok("vec2<u32>"),
             naga::TypeInner::Scalar(naga::Scalar::U32) => Ok("u32"),
             naga::TypeInner::Scalar(naga::Scalar::F32) => Ok("f32"),
             ref other => Err(format!("unnamed binding type {other:?}")),
@@ -373,6 +381,22 @@ fn the_shaders_flags_are_the_rust_flags() {
         ("EDGES_ALL", EDGES_ALL),
         ("EDGES_HIDDEN_DASHED", EDGES_HIDDEN_DASHED),
         ("MAX_SECTIONS", cadre_render::MAX_SECTIONS as u32),
+        ("LINE_JOIN_MITER", cadre_render::layout::LINE_JOIN_MITER),
+        ("LINE_JOIN_ROUND", cadre_render::layout::LINE_JOIN_ROUND),
+        ("LINE_JOIN_BEVEL", cadre_render::layout::LINE_JOIN_BEVEL),
+        ("LINE_CAP_BUTT", cadre_render::layout::LINE_CAP_BUTT),
+        ("LINE_CAP_SQUARE", cadre_render::layout::LINE_CAP_SQUARE),
+        ("LINE_CAP_ROUND", cadre_render::layout::LINE_CAP_ROUND),
+        ("LINE_WORLD_WIDTH", cadre_render::layout::LINE_WORLD_WIDTH),
+        (
+            "LINE_POINT_COLOURS",
+            cadre_render::layout::LINE_POINT_COLOURS,
+        ),
+        ("LINE_HIDDEN_SHOWN", cadre_render::layout::LINE_HIDDEN_SHOWN),
+        (
+            "LINE_HIDDEN_STYLED",
+            cadre_render::layout::LINE_HIDDEN_STYLED,
+        ),
     ] {
         assert_eq!(constant_u32(&visibility, name), Some(value), "{name}");
     }

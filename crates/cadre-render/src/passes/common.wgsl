@@ -100,6 +100,50 @@ struct LightRig {
     lights: array<Light, 8>,
 }
 
+struct LinePoint {
+    position: vec3<f32>,
+    polyline: u32,
+    travel: f32,
+    colour: u32,
+    pad: vec2<u32>,
+}
+
+struct LineStyle {
+    colour: vec4<f32>,
+    hidden_colour: vec4<f32>,
+    width: f32,
+    factor: f32,
+    hidden_factor: f32,
+    miter_limit: f32,
+    pattern: u32,
+    hidden_pattern: u32,
+    join: u32,
+    cap: u32,
+    flags: u32,
+    pad: array<u32, 3>,
+}
+
+struct LineFrame {
+    to_clip: mat4x4<f32>,
+    viewport: vec4<f32>,
+    clip_lo: vec4<f32>,
+    clip_hi: vec4<f32>,
+    limits: vec4<f32>,
+    counts: vec4<u32>,
+}
+
+// `LineStyle.join`, `.cap` and `.flags` (layout::LINE_*).
+const LINE_JOIN_MITER: u32 = 0u;
+const LINE_JOIN_ROUND: u32 = 1u;
+const LINE_JOIN_BEVEL: u32 = 2u;
+const LINE_CAP_BUTT: u32 = 0u;
+const LINE_CAP_SQUARE: u32 = 1u;
+const LINE_CAP_ROUND: u32 = 2u;
+const LINE_WORLD_WIDTH: u32 = 1u;
+const LINE_POINT_COLOURS: u32 = 2u;
+const LINE_HIDDEN_SHOWN: u32 = 4u;
+const LINE_HIDDEN_STYLED: u32 = 8u;
+
 @group(0) @binding(0) var<uniform> frame: FrameUniform;
 
 // What the visibility texel writer needs of the instance a surface point belongs to

@@ -3,12 +3,14 @@
 //! gaps between faces the trim back-end tessellated apart, closed), [`shade`]
 //! (lighting from the visibility buffer alone), the see-through phase every surface back-end
 //! answers too (transparent parts, or everything in x-ray mode: `visibility::Phase`), then
-//! [`edges`] (B-Rep edges as lines); [`pick`] (edge and vertex ids) runs when a viewer picks.
+//! [`edges`] (B-Rep edges as lines) and [`lines`] (polylines and toolpaths with joins, caps and
+//! stipples); [`pick`] (edge and vertex ids) runs when a viewer picks.
 
 pub(crate) mod common;
 pub(crate) mod cracks;
 pub(crate) mod edges;
 pub(crate) mod instances;
+pub(crate) mod lines;
 pub(crate) mod pick;
 pub(crate) mod shade;
 pub(crate) mod visibility;
