@@ -256,6 +256,17 @@ impl Camera {
         (self.projection_matrix(aspect) * self.view_rotation()).as_mat4()
     }
 
+    /// The height in model units of what the view shows at its target's distance: what the
+    /// image's rows span there.
+    pub fn view_height(&self) -> f64 {
+        match self.projection {
+            Projection::Orthographic { height } => height,
+            Projection::Perspective { fov_y } => {
+                2.0 * (self.target - self.eye).length() * (0.5 * fov_y).tan()
+            }
+        }
+    }
+
     /// Whether the projection is orthographic.
     pub fn is_orthographic(&self) -> bool {
         matches!(self.projection, Projection::Orthographic { .. })

@@ -525,6 +525,24 @@ impl PreparedScene {
         self.trimmed_faces
     }
 
+    /// Places analytic primitive `k` by `frame` from the next frame on (its records are
+    /// built each frame: nothing is uploaded again); `false` when there is no such primitive.
+    /// What a viewer moves a tool or a marker with.
+    pub fn move_primitive(&mut self, k: usize, frame: cadre_geom::Frame) -> bool {
+        match self.primitives.get_mut(k) {
+            Some(p) => {
+                p.frame = frame;
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The analytic primitives, in order.
+    pub fn primitives(&self) -> &[AnalyticPrimitive] {
+        &self.primitives
+    }
+
     /// The instance number of analytic primitive `k` (after every mesh instance), as the
     /// visibility buffer and picking give it.
     pub fn primitive_instance(&self, k: usize) -> u32 {

@@ -182,6 +182,12 @@ impl Renderer {
         self.prepare_with_flat_limit(gpu, scene, crate::FLAT_LIMIT)
     }
 
+    /// Replaces the line set of a prepared scene (a toolpath sampled again for a new zoom)
+    /// without uploading its surfaces again.
+    pub fn replace_lines(&self, gpu: &Gpu, scene: &mut PreparedScene, lines: &crate::LineSet) {
+        scene.lines = GpuLines::new(gpu, lines, !gpu.compute);
+    }
+
     /// This renderer timing each frame's stages on the GPU (timestamps between them, where
     /// the adapter writes them on command encoders; nothing is timed elsewhere): for the
     /// benchmarks, since reading the timings back waits for every frame.

@@ -70,6 +70,11 @@ struct App {
     prepared: Option<PreparedScene>,
     /// Whether `prepared` draws faces exactly (`Session::exact_faces` when it was made).
     prepared_exact: bool,
+    /// The scene is to be prepared again before the next frame (a model or a toolpath
+    /// opened, the faces' method or the tool changed).
+    scene_stale: bool,
+    /// The toolpath in `prepared`, when one is open.
+    drawn_toolpath: Option<crate::toolpath_view::DrawnToolpath>,
     /// Orbit pivot of the drag in progress.
     pivot: Option<DVec3>,
     /// The hover pick asked for and not yet answered, with the cursor it is for: answered
@@ -104,6 +109,8 @@ pub(crate) fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         session: Session::new(),
         prepared: None,
         prepared_exact: false,
+        scene_stale: false,
+        drawn_toolpath: None,
         pivot: None,
         hover_pick: None,
         hovered_at: None,
@@ -132,8 +139,30 @@ impl App {
         tracing::info!("{line}");
     }
 
-    /// Starts loading `path` on a thread of its own.
+    /// Opens a CAM program over the model, or starts loading a model on a thread of its own.
     fn open(&mut self, path: PathBuf) {
+        if crate::session::Toolpath::is_program(&path) {
+            match crate::session::Toolpath::load(&path) {
+                Ok(toolpath) => {
+                    self.report(&format!(
+                        "toolpath {} moves {} warnings {}",
+                        path.display(),
+                        toolpath.program.moves.len(),
+                        toolpath.program.warnings.len()
+                    ));
+                    let aspect = self.aspect();
+                    self.session.set_toolpath(toolpath, aspect);
+                    self.scene_stale = true;
+                }
+                Err(e) => self.session.error = Some(e),
+            }
+            return;
+        }
+        self.open_model(path);
+    }
+
+    /// Starts loading the model `path` on a thread of its own.
+    fn open_model(&mut self, path: PathBuf) {
         self.session.loading = Some((path.clone(), LoadStage::Reading));
         let proxy = self.proxy.clone();
         std::thread::spawn(move || {
@@ -554,6 +583,9 @@ impl App {
         let camera = nav.camera();
         let mut state = self.session.view_state();
         state.hover = None;
+        if let (Some(drawn), Some(toolpath)) = (&self.drawn_toolpath, &self.session.toolpath) {
+            drawn.show_tool(&mut state, prepared, toolpath.simulate);
+        }
         let image = gfx
             .renderer
             .render(&gfx.gpu, prepared, &camera, &options, &state)
@@ -590,19 +622,39 @@ impl App {
             }
         };
         let view = frame.texture.create_view(&Default::default());
-        // The faces' method changed: the scene is prepared again, with or without trims.
-        if self.session.exact_faces != self.prepared_exact
-            && let Some(doc) = &self.session.doc
-        {
-            let scene = if self.session.exact_faces {
-                let tolerance =
-                    TRIM_TOLERANCE_RELATIVE * cadre_mesh::deflection_diagonal(&doc.model);
-                doc.scene.clone().with_trims(&doc.model, tolerance)
-            } else {
-                doc.scene.clone()
+        // The faces' method changed, or a model or toolpath opened: the scene is prepared
+        // again, with or without trims, with the toolpath.
+        if self.session.exact_faces != self.prepared_exact || self.scene_stale {
+            self.scene_stale = false;
+            self.prepared_exact = self.session.exact_faces;
+            let rows = (self.view_rect.height().round() as u32).max(1);
+            let view_height = self
+                .session
+                .nav
+                .as_ref()
+                .map_or(1.0, |n| n.camera().view_height());
+            let base = match &self.session.doc {
+                Some(doc) if self.session.exact_faces => {
+                    let tolerance =
+                        TRIM_TOLERANCE_RELATIVE * cadre_mesh::deflection_diagonal(&doc.model);
+                    doc.scene.clone().with_trims(&doc.model, tolerance)
+                }
+                Some(doc) => doc.scene.clone(),
+                None => cadre_render::RenderScene::default(),
+            };
+            let scene = match &self.session.toolpath {
+                Some(toolpath) => {
+                    let (scene, drawn) =
+                        crate::toolpath_view::add_toolpath(base, toolpath, (view_height, rows));
+                    self.drawn_toolpath = Some(drawn);
+                    scene
+                }
+                None => {
+                    self.drawn_toolpath = None;
+                    base
+                }
             };
             self.prepared = Some(gfx.renderer.prepare(&gfx.gpu, &scene));
-            self.prepared_exact = self.session.exact_faces;
             if let Some(trim) = &scene.trim {
                 let line = format!(
                     "exact faces {} of {} ({} from their meshes)",
@@ -615,6 +667,24 @@ impl App {
                 }
                 tracing::info!("{line}");
             }
+        }
+        // The toolpath follows the zoom, its colours and the simulation.
+        if let (Some(drawn), Some(toolpath), Some(prepared), Some(nav)) = (
+            &mut self.drawn_toolpath,
+            &self.session.toolpath,
+            &mut self.prepared,
+            &self.session.nav,
+        ) {
+            if (drawn.diameter - toolpath.tool_diameter.max(1e-3)).abs() > 1e-9 {
+                self.scene_stale = true;
+            }
+            let rows = (self.view_rect.height().round() as u32).max(1);
+            drawn.update(
+                (&gfx.gpu, &gfx.renderer),
+                prepared,
+                toolpath,
+                (nav.camera().view_height(), rows),
+            );
         }
         let (w, h) = (gfx.config.width, gfx.config.height);
         let (vw, vh) = (
@@ -647,7 +717,10 @@ impl App {
         if let (Some(prepared), Some(nav), Some(target)) =
             (&self.prepared, &self.session.nav, &gfx.view)
         {
-            let state = self.session.view_state();
+            let mut state = self.session.view_state();
+            if let (Some(drawn), Some(toolpath)) = (&self.drawn_toolpath, &self.session.toolpath) {
+                drawn.show_tool(&mut state, prepared, toolpath.simulate);
+            }
             gfx.renderer.draw(
                 &gfx.gpu,
                 &mut viewport,
@@ -860,7 +933,7 @@ impl ApplicationHandler<UserEvent> for App {
                         self.hover_pick = None;
                         self.hovered_at = None;
                         if let Some(gfx) = &self.gfx {
-                            self.prepared = Some(gfx.renderer.prepare(&gfx.gpu, &doc.scene));
+                            self.scene_stale = true;
                             self.prepared_exact = false;
                             self.session.exact_faces = false;
                             gfx.window.set_title(&format!("{} — cadre", doc.title()));

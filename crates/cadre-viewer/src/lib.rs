@@ -12,6 +12,7 @@ pub mod gizmo;
 pub mod inspect;
 pub mod navigation;
 mod session;
+mod toolpath_view;
 mod ui;
 
 use std::path::PathBuf;

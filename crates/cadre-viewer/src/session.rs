@@ -20,8 +20,87 @@ pub(crate) const DISPLAY_MODES: [(&str, DisplayMode); 5] = [
     ("X-ray", DisplayMode::XRay),
 ];
 
+/// A CAM program opened over the model (File → Open a `.ngc`, `.nc`, …): its moves, and
+/// the simulation slider and clipping box that show part of it.
+pub(crate) struct Toolpath {
+    /// The program's file.
+    pub path: PathBuf,
+    /// The interpreted program.
+    pub program: cadre_gcode::Program,
+    /// Its path's length, mm (the slider's end).
+    pub travel: f64,
+    /// Its box (machine coordinates), for framing it.
+    pub bounds: Option<(glam::DVec3, glam::DVec3)>,
+    /// The simulation is on: the path is shown up to `up_to`, with the tool there.
+    pub simulate: bool,
+    /// How far along the path the simulation is, mm.
+    pub up_to: f64,
+    /// Only the part inside `clip_box` is shown.
+    pub clip: bool,
+    /// The clipping box's low and high corners, mm.
+    pub clip_box: [[f64; 3]; 2],
+    /// What colours the cutting moves.
+    pub colour_by: cadre_render::lines::toolpath::ColourBy,
+    /// The tool's diameter where it is drawn, mm.
+    pub tool_diameter: f64,
+}
+
+impl Toolpath {
+    /// Reads and interprets a program file.
+    pub fn load(path: &std::path::Path) -> Result<Toolpath, String> {
+        let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let program = cadre_gcode::interpret(&String::from_utf8_lossy(&bytes));
+        let coarse =
+            cadre_render::lines::toolpath::toolpath_lines(&program, &Default::default(), 0.05);
+        let bounds = coarse.bounds();
+        let travel = coarse.travel();
+        let (lo, hi) = bounds.unwrap_or((glam::DVec3::ZERO, glam::DVec3::ZERO));
+        Ok(Toolpath {
+            path: path.to_path_buf(),
+            program,
+            travel,
+            bounds,
+            simulate: false,
+            up_to: travel,
+            clip: false,
+            clip_box: [lo.to_array(), hi.to_array()],
+            colour_by: Default::default(),
+            tool_diameter: 6.0,
+        })
+    }
+
+    /// Whether `path` names a CAM program (by its extension).
+    pub fn is_program(path: &std::path::Path) -> bool {
+        path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+            [
+                "ngc", "nc", "gcode", "gc", "tap", "cnc", "iso", "mpf", "eia",
+            ]
+            .iter()
+            .any(|x| e.eq_ignore_ascii_case(x))
+        })
+    }
+
+    /// What of it a frame shows.
+    pub fn line_view(&self) -> cadre_render::LineView {
+        cadre_render::LineView {
+            up_to: self.simulate.then_some(self.up_to),
+            clip_box: self.clip.then(|| {
+                let (a, b) = (
+                    glam::DVec3::from(self.clip_box[0]),
+                    glam::DVec3::from(self.clip_box[1]),
+                );
+                (a.min(b), a.max(b))
+            }),
+        }
+    }
+}
+
 /// The viewer's state the interface shows and edits.
 pub(crate) struct Session {
+    /// A CAM program shown over the model.
+    pub toolpath: Option<Toolpath>,
+    /// The Toolpath window is shown.
+    pub show_toolpath: bool,
     /// The open model, once loaded.
     pub doc: Option<Document>,
     /// The camera and its gestures, once a model is open.
@@ -118,6 +197,8 @@ impl Session {
     pub fn new() -> Session {
         let cwd = std::env::current_dir().unwrap_or_default();
         Session {
+            toolpath: None,
+            show_toolpath: false,
             doc: None,
             nav: None,
             mode: DisplayMode::ShadedEdges,
@@ -176,7 +257,10 @@ impl Session {
     /// The renderer's view state: visibility, colours, hover and selection.
     pub fn view_state(&self) -> cadre_render::ViewState {
         let Some(doc) = &self.doc else {
-            return cadre_render::ViewState::default();
+            return cadre_render::ViewState {
+                lines: self.line_view(),
+                ..cadre_render::ViewState::default()
+            };
         };
         let instances = doc
             .instances
@@ -208,7 +292,35 @@ impl Session {
                     .collect(),
                 None => Vec::new(),
             },
+            lines: self.line_view(),
         }
+    }
+
+    /// What of the toolpath is shown: up to the simulation slider's distance, inside the
+    /// clipping box when it is on.
+    pub fn line_view(&self) -> cadre_render::LineView {
+        self.toolpath
+            .as_ref()
+            .map(Toolpath::line_view)
+            .unwrap_or_default()
+    }
+
+    /// A program opened: shown over the model (framed alone when no model is open).
+    pub fn set_toolpath(&mut self, toolpath: Toolpath, aspect: f64) {
+        if self.nav.is_none()
+            && let Some((lo, hi)) = toolpath.bounds
+        {
+            self.nav = Some(Navigator::new(lo, hi, aspect));
+        }
+        self.status = format!(
+            "{}: {} moves, {:.1} mm of path, {} warnings",
+            toolpath.path.display(),
+            toolpath.program.moves.len(),
+            toolpath.travel,
+            toolpath.program.warnings.len()
+        );
+        self.show_toolpath = true;
+        self.toolpath = Some(toolpath);
     }
 
     /// Handles a pick from a click: the measurement tool takes it, else the selection.
@@ -365,6 +477,38 @@ mod tests {
             pick: Pick::Face { instance, face },
             point: glam::DVec3::ZERO,
         }
+    }
+
+    #[test]
+    fn a_toolpath_opens_alone_and_its_slider_and_box_make_the_line_view() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/toolpath/plate.ngc");
+        assert!(Toolpath::is_program(&path));
+        assert!(!Toolpath::is_program(Path::new("part.step")));
+        let toolpath = Toolpath::load(&path).expect("the example program loads");
+        assert!(toolpath.program.warnings.is_empty());
+        assert!(toolpath.travel > 1000.0, "{}", toolpath.travel);
+        let mut s = Session::new();
+        s.set_toolpath(toolpath, 1.5);
+        // Without a model the view frames the path.
+        assert!(s.nav.is_some() && s.show_toolpath);
+        assert_eq!(s.view_state().lines, cadre_render::LineView::default());
+        let tp = s.toolpath.as_mut().expect("open");
+        tp.simulate = true;
+        tp.up_to = 100.0;
+        tp.clip = true;
+        tp.clip_box = [[10.0, 0.0, 0.0], [-10.0, 50.0, 20.0]];
+        let view = s.view_state().lines;
+        assert_eq!(view.up_to, Some(100.0));
+        assert_eq!(
+            view.clip_box,
+            Some((
+                glam::DVec3::new(-10.0, 0.0, 0.0),
+                glam::DVec3::new(10.0, 50.0, 20.0)
+            ))
+        );
+        // A model opened after keeps the toolpath over it.
+        s.set_document(document(), 1.5);
+        assert_eq!(s.view_state().lines.up_to, Some(100.0));
     }
 
     #[test]

@@ -26,12 +26,15 @@ enum Command {
     Mesh(commands::mesh::MeshArgs),
     /// Render a STEP file (or a folder of them) to PNG, headless (GPU or Mesa's software
     /// drivers).
-    Render(commands::render::RenderArgs),
+    Render(Box<commands::render::RenderArgs>),
     /// Open the interactive viewer (model tree, picking, measurement, screenshots, 3D
     /// mouse) on a STEP file, or empty.
     View(commands::view::ViewArgs),
     /// Time cadre's stages over a folder of files (used by the scripts in `scripts/`).
     Bench(commands::bench::BenchArgs),
+    /// Interpret a CAM program (G-code): a summary of its moves, or `--json` the moves
+    /// themselves in program order (end points in mm).
+    Toolpath(commands::toolpath::ToolpathArgs),
     /// Check a file's face-id images (mesh or exact faces) against the CPU ray caster of the
     /// exact B-Rep, in four views at several magnifications.
     Verify(commands::verify::VerifyArgs),
@@ -75,6 +78,7 @@ fn run() -> Result<()> {
         Command::View(args) => commands::view::run(&args),
         Command::Bench(args) => commands::bench::run(&args),
         Command::Verify(args) => commands::verify::run(&args),
+        Command::Toolpath(args) => commands::toolpath::run(&args),
     }
 }
 

@@ -15,6 +15,7 @@
 //! the GPU scan, and its fallback where the adapter has no compute shaders.
 
 pub mod reference;
+pub mod toolpath;
 
 use glam::DVec3;
 

@@ -1,4 +1,5 @@
-//! The dialogs: open a file (with a folder browser), screenshot, errors, warnings.
+//! The dialogs: open a file (a model or a CAM program, with a folder browser), screenshot,
+//! errors, warnings.
 
 use std::path::{Path, PathBuf};
 
@@ -10,7 +11,7 @@ pub(super) fn dialogs(ui: &mut egui::Ui, s: &mut Session, actions: &mut Vec<Acti
     let ctx = ui.ctx().clone();
     if s.show_open {
         let mut open = true;
-        egui::Window::new("Open a STEP file")
+        egui::Window::new("Open a STEP file or a CAM program (G-code)")
             .open(&mut open)
             .show(&ctx, |ui| {
                 ui.horizontal(|ui| {
@@ -99,6 +100,7 @@ fn file_browser(ui: &mut egui::Ui, s: &mut Session, actions: &mut Vec<Action>) {
                             let x = x.to_string_lossy().to_ascii_lowercase();
                             x == "step" || x == "stp"
                         })
+                        || crate::session::Toolpath::is_program(p)
                 })
                 .take(5000)
                 .collect()

@@ -20,6 +20,12 @@ pub(super) fn menu_bar(
                     if ui.button("Open…  (Ctrl+O)").clicked() {
                         s.show_open = true;
                     }
+                    if ui
+                        .add_enabled(s.toolpath.is_some(), egui::Button::new("Toolpath…"))
+                        .clicked()
+                    {
+                        s.show_toolpath = true;
+                    }
                     if ui.button("Screenshot…  (F12: quick)").clicked() {
                         s.show_screenshot = true;
                     }

@@ -10,6 +10,7 @@ mod overlay;
 mod properties;
 mod sections;
 mod status;
+mod toolpath;
 mod tree;
 
 use std::path::PathBuf;
@@ -91,6 +92,7 @@ pub(crate) fn draw(
         rect.max.x = rect.max.x.min(right.response.rect.min.x);
     }
     dialogs::dialogs(ui, s, &mut actions);
+    toolpath::toolpath_window(ui, s);
     let mut input = ViewInput::default();
     {
         if let (Some(id), Some(_)) = (s.view_texture, &s.nav) {

@@ -4,5 +4,6 @@ pub mod bench;
 pub mod info;
 pub mod mesh;
 pub mod render;
+pub mod toolpath;
 pub mod verify;
 pub mod view;

@@ -12,6 +12,9 @@ use cadre_render::{
 };
 use image::RgbaImage;
 
+use crate::commands::toolpath::{
+    ToolpathDrawArgs, is_program, load_program, program_bounds, with_toolpath,
+};
 use crate::load::load_step;
 
 /// How `cadre render` anti-aliases its images.
@@ -46,8 +49,9 @@ impl Antialias {
 /// Arguments of `cadre render`.
 #[derive(clap::Args)]
 pub struct RenderArgs {
-    /// A STEP file, a folder of them (then -o is a folder), or a scene file of quadrics cut
-    /// by planes (`.json`, docs/scene-format.md).
+    /// A STEP file, a folder of them (then -o is a folder), a scene file of quadrics cut by
+    /// planes (`.json`, docs/scene-format.md), or a CAM program (G-code: `.ngc`, `.nc`,
+    /// `.gcode`, `.tap`, …) drawn alone.
     input: PathBuf,
     /// Output PNG file, or folder for a folder input.
     #[arg(short, long)]
@@ -108,6 +112,9 @@ pub struct RenderArgs {
     /// row in file-name order; SHEET.txt lists which file each tile is).
     #[arg(long, value_name = "SHEET.png")]
     sheet: Option<PathBuf>,
+    /// A toolpath drawn over the model.
+    #[command(flatten)]
+    toolpath: ToolpathDrawArgs,
 }
 
 /// How `cadre render` draws faces.
@@ -300,6 +307,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let (gpu, renderer) = open_gpu(args.method)?;
         return render_folder(&gpu, &renderer, args);
     }
+    if is_program(&args.input) {
+        let (gpu, renderer) = open_gpu(args.method)?;
+        let image = render_program(&gpu, &renderer, args)?;
+        save(&image, &args.output)?;
+        println!("wrote {} ({})", args.output.display(), gpu.info.name);
+        return Ok(());
+    }
     if is_scene_file(&args.input) {
         let (gpu, renderer) = open_gpu(args.method)?;
         let image = render_scene_file(&gpu, &renderer, args)?;
@@ -321,6 +335,62 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         println!("wrote {} ({})", args.output.display(), gpu.info.name);
         Ok(())
     })
+}
+
+/// A CAM program drawn alone: its path fitted in the view.
+fn render_program(gpu: &Gpu, renderer: &Renderer, args: &RenderArgs) -> Result<RgbaImage> {
+    let input = &args.input;
+    let program = load_program(input, true)?;
+    let Some((lo, hi)) = program_bounds(&program) else {
+        bail!("{}: no move to draw; no image written", input.display());
+    };
+    let (w, h) = args.size;
+    let fitted = match args.camera {
+        Some(c) => Camera::looking((c.eye, c.target, c.up), c.fov_y, (lo, hi)),
+        None => Camera::fit(lo, hi, args.view, args.ortho, f64::from(w) / f64::from(h)),
+    };
+    let camera = if args.zoom == 1.0 {
+        fitted
+    } else {
+        fitted.zoomed_at(0.5 * (lo + hi), args.zoom, (lo, hi))
+    };
+    let toolpath = ToolpathDrawArgs {
+        toolpath: Some(input.clone()),
+        ..args.toolpath.clone()
+    };
+    let (scene, lines) = with_toolpath(RenderScene::default(), &program, &toolpath, (&camera, h))?;
+    let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
+    let options = FrameOptions {
+        width: w,
+        height: h,
+        supersample,
+        smooth,
+        background: args.background,
+        mode: args.mode,
+        ..FrameOptions::default()
+    };
+    let t0 = Instant::now();
+    let prepared = renderer.prepare(gpu, &scene);
+    let image = renderer
+        .render(
+            gpu,
+            &prepared,
+            &camera,
+            &options,
+            &ViewState {
+                lines,
+                ..ViewState::default()
+            },
+        )
+        .with_context(|| format!("{}: nothing was drawn", input.display()))?;
+    eprintln!(
+        "{}: {} move(s), {} segment(s) drawn in {:.3} s",
+        input.display(),
+        program.moves.len(),
+        scene.lines.segment_count(),
+        t0.elapsed().as_secs_f64()
+    );
+    Ok(image)
 }
 
 /// Whether `path` names a scene file of quadric primitives (`.json`, docs/scene-format.md).
@@ -572,16 +642,25 @@ fn draw_file(
     let (input, model) = (meshed.input.as_path(), &meshed.loaded.model);
     let scene = RenderScene::from_model(model, &meshed.mesh);
     let (w, h) = args.size;
+    let program = match &args.toolpath.toolpath {
+        Some(path) => Some(load_program(path, true)?),
+        None => None,
+    };
     // A model with nothing to draw (no face, mesh or curve: 6 corpus files, OCCT finds nothing
     // in them either) is an error, not a blank image that looks like a result; a folder run
     // reports the file and goes on.
-    let Some((lo, hi)) = scene.bounds() else {
+    let Some(model_box) = scene.bounds() else {
         bail!(
             "{}: nothing to draw (no face, mesh or curve placed; {} warning(s) while reading); \
              no image written",
             input.display(),
             model.warnings.len()
         );
+    };
+    // The view takes in the toolpath too.
+    let (lo, hi) = match program.as_ref().and_then(program_bounds) {
+        Some((a, b)) => (model_box.0.min(a), model_box.1.max(b)),
+        None => model_box,
     };
     let scene = match args.method {
         Method::Mesh => scene,
@@ -616,9 +695,17 @@ fn draw_file(
         shadows: args.shadows,
         ..FrameOptions::default()
     };
+    let (scene, lines) = match &program {
+        Some(program) => with_toolpath(scene, program, &args.toolpath, (&camera, h))?,
+        None => (scene, cadre_render::LineView::default()),
+    };
+    let state = ViewState {
+        lines,
+        ..ViewState::default()
+    };
     let prepared = renderer.prepare(gpu, &scene);
     let image = renderer
-        .render(gpu, &prepared, &camera, &options, &ViewState::default())
+        .render(gpu, &prepared, &camera, &options, &state)
         .with_context(|| format!("{}: nothing was drawn", input.display()))?;
     if args.method.exact() && options.cracks.mode != CrackMode::Off {
         let c = renderer.last_crack_counts(gpu);
