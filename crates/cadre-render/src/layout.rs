@@ -42,7 +42,7 @@ pub struct PassShader {
 
 /// Every shader of the renderer, with what the Rust side binds to it (for the layout tests).
 pub fn pass_shaders() -> Vec<PassShader> {
-    use crate::passes::{cracks, edges, lines, pick, shade, visibility};
+    use crate::passes::{backdrop, cracks, edges, lines, pick, shade, visibility};
     let shader = |name, source, bindings, instanced| PassShader {
         name,
         source,
@@ -126,6 +126,7 @@ pub fn pass_shaders() -> Vec<PassShader> {
             false,
         ),
         shader("lines", lines::draw_source(), lines::DRAW_BINDINGS, false),
+        shader("backdrop", backdrop::source(), backdrop::BINDINGS, false),
     ]
 }
 
@@ -620,6 +621,32 @@ pub struct LineFrame {
     pub counts: [u32; 4],
 }
 
+/// The backdrop pass's per-frame constants ([`crate::Background`], [`crate::GroundGrid`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct BackdropUniform {
+    /// Device coordinates → camera-relative world positions.
+    pub inv_view_proj: [[f32; 4]; 4],
+    /// The gradient's top colour, linear.
+    pub top: [f32; 4],
+    /// The gradient's bottom colour, linear.
+    pub bottom: [f32; 4],
+    /// The grid's colour (linear) and opacity.
+    pub grid_colour: [f32; 4],
+    /// The ground plane, camera-relative: unit normal and offset (n · p = w).
+    pub plane: [f32; 4],
+    /// What the grid's coordinates are offset by: camera-relative → relative to the grid's
+    /// origin (a multiple of every spacing near the eye).
+    pub origin: [f32; 4],
+    /// The world origin relative to the grid's origin (where the axes cross).
+    pub axes: [f32; 4],
+    /// A fixed spacing (0: adaptive), the far plane's distance, unused, axes drawn (1) or
+    /// not (0).
+    pub params: [f32; 4],
+    /// Background kind (0 solid, 1 gradient, 2 image), grid on (1) or off, unused, unused.
+    pub modes: [u32; 4],
+}
+
 /// [`LineStyleGpu::join`]: miter.
 pub const LINE_JOIN_MITER: u32 = 0;
 /// [`LineStyleGpu::join`]: round.
@@ -722,6 +749,21 @@ gpu_struct!(
         cap,
         flags,
         pad
+    ]
+);
+gpu_struct!(
+    BackdropUniform,
+    "BackdropUniform",
+    [
+        inv_view_proj,
+        top,
+        bottom,
+        grid_colour,
+        plane,
+        origin,
+        axes,
+        params,
+        modes
     ]
 );
 gpu_struct!(

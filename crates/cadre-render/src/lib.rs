@@ -42,6 +42,7 @@
 //! ```
 
 pub mod analytic;
+pub mod backdrop;
 mod bounds;
 mod camera;
 pub mod compare;
@@ -74,6 +75,7 @@ mod view;
 mod viewport;
 
 pub use analytic::{AnalyticPrimitive, AnalyticShape, QuadricShape};
+pub use backdrop::{Background, GroundGrid};
 pub use bounds::scene_bounds;
 pub use camera::{Camera, Frustum, Projection, ViewPreset};
 pub use coverage::MAX_IMAGE_COVERAGE;

@@ -81,8 +81,13 @@ pub struct FrameOptions {
     /// blended with what its neighbours across the edge show. Beside supersampling and
     /// smoothing, not instead; off, trimmed edges are as sharp as the trim test.
     pub analytic_coverage: bool,
-    /// Background colour, sRGB components in [0, 1] and alpha.
+    /// Background colour, sRGB components in [0, 1] and alpha: the solid background, and
+    /// what hidden-line drawings fill faces with.
     pub background: [f32; 4],
+    /// The background behind the model: solid (`background`), a gradient or an image.
+    pub backdrop: crate::Background,
+    /// A ground grid under the model, when asked.
+    pub grid: Option<crate::GroundGrid>,
     /// Display mode.
     pub mode: DisplayMode,
     /// Edge width in output pixels.
@@ -108,6 +113,8 @@ impl Default for FrameOptions {
             smooth: false,
             analytic_coverage: true,
             background: [1.0, 1.0, 1.0, 1.0],
+            backdrop: crate::Background::Solid,
+            grid: None,
             mode: DisplayMode::Shaded,
             edge_width: 1.5,
             lights: Light::cad_rig(),
@@ -142,6 +149,8 @@ pub struct Renderer {
     crack_support: (bool, bool),
     /// The lines pass, built on the first frame with lines.
     lines: std::sync::OnceLock<LinesPass>,
+    /// The backdrop pass, built on the first frame with a gradient, an image or a grid.
+    backdrop: std::sync::OnceLock<crate::passes::backdrop::BackdropPass>,
 }
 
 impl Renderer {
@@ -169,6 +178,7 @@ impl Renderer {
             cracks: std::sync::OnceLock::new(),
             crack_support: crack_support(gpu),
             lines: std::sync::OnceLock::new(),
+            backdrop: std::sync::OnceLock::new(),
         };
         match pollster::block_on(scope.pop()) {
             Some(e) => Err(RenderError::Gpu(e)),
@@ -725,8 +735,25 @@ impl Renderer {
             }
             _ => None,
         };
+        let backdrop = (readback.shaded()
+            && (options.backdrop != crate::Background::Solid || options.grid.is_some()))
+        .then(|| {
+            let pass = self
+                .backdrop
+                .get_or_init(|| crate::passes::backdrop::BackdropPass::new(gpu, self.colour));
+            let floor = scene.bounds().map_or(0.0, |(lo, _)| lo.z);
+            let uniform = crate::passes::backdrop::uniform(
+                camera,
+                f64::from(w) / f64::from(h),
+                (&options.backdrop, options.grid.as_ref()),
+                floor,
+            );
+            (pass, uniform)
+        });
         let shading = Shading {
             lines,
+            backdrop,
+            queue: &gpu.queue,
             device,
             options,
             targets,
@@ -973,6 +1000,13 @@ struct Shading<'a> {
     draw_lines: bool,
     /// The lines pass and the scene's line set, when it has one (its scan recorded).
     lines: Option<(&'a LinesPass, &'a GpuLines)>,
+    /// The backdrop pass and its constants, when the frame has a gradient, an image or a
+    /// grid; and the queue it uploads with.
+    backdrop: Option<(
+        &'a crate::passes::backdrop::BackdropPass,
+        crate::layout::BackdropUniform,
+    )>,
+    queue: &'a wgpu::Queue,
     /// The key light's shadow map (its depth), when the frame has shadows.
     shadow: Option<&'a wgpu::TextureView>,
 }
@@ -1051,6 +1085,8 @@ impl Renderer {
             draw_lines,
             shadow,
             lines,
+            backdrop,
+            queue,
         } = *s;
         let inputs = ShadeInputs {
             frame,
@@ -1067,6 +1103,15 @@ impl Renderer {
         let recorder = (device, &self.binds);
         self.shade
             .record(recorder, encoder, targets, &inputs, colour_view);
+        if let Some((pass, uniform)) = &backdrop {
+            pass.record(
+                (device, queue),
+                encoder,
+                targets,
+                (frame, uniform, &options.backdrop),
+                colour_view,
+            );
+        }
         let phase = if options.mode == DisplayMode::XRay {
             Phase::XRay
         } else {

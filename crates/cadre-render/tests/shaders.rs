@@ -3,14 +3,14 @@
 //! `cadre_render::layout` twins.
 
 use cadre_render::SECTION_CAP;
-use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders};
 use cadre_render::layout::{
-    Call, DRAW_ATTRIBUTES, DRAW_CLOSED, DRAW_FIRST_LOCATION, DRAW_INSIDE_OUT, Draw, EDGES_ALL,
-    EDGES_HIDDEN_DASHED, EDGES_VISIBLE, FILL_BACKGROUND, FILL_NONE, FILL_SHADED, FrameUniform,
-    GpuStruct, LightGpu, LightRig, LineFrame, LinePoint, LineStyleGpu, Local, Material, Member,
-    PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Primitive, Segment, TrimSurface,
-    TrimTask,
+    BackdropUniform, Call, DRAW_ATTRIBUTES, DRAW_CLOSED, DRAW_FIRST_LOCATION, DRAW_INSIDE_OUT,
+    Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE, FILL_BACKGROUND, FILL_NONE, FILL_SHADED,
+    FrameUniform, GpuStruct, LightGpu, LightRig, LineFrame, LinePoint, LineStyleGpu, Local,
+    Material, Member, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Primitive,
+    Segment, TrimSurface, TrimTask,
 };
+use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders};
 
 /// The renderer's shader named `name`, as it compiles it.
 fn shader(name: &str) -> PassShader {
@@ -159,6 +159,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
             ("LinePoint", check::<LinePoint>(pass, &m)),
             ("LineStyle", check::<LineStyleGpu>(pass, &m)),
             ("LineFrame", check::<LineFrame>(pass, &m)),
+            ("BackdropUniform", check::<BackdropUniform>(pass, &m)),
         ] {
             if hit.unwrap_or_else(|e| panic!("{e}")) {
                 *found.entry(name).or_default() += 1;
@@ -166,7 +167,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         }
     }
     // Every layout was really compared somewhere (naga drops nothing we rely on).
-    assert_eq!(found.len(), 15, "{found:?}");
+    assert_eq!(found.len(), 16, "{found:?}");
 }
 
 #[test]

@@ -577,6 +577,8 @@ impl App {
             },
             mode: self.session.mode,
             shadows: self.session.shadows,
+            backdrop: self.session.backdrop().0,
+            grid: self.session.backdrop().1,
             ..FrameOptions::default()
         };
         // The window's framing at the screenshot's aspect.
@@ -703,6 +705,8 @@ impl App {
             supersample: 1,
             mode: self.session.mode,
             background: [0.93, 0.94, 0.96, 1.0],
+            backdrop: self.session.backdrop().0,
+            grid: self.session.backdrop().1,
             cracks: CrackOptions {
                 mode: if self.camera_moving {
                     CrackMode::Fast

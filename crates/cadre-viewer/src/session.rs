@@ -112,6 +112,10 @@ pub(crate) struct Session {
     pub exact_faces: bool,
     /// The key light casts shadows (a shadow map every back-end writes).
     pub shadows: bool,
+    /// A grey-blue gradient behind the model (else a flat light grey).
+    pub gradient: bool,
+    /// A ground grid under the model.
+    pub grid: bool,
     /// Per scene node: hidden by the user.
     pub hidden: Vec<bool>,
     /// Per instance: a colour (sRGB + opacity) the user gave it.
@@ -204,6 +208,8 @@ impl Session {
             mode: DisplayMode::ShadedEdges,
             exact_faces: false,
             shadows: false,
+            gradient: true,
+            grid: false,
             hidden: Vec::new(),
             colours: Vec::new(),
             hover: None,
@@ -228,6 +234,18 @@ impl Session {
             tree_filter: String::new(),
             properties: std::collections::HashMap::new(),
         }
+    }
+
+    /// The background and the ground grid the Display menu asks for.
+    pub fn backdrop(&self) -> (cadre_render::Background, Option<cadre_render::GroundGrid>) {
+        (
+            if self.gradient {
+                cadre_render::Background::cad_gradient()
+            } else {
+                cadre_render::Background::Solid
+            },
+            self.grid.then(cadre_render::GroundGrid::default),
+        )
     }
 
     /// A model replaced the last one: fresh styles, selection and camera.

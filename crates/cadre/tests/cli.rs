@@ -544,3 +544,131 @@ fn render_draws_a_scene_file_and_names_the_bad_line_or_object() {
     assert!(stderr.contains("line 3"), "{stderr}");
     assert!(!dir.join("bad.png").exists());
 }
+
+const PLATE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../examples/toolpath/plate.step"
+);
+const PLATE_PROGRAM: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../examples/toolpath/plate.ngc"
+);
+
+#[test]
+fn toolpath_json_lists_the_example_program_moves() {
+    let out = cadre()
+        .args(["toolpath", "--json", PLATE_PROGRAM])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["units"], "mm");
+    assert_eq!(v["warnings"].as_array().map(Vec::len), Some(0), "{v}");
+    let moves = v["moves"].as_array().unwrap();
+    assert!(moves.len() > 100, "{}", moves.len());
+    // The first move: G0 Z20 on line 13, from the machine's origin.
+    assert_eq!(moves[0]["kind"], "rapid");
+    assert_eq!(moves[0]["end"], serde_json::json!([0.0, 0.0, 20.0]));
+    // Arcs carry their centre and signed turns; the profile's corners are clockwise
+    // quarter turns.
+    let corner = moves.iter().find(|m| m["kind"] == "arc").expect("an arc");
+    assert_eq!(corner["turns"], -0.25);
+    assert!(corner["centre"].is_array());
+    // The summary.
+    let out = cadre().args(["toolpath", PLATE_PROGRAM]).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("tools: [1, 2, 3]"), "{text}");
+    assert!(text.contains("warnings: 0"), "{text}");
+}
+
+#[test]
+fn toolpath_warns_bad_lines_with_their_numbers_and_loads_the_rest() {
+    let dir = scratch_dir("cadre-toolpath-bad");
+    let program = dir.join("bad.ngc");
+    std::fs::write(&program, "G0 X1\nG1 X[2 +\nG5.2 X3 Y3\nG1 X4 F100\n").unwrap();
+    let out = cadre()
+        .args(["toolpath", "--json"])
+        .arg(&program)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let lines: Vec<u64> = v["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(lines, [2, 3], "{v}");
+    assert_eq!(v["moves"].as_array().unwrap().len(), 3);
+    let out = cadre()
+        .args(["toolpath", "/nonexistent/x.ngc"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("x.ngc"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn render_draws_a_toolpath_over_its_part_and_alone() {
+    let dir = scratch_dir("cadre-toolpath-render");
+    let over = dir.join("over.png");
+    let out = cadre()
+        .args([
+            "render",
+            PLATE,
+            "--toolpath",
+            PLATE_PROGRAM,
+            "--size",
+            "200x150",
+        ])
+        .args(["--up-to", "1500", "--clip-box", "-10,-10,-5,90,60,30", "-o"])
+        .arg(&over)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let image = image::open(&over).unwrap().to_rgba8();
+    assert_eq!(image.dimensions(), (200, 150));
+    // Coloured (not grey) pixels: the path's feed colours.
+    let coloured = image
+        .pixels()
+        .filter(|p| p[0].abs_diff(p[1]) > 60 || p[1].abs_diff(p[2]) > 60)
+        .count();
+    assert!(coloured > 100, "{coloured}");
+    let alone = dir.join("alone.png");
+    let out = cadre()
+        .args(["render", PLATE_PROGRAM, "--size", "200x150", "-o"])
+        .arg(&alone)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(alone.is_file());
+    let out = cadre()
+        .args([
+            "render",
+            PLATE,
+            "--toolpath",
+            PLATE_PROGRAM,
+            "--up-to",
+            "-3",
+            "-o",
+        ])
+        .arg(dir.join("never.png"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -123,6 +123,18 @@ struct LineStyle {
     pad: array<u32, 3>,
 }
 
+struct BackdropUniform {
+    inv_view_proj: mat4x4<f32>,
+    top: vec4<f32>,
+    bottom: vec4<f32>,
+    grid_colour: vec4<f32>,
+    plane: vec4<f32>,
+    origin: vec4<f32>,
+    axes: vec4<f32>,
+    params: vec4<f32>,
+    modes: vec4<u32>,
+}
+
 struct LineFrame {
     to_clip: mat4x4<f32>,
     viewport: vec4<f32>,

@@ -6,6 +6,7 @@
 //! [`edges`] (B-Rep edges as lines) and [`lines`] (polylines and toolpaths with joins, caps and
 //! stipples); [`pick`] (edge and vertex ids) runs when a viewer picks.
 
+pub(crate) mod backdrop;
 pub(crate) mod common;
 pub(crate) mod cracks;
 pub(crate) mod edges;

@@ -66,6 +66,10 @@ pub(super) fn menu_bar(
                     ui.checkbox(&mut s.shadows, "Shadows").on_hover_text(
                         "The key light casts shadows (a shadow map drawn each frame)",
                     );
+                    ui.checkbox(&mut s.gradient, "Gradient background");
+                    ui.checkbox(&mut s.grid, "Ground grid").on_hover_text(
+                        "A grid on the plane under the model, its spacing following the zoom",
+                    );
                 });
                 ui.menu_button("Measure", |ui| {
                     ui.label("Keys: D distance, L edge length, R radius, A angle");

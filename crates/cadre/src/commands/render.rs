@@ -115,6 +115,58 @@ pub struct RenderArgs {
     /// A toolpath drawn over the model.
     #[command(flatten)]
     toolpath: ToolpathDrawArgs,
+    /// A vertical gradient behind the model: TOP,BOTTOM colours (names or #rrggbb), or
+    /// `cad` for the usual grey-blue one.
+    #[arg(long, value_name = "TOP,BOTTOM", value_parser = parse_gradient)]
+    background_gradient: Option<[[f32; 4]; 2]>,
+    /// An image (PNG) stretched behind the model.
+    #[arg(long, value_name = "IMAGE.png")]
+    background_image: Option<PathBuf>,
+    /// A ground grid under the model (its spacing follows the zoom unless --grid-spacing).
+    #[arg(long)]
+    grid: bool,
+    /// The ground grid's finest spacing, model units (implies --grid).
+    #[arg(long, value_name = "MM")]
+    grid_spacing: Option<f64>,
+}
+
+fn parse_gradient(s: &str) -> Result<[[f32; 4]; 2], String> {
+    if s.eq_ignore_ascii_case("cad") {
+        return match cadre_render::Background::cad_gradient() {
+            cadre_render::Background::Gradient { top, bottom } => Ok([top, bottom]),
+            _ => Err("no CAD gradient".into()),
+        };
+    }
+    let (top, bottom) = s
+        .split_once(',')
+        .ok_or_else(|| format!("{s:?}: TOP,BOTTOM expected (two colours) or cad"))?;
+    Ok([parse_colour(top.trim())?, parse_colour(bottom.trim())?])
+}
+
+/// The options' background and ground grid.
+fn backdrop(
+    args: &RenderArgs,
+) -> Result<(cadre_render::Background, Option<cadre_render::GroundGrid>)> {
+    let background = match (&args.background_image, args.background_gradient) {
+        (Some(path), _) => {
+            let image = image::open(path)
+                .with_context(|| format!("reading the background image {}", path.display()))?
+                .to_rgba8();
+            cadre_render::Background::Image(std::sync::Arc::new(image))
+        }
+        (None, Some([top, bottom])) => cadre_render::Background::Gradient { top, bottom },
+        (None, None) => cadre_render::Background::Solid,
+    };
+    if let Some(s) = args.grid_spacing
+        && !(s.is_finite() && s > 0.0)
+    {
+        bail!("--grid-spacing must be a positive length, got {s}");
+    }
+    let grid = (args.grid || args.grid_spacing.is_some()).then(|| cadre_render::GroundGrid {
+        spacing: args.grid_spacing,
+        ..cadre_render::GroundGrid::default()
+    });
+    Ok((background, grid))
 }
 
 /// How `cadre render` draws faces.
@@ -360,12 +412,15 @@ fn render_program(gpu: &Gpu, renderer: &Renderer, args: &RenderArgs) -> Result<R
     };
     let (scene, lines) = with_toolpath(RenderScene::default(), &program, &toolpath, (&camera, h))?;
     let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
+    let (background, grid) = backdrop(args)?;
     let options = FrameOptions {
         width: w,
         height: h,
         supersample,
         smooth,
         background: args.background,
+        backdrop: background,
+        grid,
         mode: args.mode,
         ..FrameOptions::default()
     };
@@ -438,12 +493,15 @@ pub(crate) fn render_scene_file(
         fitted.zoomed_at(0.5 * (lo + hi), args.zoom, (lo, hi))
     };
     let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
+    let (background, grid) = backdrop(args)?;
     let mut options = FrameOptions {
         width: w,
         height: h,
         supersample,
         smooth,
         background: args.background,
+        backdrop: background,
+        grid,
         mode: args.mode,
         edge_width: args.edge_width,
         shadows: args.shadows || loaded.shadows,
@@ -681,6 +739,7 @@ fn draw_file(
         fitted.zoomed_at(point, args.zoom, (lo, hi))
     };
     let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
+    let (background, grid) = backdrop(args)?;
     let options = FrameOptions {
         width: w,
         height: h,
@@ -689,6 +748,8 @@ fn draw_file(
         // Trimmed edges' analytic coverage comes on top of either (`--method trim`).
         analytic_coverage: args.antialias != Antialias::None,
         background: args.background,
+        backdrop: background,
+        grid,
         mode: args.mode,
         edge_width: args.edge_width,
         cracks: args.cracks.options(),
