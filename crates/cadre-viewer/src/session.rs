@@ -112,7 +112,7 @@ pub(crate) struct Session {
     pub exact_faces: bool,
     /// The key light casts shadows (a shadow map every back-end writes).
     pub shadows: bool,
-    /// A grey-blue gradient behind the model (else a flat light grey).
+    /// A grey-blue gradient behind the model (off by default: a flat light grey).
     pub gradient: bool,
     /// A ground grid under the model.
     pub grid: bool,
@@ -208,7 +208,7 @@ impl Session {
             mode: DisplayMode::ShadedEdges,
             exact_faces: false,
             shadows: false,
-            gradient: true,
+            gradient: false,
             grid: false,
             hidden: Vec::new(),
             colours: Vec::new(),
