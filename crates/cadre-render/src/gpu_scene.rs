@@ -738,11 +738,22 @@ fn append(
     items: impl Iterator<Item = ([f32; 3], [f32; 3], u32, u32, [u32; 2])>,
 ) -> (u32, u32) {
     let first = segments.len() as u32;
-    segments.extend(items.map(|(a, b, id, kind, faces)| Segment {
-        a: [a[0], a[1], a[2], f32::from_bits(id)],
-        b: [b[0], b[1], b[2], f32::from_bits(kind)],
-        faces,
-        pad: [0; 2],
+    // Each segment's place in its polyline (an edge's, or a wire's consecutive pieces): 0
+    // where the one before is of another item or does not end where it starts. The edges
+    // pass sums the screen lengths of those before it for the hidden-line dashes.
+    let mut previous: Option<(u32, u32, [f32; 3], u32)> = None;
+    segments.extend(items.map(|(a, b, id, kind, faces)| {
+        let place = match previous {
+            Some((pid, pkind, pb, k)) if pid == id && pkind == kind && pb == a => k + 1,
+            _ => 0,
+        };
+        previous = Some((id, kind, b, place));
+        Segment {
+            a: [a[0], a[1], a[2], f32::from_bits(id)],
+            b: [b[0], b[1], b[2], f32::from_bits(kind)],
+            faces,
+            pad: [place, 0],
+        }
     }));
     (first, segments.len() as u32 - first)
 }

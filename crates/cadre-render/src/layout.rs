@@ -291,7 +291,9 @@ pub struct Segment {
     /// does not lie between exactly two triangles of a closed solid. The edges pass drops
     /// the segments whose both faces turn away from the eye (hidden behind their own solid).
     pub faces: [u32; 2],
-    /// Padding to the WGSL struct's 16-byte alignment.
+    /// Its place in its polyline (0 for the first piece of an edge or a wire: the pieces
+    /// before it, which the hidden-line dashes count their arc length along), and padding
+    /// to the WGSL struct's 16-byte alignment.
     pub pad: [u32; 2],
 }
 

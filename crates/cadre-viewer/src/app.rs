@@ -924,6 +924,9 @@ impl ApplicationHandler<UserEvent> for App {
         if let Some(file) = self.options.file.clone() {
             self.open(file);
         }
+        if let Some(program) = self.options.toolpath.clone() {
+            self.open(program);
+        }
     }
 
     fn user_event(&mut self, _event_loop: &ActiveEventLoop, event: UserEvent) {

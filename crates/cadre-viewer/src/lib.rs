@@ -20,8 +20,10 @@ use std::path::PathBuf;
 /// What the viewer starts with.
 #[derive(Clone, Debug, Default)]
 pub struct ViewerOptions {
-    /// A STEP file to open at start.
+    /// A STEP file (or a CAM program) to open at start.
     pub file: Option<PathBuf>,
+    /// A CAM program (G-code) to open over it at start.
+    pub toolpath: Option<PathBuf>,
     /// Initial window size in logical pixels (default 1280 × 800).
     pub size: Option<(u32, u32)>,
     /// Where F12 writes its screenshots (`screenshot-N.png`; default the current folder).

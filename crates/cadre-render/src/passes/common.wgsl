@@ -62,6 +62,7 @@ struct Segment {
     b: vec4<f32>,
     // The outward normals of its two faces (`pack4x8snorm`), 0 for none.
     faces: vec2<u32>,
+    // x: its place in its polyline (`layout::Segment::pad`); y: padding.
     pad: vec2<u32>,
 }
 
@@ -295,7 +296,9 @@ fn segment_quad(seg: Segment, vi: u32, d: Draw, half_width: f32, fringe: f32) ->
         out.clip = vec4<f32>(2.0, 2.0, 2.0, 1.0);
     }
     out.across = across * half;
-    out.along = select(0.0, e.len, at_b);
+    // The distance along from a, the corners past the ends included.
+    let reach = select(fringe, half, e.len <= 1e-6);
+    out.along = select(-reach, e.len + reach, at_b);
     out.segment = vi / 4u;
     out.instance = d.instance;
     // The corners past the ends keep the end's position: the fringe is a pixel or two.
@@ -383,6 +386,24 @@ fn place_vertex(d: Draw, position: vec3<f32>, normal: vec3<f32>) -> PlacedVertex
 
 // Corner `vi` (0..3) of one triangle covering the whole target, at depth 0: the full-screen
 // passes' vertex (edges composite, pick faces).
+// The share of [lo, hi] (arc length, at most a pixel long) whose bits of the 16-bit `pattern`
+// (bit 0 first, `factor` ≥ 1 pixel a bit) are set: the pattern box-filtered over a pixel's
+// window, which meets at most two bits. An empty window takes the bit at `lo`.
+fn stipple_coverage(pattern: u32, factor: f32, lo: f32, hi: f32) -> f32 {
+    if pattern == 0xffffu {
+        return 1.0;
+    }
+    let k0 = floor(lo / factor);
+    let k1 = floor(hi / factor);
+    let b0 = f32((pattern >> u32(((i32(k0) % 16) + 16) % 16)) & 1u);
+    let b1 = f32((pattern >> u32(((i32(k1) % 16) + 16) % 16)) & 1u);
+    if (k0 == k1) || (hi <= lo) {
+        return b0;
+    }
+    let edge = k1 * factor;
+    return (b0 * (edge - lo) + b1 * (hi - edge)) / (hi - lo);
+}
+
 fn screen_triangle(vi: u32) -> vec4<f32> {
     let uv = vec2<f32>(f32((vi << 1u) & 2u), f32(vi & 2u));
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);

@@ -8,8 +8,11 @@ use clap::Args;
 /// Arguments of `cadre view`.
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// A STEP file to open (File → Open and drag-and-drop open others).
+    /// A STEP file (or a CAM program) to open (File → Open and drag-and-drop open others).
     pub file: Option<PathBuf>,
+    /// A CAM program (G-code) shown over the model (File → Open takes programs too).
+    #[arg(long, value_name = "PROGRAM")]
+    pub toolpath: Option<PathBuf>,
     /// Window size, WIDTHxHEIGHT in logical pixels.
     #[arg(long, value_parser = crate::commands::render::parse_size)]
     pub size: Option<(u32, u32)>,
@@ -29,8 +32,14 @@ pub fn run(args: &ViewArgs) -> Result<()> {
     {
         anyhow::bail!("{}: no such file", file.display());
     }
+    if let Some(program) = &args.toolpath
+        && !program.is_file()
+    {
+        anyhow::bail!("{}: no such file", program.display());
+    }
     cadre_viewer::run(cadre_viewer::ViewerOptions {
         file: args.file.clone(),
+        toolpath: args.toolpath.clone(),
         size: args.size,
         screenshot_dir: args.screenshot_dir.clone(),
         report: args.report,

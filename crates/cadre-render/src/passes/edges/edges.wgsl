@@ -22,6 +22,25 @@ override SECTIONS: bool = true;
 // The frame's other segments were rasterized in compute (`raster.wgsl`): these quads draw
 // only the highlighted ones, which that rasterizer leaves to them.
 override RASTERED: bool = false;
+// The hidden-line mode: the dashes of hidden edges run on each edge's screen arc length from
+// its first piece (the pieces before a segment summed each frame), not from each segment's
+// start, so they do not restart at every sampled piece of a curved edge.
+override DASH_ARC: bool = false;
+// The most pieces summed before a segment: a longer polyline's dashes restart every this many
+// pieces.
+const MAX_DASH_WALK: u32 = 512u;
+
+// The screen arc length (pixels) of the pieces of its polyline before segment `index`, the
+// `place`-th, placed by `d`.
+fn arc_before(index: u32, place: u32, d: Draw) -> f32 {
+    var s = 0.0;
+    let n = min(min(place, MAX_DASH_WALK), index);
+    for (var j = 1u; j <= n; j++) {
+        let e = screen_segment(segments[index - j], d);
+        s += select(e.len, 0.0, e.both_behind);
+    }
+    return s;
+}
 
 struct EdgeOut {
     @builtin(position) clip: vec4<f32>,
@@ -69,6 +88,9 @@ fn edge_corner(vi: u32, d: Draw) -> EdgeOut {
     }
     out.across = line.across;
     out.along = line.along;
+    if DASH_ARC {
+        out.along += arc_before(vi / 4u, seg.pad.x, d);
+    }
     out.colour = colour;
     out.half_width = 0.5 * width;
     out.world = line.world;
@@ -91,10 +113,13 @@ fn fs_main(in: EdgeOut) -> @location(0) vec4<f32> {
             discard;
         }
         if hidden & (mode == EDGES_HIDDEN_DASHED) {
-            if fract(in.along / max(frame.viewport.w, 1.0)) > 0.5 {
+            // 4 on, 4 off (at 1×: `viewport.w` is the period), box-filtered over the pixel.
+            let bit = max(frame.viewport.w, 8.0) / 8.0;
+            colour = frame.hidden_colour;
+            colour.a *= stipple_coverage(0x0f0fu, bit, in.along - 0.5, in.along + 0.5);
+            if colour.a <= 0.0 {
                 discard;
             }
-            colour = frame.hidden_colour;
         }
     }
     let coverage = clamp(in.half_width + 0.5 - abs(in.across), 0.0, 1.0);

@@ -94,11 +94,13 @@ struct EdgePipeline {
     /// The other segments were rasterized in compute: only the highlighted ones are drawn
     /// (`RASTERED`).
     rastered: bool,
+    /// The hidden-line mode: dashes on each edge's arc length (`DASH_ARC`).
+    dashed: bool,
 }
 
 impl EdgePipeline {
     /// The kinds there are.
-    const COUNT: usize = 16;
+    const COUNT: usize = 32;
 
     /// Its place in [`EdgesPass::pipelines`].
     fn index(self) -> usize {
@@ -106,6 +108,7 @@ impl EdgePipeline {
             + 2 * usize::from(self.depth_tested)
             + 4 * usize::from(self.sections)
             + 8 * usize::from(self.rastered)
+            + 16 * usize::from(self.dashed)
     }
 }
 
@@ -205,6 +208,7 @@ impl EdgesPass {
                         ("DEPTH_TESTED", flag(kind.depth_tested)),
                         ("SECTIONS", flag(kind.sections)),
                         ("RASTERED", flag(kind.rastered)),
+                        ("DASH_ARC", flag(kind.dashed)),
                         ("CULL_BEHIND", flag(self.behind_margin.is_some())),
                         (
                             "BACK_MARGIN",
@@ -284,6 +288,7 @@ impl EdgesPass {
                 depth_tested,
                 sections,
                 rastered: raster.is_some(),
+                dashed: uniform.modes[2] == crate::layout::EDGES_HIDDEN_DASHED,
             };
             if current != Some(kind) {
                 pass.set_pipeline(self.pipeline(device, kind));
@@ -318,12 +323,13 @@ mod tests {
     #[test]
     fn edge_pipelines_have_distinct_slots() {
         let mut seen = std::collections::BTreeSet::new();
-        for bits in 0..16u8 {
+        for bits in 0..32u8 {
             let kind = EdgePipeline {
                 direct: bits & 1 != 0,
                 depth_tested: bits & 2 != 0,
                 sections: bits & 4 != 0,
                 rastered: bits & 8 != 0,
+                dashed: bits & 16 != 0,
             };
             assert!(kind.index() < EdgePipeline::COUNT, "{kind:?}");
             assert!(seen.insert(kind.index()), "{kind:?}");

@@ -236,24 +236,6 @@ fn join_coverage(q: vec2<f32>, d: vec2<f32>, n: vec2<f32>, join: u32, half: f32,
     return clamp(0.5 - sdf, 0.0, 1.0);
 }
 
-// The share of [lo, hi] (arc length, at most a pixel long) whose pattern bits are set:
-// the pattern box-filtered over a pixel's window (`factor` ≥ 1 pixel a bit, so the window
-// meets at most two bits). An empty window takes the bit at `lo`.
-fn stipple_coverage(pattern: u32, factor: f32, lo: f32, hi: f32) -> f32 {
-    if pattern == 0xffffu {
-        return 1.0;
-    }
-    let k0 = floor(lo / factor);
-    let k1 = floor(hi / factor);
-    let b0 = f32((pattern >> u32(((i32(k0) % 16) + 16) % 16)) & 1u);
-    let b1 = f32((pattern >> u32(((i32(k1) % 16) + 16) % 16)) & 1u);
-    if (k0 == k1) || (hi <= lo) {
-        return b0;
-    }
-    let edge = k1 * factor;
-    return (b0 * (edge - lo) + b1 * (hi - edge)) / (hi - lo);
-}
-
 @fragment
 fn fs_main(in: LineVary) -> @location(0) vec4<f32> {
     let p = in.position.xy - in.start;
