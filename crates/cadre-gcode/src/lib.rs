@@ -35,7 +35,7 @@ mod params;
 mod sample;
 
 pub use params::Params;
-pub use sample::{PathRun, sample_moves};
+pub use sample::{MAX_PATH_POINTS, PathRun, sample_moves};
 
 use serde::Serialize;
 

@@ -9,6 +9,8 @@ use glam::DVec3;
 
 /// mm per inch.
 const INCH: f64 = 25.4;
+/// Most turns an arc's P may ask for.
+const MAX_TURNS: f64 = 10_000.0;
 
 /// A G or M code ×10 (G59.3 → 593), as the block holds it.
 pub(crate) type Code = u32;
@@ -545,11 +547,11 @@ impl Machine {
             }
         }
         let extra = match words.get(b'p') {
-            Some(p) if p >= 1.0 && p.fract() == 0.0 && p < 1e6 => p - 1.0,
+            Some(p) if p >= 1.0 && p.fract() == 0.0 && p <= MAX_TURNS => p - 1.0,
             Some(p) => {
                 self.warn(
                     line,
-                    format!("arc turns P{p} is not a whole number ≥ 1: P1 used"),
+                    format!("arc turns P{p} is not a whole number from 1 to {MAX_TURNS}: P1 used"),
                 );
                 0.0
             }

@@ -275,6 +275,23 @@ fn endless_loops_and_deep_recursion_are_bounded() {
 }
 
 #[test]
+fn huge_helices_stay_bounded_when_sampled() {
+    // P past 10,000 turns is refused with a warning; a hundred helices of 10,000 turns at a
+    // nanometre would take 10¹¹ chords: the tolerance is coarsened to the bound instead.
+    let p = interpret(
+        "G0 X10\nG3 X10 I-10 P99999999\no1 repeat [100]\nG3 X10 I-10 Z-1 P10000\no1 endrepeat\n",
+    );
+    assert!(p.warnings.iter().any(|w| w.line == 2), "{:?}", p.warnings);
+    assert_eq!(p.moves.len(), 102);
+    let runs = sample_moves(&p.moves, 1e-9);
+    let points: usize = runs.iter().map(|r| r.points.len()).sum();
+    assert!(
+        points <= cadre_gcode::MAX_PATH_POINTS + runs.len() && points > 1_000_000,
+        "{points}"
+    );
+}
+
+#[test]
 fn the_json_has_the_documented_shape() {
     let p = interpret("G0 X1\nG3 X-1 I-1 J0\n");
     let json: serde_json::Value = serde_json::to_value(&p).expect("serialises");
