@@ -1,5 +1,5 @@
-// Lines pass: each segment of the set is one quad (two triangles from the vertex index,
-// instanced over the segments), clipped at the near plane, at the clip box and at the travel
+// Lines pass: each segment of the set is one quad (a strip of four corners from the vertex
+// index, instanced over the segments: a third fewer vertices than two triangles), clipped at the near plane, at the clip box and at the travel
 // shown, and widened in screen space past its ends by what its cap or its join needs. The
 // fragment shader finds the pixel's place in the segment's frame and covers it:
 // - inside the segment (0 ≤ t ≤ length): the box-filtered coverage across the line;
@@ -160,9 +160,10 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) i: u32) -> L
     if start_kind == END_CUT {
         before = 1.0;
     }
-    let corner = vi % 6u;
-    let u = select(0.0, 1.0, (corner == 1u) | (corner == 2u) | (corner == 4u));
-    let v = select(-1.0, 1.0, (corner == 2u) | (corner == 4u) | (corner == 5u));
+    // A triangle strip of four corners: bit 0 the end (start, end), bit 1 the side.
+    let corner = vi % 4u;
+    let u = f32(corner & 1u);
+    let v = select(-1.0, 1.0, (corner & 2u) != 0u);
     let normal = vec2<f32>(-dir.y, dir.x);
     let pixel = p0 + dir * mix(-before, length + after, u) + normal * v * (half + 1.0);
     var out: LineVary;

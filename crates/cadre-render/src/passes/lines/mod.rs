@@ -12,7 +12,7 @@
 //! 4 M points at 128 MiB); a polyline that crosses into the next chunk continues there, its
 //! stipple restarting at the chunk's first point.
 
-use super::common::{PipelineSpec, blended, colour_pass, entries, layouts, pipeline, shader, wgsl};
+use super::common::{blended, colour_pass, entries, layouts, shader, wgsl};
 use crate::Camera;
 use crate::gpu_scene::buffer_limit;
 use crate::layout::{
@@ -358,21 +358,31 @@ impl LinesPass {
             None,
         );
         let module = shader(device, "lines", &draw_source());
-        let draw = pipeline(
-            device,
-            PipelineSpec {
-                label: "lines",
-                layout: &draw_pipeline_layout,
+        // A strip of four corners a segment (`vs_main`).
+        let draw = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("lines"),
+            layout: Some(&draw_pipeline_layout),
+            vertex: wgpu::VertexState {
                 module: &module,
-                vertex: "vs_main",
-                cull: None,
-                fragment: "fs_main",
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
                 buffers: &[],
-                depth: None,
-                targets: &[Some(blended(colour))],
-                constants: &[],
             },
-        );
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleStrip,
+                ..Default::default()
+            },
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(blended(colour))],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
         LinesPass {
             scan_layout,
             scans,
@@ -469,7 +479,7 @@ impl LinesPass {
         pass.set_pipeline(&self.draw);
         for (chunk, bind) in lines.chunks.iter().zip(&binds) {
             pass.set_bind_group(0, bind, &[]);
-            pass.draw(0..6, 0..chunk.count - 1);
+            pass.draw(0..4, 0..chunk.count - 1);
         }
     }
 
