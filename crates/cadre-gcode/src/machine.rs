@@ -121,21 +121,31 @@ impl Machine {
 
     /// The active coordinate system's offset plus the G92 offset, mm.
     pub fn offset(&self) -> DVec3 {
+        self.work_offset() + self.g92_offset()
+    }
+
+    /// The active coordinate system's (G54–G59.3) offset, mm.
+    fn work_offset(&self) -> DVec3 {
         let system = (self.params.get(number::COORDINATE_SYSTEM).round() as usize).clamp(1, 9);
         let base = number::G54 + 20 * (system - 1);
-        let mut o = DVec3::new(
+        DVec3::new(
             self.params.get(base),
             self.params.get(base + 1),
             self.params.get(base + 2),
-        );
+        )
+    }
+
+    /// The G92 offset where it applies (else zero), mm.
+    fn g92_offset(&self) -> DVec3 {
         if self.params.get(number::G92_ON) == 1.0 {
-            o += DVec3::new(
+            DVec3::new(
                 self.params.get(number::G92),
                 self.params.get(number::G92 + 1),
                 self.params.get(number::G92 + 2),
-            );
+            )
+        } else {
+            DVec3::ZERO
         }
-        o
     }
 
     /// The position in program coordinates, mm.
@@ -344,25 +354,11 @@ impl Machine {
                 920 => {
                     // The current point becomes the given coordinates.
                     let unit = self.unit();
-                    let base_offset = self.offset()
-                        - if self.params.get(number::G92_ON) == 1.0 {
-                            DVec3::new(
-                                self.params.get(number::G92),
-                                self.params.get(number::G92 + 1),
-                                self.params.get(number::G92 + 2),
-                            )
-                        } else {
-                            DVec3::ZERO
-                        };
+                    let (work, current) = (self.work_offset(), self.g92_offset());
                     for (i, letter) in [b'x', b'y', b'z'].into_iter().enumerate() {
-                        let current = if self.params.get(number::G92_ON) == 1.0 {
-                            self.params.get(number::G92 + i)
-                        } else {
-                            0.0
-                        };
                         let value = match words.get(letter) {
-                            Some(v) => self.pos[i] - base_offset[i] - v * unit,
-                            None => current,
+                            Some(v) => self.pos[i] - work[i] - v * unit,
+                            None => current[i],
                         };
                         self.params.set(number::G92 + i, value);
                     }
@@ -610,15 +606,7 @@ impl Machine {
         }
         .clamp(1, 9);
         let base = number::G54 + 20 * (system - 1);
-        let g92 = if self.params.get(number::G92_ON) == 1.0 {
-            DVec3::new(
-                self.params.get(number::G92),
-                self.params.get(number::G92 + 1),
-                self.params.get(number::G92 + 2),
-            )
-        } else {
-            DVec3::ZERO
-        };
+        let g92 = self.g92_offset();
         for (i, letter) in [b'x', b'y', b'z'].into_iter().enumerate() {
             if let Some(v) = words.get(letter) {
                 let value = if l == 2.0 {

@@ -453,22 +453,8 @@ impl Renderer {
             return Ok(Vec::new());
         };
         gpu.queue.submit([encoder.finish()]);
-        let (tx, rx) = std::sync::mpsc::channel();
-        buffer
-            .slice(..)
-            .map_async(wgpu::MapMode::Read, move |r| drop(tx.send(r)));
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(RenderError::Poll)?;
-        rx.recv()
-            .map_err(RenderError::ReadbackLost)?
-            .map_err(RenderError::Map)?;
-        let mapped = buffer
-            .slice(..)
-            .get_mapped_range()
-            .map_err(RenderError::MapRange)?;
-        let out: Vec<f32> = bytemuck::cast_slice(&mapped[..4 * count as usize]).to_vec();
-        Ok(out)
+        let bytes = map_read(gpu, &buffer)?;
+        Ok(bytemuck::cast_slice(&bytes[..4 * count as usize]).to_vec())
     }
 
     /// The visibility buffer's (u, v) on the exact surface at every pixel (no supersampling),
@@ -1181,6 +1167,17 @@ pub(crate) fn read_region(
         },
     );
     gpu.queue.submit([encoder.finish()]);
+    let mapped = map_read(gpu, &buffer)?;
+    let mut out = Vec::with_capacity((row * h) as usize);
+    for y in 0..h as usize {
+        let start = y * padded as usize;
+        out.extend_from_slice(&mapped[start..start + row as usize]);
+    }
+    Ok(out)
+}
+
+/// The content of a `MAP_READ` buffer once the queue's work on it is done.
+fn map_read(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<u8>, RenderError> {
     let (tx, rx) = std::sync::mpsc::channel();
     buffer
         .slice(..)
@@ -1195,16 +1192,11 @@ pub(crate) fn read_region(
         .slice(..)
         .get_mapped_range()
         .map_err(RenderError::MapRange)?;
-    let mut out = Vec::with_capacity((row * h) as usize);
-    for y in 0..h as usize {
-        let start = y * padded as usize;
-        out.extend_from_slice(&mapped[start..start + row as usize]);
-    }
-    Ok(out)
+    Ok(mapped.to_vec())
 }
 
 /// sRGB component → linear.
-fn srgb_to_linear(c: f32) -> f32 {
+pub(crate) fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 {
         c / 12.92
     } else {

@@ -28,13 +28,7 @@ pub(crate) fn source() -> String {
 
 /// sRGB component → linear.
 fn linear(c: [f32; 4]) -> [f32; 4] {
-    let f = |x: f32| {
-        if x <= 0.04045 {
-            x / 12.92
-        } else {
-            ((x + 0.055) / 1.055).powf(2.4)
-        }
-    };
+    let f = crate::renderer::srgb_to_linear;
     [f(c[0]), f(c[1]), f(c[2]), c[3]]
 }
 
