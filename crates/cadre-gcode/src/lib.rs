@@ -13,9 +13,12 @@
 //! (`sub`/`endsub`/`return`/`call` with arguments in `#1`–`#30`), `if`/`elseif`/`else`,
 //! `while`, `do`…`while`, `repeat`, `break`, `continue`, all bounded ([`Limits`]).
 //!
+//! G5 cubic splines (a next G5 without I/J continuing the last's tangent) and G5.1 quadratic
+//! B-splines in the XY plane, drawn as feeds within 1 µm of the curve.
+//!
 //! Not supported, warned with their line while the rest still loads: cutter radius
-//! compensation (G41/G42: the programmed path is shown), splines and NURBS (G5, G5.1,
-//! G5.2), threading (G33, G76), inverse-time semantics (the F value is kept as read), rotary
+//! compensation (G41/G42: the programmed path is shown), NURBS (G5.2: drawn through their
+//! control points), threading (G33, G76), inverse-time semantics (the F value is kept as read), rotary
 //! axes (A, B, C), Fanuc M98/M99 subprograms. Nothing panics; a line that does not parse is
 //! a warning naming it, and the program goes on.
 //!

@@ -67,6 +67,9 @@ pub(crate) struct Machine {
     pub tool: u32,
     pub selected_tool: u32,
     pub cycle: CycleWords,
+    /// The last G5 spline's second control point (machine coordinates), for a next G5
+    /// without I/J, which continues it tangentially.
+    pub spline_tangent: Option<DVec3>,
     pub moves: Vec<Move>,
     pub warnings: Vec<Warning>,
     /// Warnings past the limit, counted.
@@ -93,6 +96,7 @@ impl Machine {
             tool: 0,
             selected_tool: 0,
             cycle: CycleWords::default(),
+            spline_tangent: None,
             moves: Vec::new(),
             warnings: Vec::new(),
             more_warnings: 0,
@@ -398,6 +402,10 @@ impl Machine {
             }
         }
         let moves = !motions.is_empty() || (words.has_axes() && !axes_used);
+        if moves && !axes_used && self.motion != Some(50) {
+            // Only a G5 right after a G5 continues its tangent.
+            self.spline_tangent = None;
+        }
         if moves && !axes_used {
             match self.motion {
                 None if words.has_axes() => {
@@ -418,10 +426,11 @@ impl Machine {
                     self.straight(line, words, MoveKind::Feed, machine_coordinates)
                 }
                 Some(20 | 30) => self.arc(line, words).map_err(err)?,
-                Some(50..=53) => {
+                Some(50 | 51) => self.spline(line, words).map_err(err)?,
+                Some(52 | 53) => {
                     self.warn(
                         line,
-                        "splines and NURBS (G5, G5.1, G5.2) are not supported: drawn as straight feeds through their points",
+                        "NURBS (G5.2) are not supported: drawn as straight feeds through their control points",
                     );
                     self.straight(line, words, MoveKind::Feed, false)
                 }
@@ -453,6 +462,72 @@ impl Machine {
             self.target(words)
         };
         self.emit(kind, line, to, None);
+    }
+
+    /// G5 (cubic, control points start + (I, J) and end + (P, Q); without I/J the last G5's
+    /// tangent goes on) and G5.1 (quadratic B-spline, control point start + (I, J)) in the XY
+    /// plane, drawn as feeds within 1 µm of the curve (the control polygon's second
+    /// differences bound the chords' deviation).
+    fn spline(&mut self, line: u32, words: &Words) -> Result<(), String> {
+        if self.plane != Axis::Z {
+            return Err("G5 and G5.1 splines are defined in the XY plane (G17) only".into());
+        }
+        let cubic = self.motion == Some(50);
+        let start = self.pos;
+        let end = self.target(words);
+        let unit = self.unit();
+        let offset = |a: u8, b: u8| -> Option<DVec3> {
+            match (words.get(a), words.get(b)) {
+                (None, None) => None,
+                (x, y) => Some(DVec3::new(
+                    x.unwrap_or(0.0) * unit,
+                    y.unwrap_or(0.0) * unit,
+                    0.0,
+                )),
+            }
+        };
+        let controls: Vec<DVec3> = if cubic {
+            let first = match (offset(b'i', b'j'), self.spline_tangent) {
+                (Some(d), _) => start + d,
+                // Tangent to the last G5: its second control point mirrored through its end.
+                (None, Some(c2)) => 2.0 * start - c2,
+                (None, None) => return Err("the first G5 needs I and J".into()),
+            };
+            let Some(d2) = offset(b'p', b'q') else {
+                return Err("G5 needs P and Q (the second control point from the end)".into());
+            };
+            vec![start, first, end + d2, end]
+        } else {
+            let Some(d) = offset(b'i', b'j') else {
+                return Err("G5.1 needs I and J (the control point from the start)".into());
+            };
+            vec![start, start + d, end]
+        };
+        // Chords within 1 µm: a Bézier of degree n deviates from its n-chord polyline by at
+        // most n(n − 1) max|ΔΔP| / (8 k²) with k chords.
+        let degree = (controls.len() - 1) as f64;
+        let second = controls
+            .windows(3)
+            .map(|w| (w[0] - 2.0 * w[1] + w[2]).length())
+            .fold(0.0, f64::max);
+        let chords = ((degree * (degree - 1.0) * second / (8.0 * 1e-3))
+            .sqrt()
+            .ceil() as usize)
+            .clamp(1, 4096);
+        for k in 1..=chords {
+            let t = k as f64 / chords as f64;
+            let p = if k == chords {
+                end
+            } else {
+                de_casteljau(&controls, t)
+            };
+            // The axial coordinate moves linearly (a spline is planar in XY).
+            let mut p = p;
+            p.z = start.z + (end.z - start.z) * t;
+            self.emit(MoveKind::Feed, line, p, None);
+        }
+        self.spline_tangent = cubic.then_some(controls[2]);
+        Ok(())
     }
 
     /// G2/G3: an arc or helix in the plane, about a centre from I/J/K or R.
@@ -619,6 +694,17 @@ impl Machine {
         }
         Ok(())
     }
+}
+
+/// The point at `t` of the Bézier curve of `controls`.
+fn de_casteljau(controls: &[DVec3], t: f64) -> DVec3 {
+    let mut points = controls.to_vec();
+    for level in 1..points.len() {
+        for i in 0..points.len() - level {
+            points[i] = points[i].lerp(points[i + 1], t);
+        }
+    }
+    points[0]
 }
 
 /// Whether `g` is a motion code (modal group 1).

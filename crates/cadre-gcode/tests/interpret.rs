@@ -275,6 +275,46 @@ fn endless_loops_and_deep_recursion_are_bounded() {
 }
 
 #[test]
+fn splines_are_feeds_on_the_curve() {
+    // G5.1 from (0, 0) to (10, 0) about the control point (5, 5): the quadratic's top is
+    // (5, 2.5); G5 cubics, the second going on tangentially without I/J.
+    let p = interpret(
+        "G0 X0 Y0\nG5.1 X10 Y0 I5 J5 F100\nG5 X20 Y0 I2 J2 P-2 Q2\nG5 X30 Y0 P-2 Q-2\nG18 G5 X40 I1 J1 P1 Q1\n",
+    );
+    let on = |line: u32| -> Vec<[f64; 3]> {
+        p.moves
+            .iter()
+            .filter(|m| m.line == line)
+            .map(|m| {
+                assert_eq!(m.kind, MoveKind::Feed);
+                m.end
+            })
+            .collect()
+    };
+    let quadratic = on(2);
+    assert!(quadratic.len() > 20, "{}", quadratic.len());
+    assert_eq!(*quadratic.last().unwrap(), [10.0, 0.0, 0.0]);
+    let top = quadratic.iter().map(|e| e[1]).fold(0.0, f64::max);
+    assert!((top - 2.5).abs() < 2e-3, "{top}");
+    for e in &quadratic {
+        // On the parabola y = x (10 − x) / 10 · … : for control (5, 5), y = x − x²/10.
+        let y = e[0] - e[0] * e[0] / 10.0;
+        assert!((e[1] - y).abs() < 1e-9, "{e:?}");
+    }
+    let first = on(3);
+    assert_eq!(*first.last().unwrap(), [20.0, 0.0, 0.0]);
+    // The continuation leaves (20, 0) along the mirror of (18, 2): towards (22, −2), so it
+    // first dips below the axis.
+    let second = on(4);
+    assert!(second[0][1] < 0.0, "{:?}", second[0]);
+    assert_eq!(*second.last().unwrap(), [30.0, 0.0, 0.0]);
+    // Outside G17: refused with a warning naming the line.
+    assert!(on(5).is_empty());
+    assert!(p.warnings.iter().any(|w| w.line == 5), "{:?}", p.warnings);
+    assert_eq!(p.warnings.len(), 1, "{:?}", p.warnings);
+}
+
+#[test]
 fn huge_helices_stay_bounded_when_sampled() {
     // P past 10,000 turns is refused with a warning; a hundred helices of 10,000 turns at a
     // nanometre would take 10¹¹ chords: the tolerance is coarsened to the bound instead.

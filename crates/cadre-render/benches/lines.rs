@@ -2,7 +2,8 @@
 //! a frame of an empty scene (the baseline: clears, shading, readback), the same frame with
 //! 10⁶ stippled segments (a spiral of sub-pixel segments and 1,000 toolpath-like zigzags),
 //! and the scan alone (with its 4 MB readback). The lines' cost is the difference of the
-//! first two. Run: `cargo bench -p cadre-render --bench lines`.
+//! first two. Run: `cargo bench -p cadre-render --bench lines` (`LINES_BENCH_SIZE=WxH` for
+//! another size than 1920x1080: a small one leaves the fragments out of the cost).
 
 // `criterion_group!` generates an undocumented function.
 #![allow(missing_docs)]
@@ -66,9 +67,16 @@ fn bench(c: &mut Criterion) {
         near: 1.0,
         far: 5000.0,
     };
+    let (w, h) = std::env::var("LINES_BENCH_SIZE")
+        .ok()
+        .and_then(|s| {
+            let (a, b) = s.split_once('x')?;
+            Some((a.parse().ok()?, b.parse().ok()?))
+        })
+        .unwrap_or((1920, 1080));
     let options = FrameOptions {
-        width: 1920,
-        height: 1080,
+        width: w,
+        height: h,
         supersample: 1,
         ..FrameOptions::default()
     };
@@ -96,7 +104,7 @@ fn bench(c: &mut Criterion) {
     group.bench_function("10^6 segments, scan + readback", |b| {
         b.iter(|| {
             renderer
-                .line_arc_lengths(&gpu, &lines, &camera, (1920, 1080))
+                .line_arc_lengths(&gpu, &lines, &camera, (w, h))
                 .unwrap()
         })
     });
