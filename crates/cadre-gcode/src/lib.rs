@@ -196,6 +196,18 @@ impl Default for Limits {
     }
 }
 
+/// The file extensions CAM post-processors give programs (compared without case).
+pub const PROGRAM_EXTENSIONS: [&str; 9] = [
+    "ngc", "nc", "gcode", "gc", "tap", "cnc", "iso", "mpf", "eia",
+];
+
+/// Whether `path` names a CAM program, by its extension ([`PROGRAM_EXTENSIONS`]).
+pub fn is_program_path(path: &std::path::Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| PROGRAM_EXTENSIONS.iter().any(|x| e.eq_ignore_ascii_case(x)))
+}
+
 /// Interprets `text` with the default [`Limits`].
 pub fn interpret(text: &str) -> Program {
     interpret_with(text, &Limits::default())

@@ -71,13 +71,7 @@ impl Toolpath {
 
     /// Whether `path` names a CAM program (by its extension).
     pub fn is_program(path: &std::path::Path) -> bool {
-        path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
-            [
-                "ngc", "nc", "gcode", "gc", "tap", "cnc", "iso", "mpf", "eia",
-            ]
-            .iter()
-            .any(|x| e.eq_ignore_ascii_case(x))
-        })
+        cadre_gcode::is_program_path(path)
     }
 
     /// What of it a frame shows.

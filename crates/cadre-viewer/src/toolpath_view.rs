@@ -45,7 +45,7 @@ pub(crate) fn add_toolpath(
     let lines = lines_for(toolpath, view_height, rows);
     let start = lines.point_at_travel(0.0).unwrap_or_default();
     let diameter = toolpath.tool_diameter.max(1e-3);
-    let marker = tool_marker(start, diameter, (4.0 * diameter).max(1.0), u32::MAX - 1);
+    let marker = tool_marker(start, diameter);
     let tool = marker.map(|m| {
         scene.primitives.push(m);
         scene.primitives.len() - 1
@@ -80,7 +80,12 @@ impl DrawnToolpath {
             self.colour_by = toolpath.colour_by;
             self.view_height = view_height;
         }
-        if let (Some(k), Some(tip)) = (self.tool, self.lines.point_at_travel(toolpath.up_to)) {
+        // (Walking the path for the tool's place only while it is shown.)
+        let tip = toolpath
+            .simulate
+            .then(|| self.lines.point_at_travel(toolpath.up_to))
+            .flatten();
+        if let (Some(k), Some(tip)) = (self.tool, tip) {
             prepared.move_primitive(
                 k,
                 cadre_geom::Frame {

@@ -156,15 +156,17 @@ fn hsv(h: f64, s: f64, v: f64) -> (f64, f64, f64) {
     }
 }
 
-/// The tool at `tip` as an exact cylinder of `diameter` and `length` standing on its tip
-/// along +Z (the spindle's axis on a 3-axis mill), capped, ray cast like any quadric.
-pub fn tool_marker(
-    tip: DVec3,
-    diameter: f64,
-    length: f64,
-    face_id: u32,
-) -> Option<AnalyticPrimitive> {
+/// The face id the tool marker's pixels carry (none of a model's).
+pub const TOOL_FACE_ID: u32 = u32::MAX - 1;
+
+/// The tool at `tip` as an exact cylinder of `diameter` (at least 1 µm), four diameters long
+/// (at least 1 mm), standing on its tip along +Z (the spindle's axis on a 3-axis mill),
+/// capped, ray cast like any quadric; its pixels carry [`TOOL_FACE_ID`].
+pub fn tool_marker(tip: DVec3, diameter: f64) -> Option<AnalyticPrimitive> {
     use cadre_geom::{CutKind, CutQuadric, Frame, HalfSpace, Quadric};
+    let diameter = diameter.max(1e-3);
+    let length = (4.0 * diameter).max(1.0);
+    let face_id = TOOL_FACE_ID;
     let cut = CutQuadric {
         quadric: Quadric::cylinder(0.5 * diameter),
         planes: vec![
@@ -208,7 +210,7 @@ mod tests {
             "{}",
             cut.points.len()
         );
-        assert!(tool_marker(DVec3::ZERO, 6.0, 20.0, 1).is_some());
+        assert!(tool_marker(DVec3::ZERO, 6.0).is_some());
         assert_eq!(pixel_tolerance(100.0, 400), 0.0625);
     }
 }

@@ -389,6 +389,36 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     })
 }
 
+/// The frame options every input shares: size, anti-aliasing, background, backdrop and
+/// grid, display mode, edge width, shadows.
+fn frame_options(args: &RenderArgs, gpu: &Gpu) -> Result<FrameOptions> {
+    let (w, h) = args.size;
+    let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
+    let (background, grid) = backdrop(args)?;
+    Ok(FrameOptions {
+        width: w,
+        height: h,
+        supersample,
+        smooth,
+        background: args.background,
+        backdrop: background,
+        grid,
+        mode: args.mode,
+        edge_width: args.edge_width,
+        shadows: args.shadows,
+        ..FrameOptions::default()
+    })
+}
+
+/// The camera `--camera` or `--view` asks for, fitted to `lo`–`hi`, before any zoom.
+fn fitted_camera(args: &RenderArgs, (lo, hi): (glam::DVec3, glam::DVec3)) -> Camera {
+    let (w, h) = args.size;
+    match args.camera {
+        Some(c) => Camera::looking((c.eye, c.target, c.up), c.fov_y, (lo, hi)),
+        None => Camera::fit(lo, hi, args.view, args.ortho, f64::from(w) / f64::from(h)),
+    }
+}
+
 /// A CAM program drawn alone: its path fitted in the view.
 fn render_program(gpu: &Gpu, renderer: &Renderer, args: &RenderArgs) -> Result<RgbaImage> {
     let input = &args.input;
@@ -396,11 +426,7 @@ fn render_program(gpu: &Gpu, renderer: &Renderer, args: &RenderArgs) -> Result<R
     let Some((lo, hi)) = program_bounds(&program) else {
         bail!("{}: no move to draw; no image written", input.display());
     };
-    let (w, h) = args.size;
-    let fitted = match args.camera {
-        Some(c) => Camera::looking((c.eye, c.target, c.up), c.fov_y, (lo, hi)),
-        None => Camera::fit(lo, hi, args.view, args.ortho, f64::from(w) / f64::from(h)),
-    };
+    let fitted = fitted_camera(args, (lo, hi));
     let camera = if args.zoom == 1.0 {
         fitted
     } else {
@@ -410,20 +436,13 @@ fn render_program(gpu: &Gpu, renderer: &Renderer, args: &RenderArgs) -> Result<R
         toolpath: Some(input.clone()),
         ..args.toolpath.clone()
     };
-    let (scene, lines) = with_toolpath(RenderScene::default(), &program, &toolpath, (&camera, h))?;
-    let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
-    let (background, grid) = backdrop(args)?;
-    let options = FrameOptions {
-        width: w,
-        height: h,
-        supersample,
-        smooth,
-        background: args.background,
-        backdrop: background,
-        grid,
-        mode: args.mode,
-        ..FrameOptions::default()
-    };
+    let (scene, lines) = with_toolpath(
+        RenderScene::default(),
+        &program,
+        &toolpath,
+        (&camera, args.size.1),
+    )?;
+    let options = frame_options(args, gpu)?;
     let t0 = Instant::now();
     let prepared = renderer.prepare(gpu, &scene);
     let image = renderer
@@ -492,20 +511,9 @@ pub(crate) fn render_scene_file(
     } else {
         fitted.zoomed_at(0.5 * (lo + hi), args.zoom, (lo, hi))
     };
-    let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
-    let (background, grid) = backdrop(args)?;
     let mut options = FrameOptions {
-        width: w,
-        height: h,
-        supersample,
-        smooth,
-        background: args.background,
-        backdrop: background,
-        grid,
-        mode: args.mode,
-        edge_width: args.edge_width,
         shadows: args.shadows || loaded.shadows,
-        ..FrameOptions::default()
+        ..frame_options(args, gpu)?
     };
     if !loaded.lights.is_empty() {
         options.lights = loaded.lights;
@@ -727,10 +735,7 @@ fn draw_file(
             with_trims(renderer, scene, model, relative, input)
         }
     };
-    let fitted = match args.camera {
-        Some(c) => Camera::looking((c.eye, c.target, c.up), c.fov_y, (lo, hi)),
-        None => Camera::fit(lo, hi, args.view, args.ortho, f64::from(w) / f64::from(h)),
-    };
+    let fitted = fitted_camera(args, (lo, hi));
     let camera = if args.zoom == 1.0 {
         fitted
     } else {
@@ -738,23 +743,11 @@ fn draw_file(
         let point = centre_point(&caster, &fitted, (lo, hi));
         fitted.zoomed_at(point, args.zoom, (lo, hi))
     };
-    let (supersample, smooth) = args.antialias.resolve(args.supersample, gpu);
-    let (background, grid) = backdrop(args)?;
     let options = FrameOptions {
-        width: w,
-        height: h,
-        supersample,
-        smooth,
         // Trimmed edges' analytic coverage comes on top of either (`--method trim`).
         analytic_coverage: args.antialias != Antialias::None,
-        background: args.background,
-        backdrop: background,
-        grid,
-        mode: args.mode,
-        edge_width: args.edge_width,
         cracks: args.cracks.options(),
-        shadows: args.shadows,
-        ..FrameOptions::default()
+        ..frame_options(args, gpu)?
     };
     let (scene, lines) = match &program {
         Some(program) => with_toolpath(scene, program, &args.toolpath, (&camera, h))?,

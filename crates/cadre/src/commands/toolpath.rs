@@ -72,13 +72,7 @@ fn parse_box(s: &str) -> Result<(DVec3, DVec3), String> {
 
 /// Whether `path` looks like a G-code program (by its extension).
 pub fn is_program(path: &Path) -> bool {
-    path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
-        [
-            "ngc", "nc", "gcode", "gc", "tap", "cnc", "iso", "mpf", "eia",
-        ]
-        .iter()
-        .any(|x| e.eq_ignore_ascii_case(x))
-    })
+    cadre_gcode::is_program_path(path)
 }
 
 /// Reads and interprets a program, printing its warnings (the first 20) on stderr.
@@ -170,11 +164,8 @@ pub fn with_toolpath(
     }
     let tool = args.up_to.and_then(|d| lines.point_at_travel(d));
     let mut scene = scene.with_lines(lines);
-    if let Some(tip) = tool {
-        let length = (4.0 * args.tool_diameter).max(1.0);
-        if let Some(marker) = tool_marker(tip, args.tool_diameter.max(1e-3), length, u32::MAX - 1) {
-            scene.primitives.push(marker);
-        }
+    if let Some(marker) = tool.and_then(|tip| tool_marker(tip, args.tool_diameter)) {
+        scene.primitives.push(marker);
     }
     Ok((
         scene,
