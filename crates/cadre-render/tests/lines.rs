@@ -248,6 +248,7 @@ fn dash_ends_land_within_half_a_pixel_of_the_reference() {
     let width = 200u32;
     let mut worst = 0.0f64;
     let mut worst_coverage = 0.0f64;
+    let mut shifted_worst = 0.0f64;
     let mut checked = 0;
     for (name, _) in Stipple::PRESETS.iter().skip(1) {
         let mut rows = Vec::new();
@@ -321,8 +322,14 @@ fn dash_ends_land_within_half_a_pixel_of_the_reference() {
                 worst = worst.max((a - b).abs());
                 checked += 1;
             }
+            // Negative control: the dash ends of the pattern started one pixel later are
+            // told apart.
+            for (a, b) in inner.iter().zip(&expected) {
+                shifted_worst = shifted_worst.max((a - (b + 1.0)).abs());
+            }
         }
     }
+    assert!(shifted_worst > 0.5, "{shifted_worst}");
     eprintln!(
         "{checked} dash ends, worst {worst:.3} px from the f64 reference; \
          worst pixel coverage {worst_coverage:.3} from the pattern's box filter"
