@@ -294,9 +294,22 @@ pub struct PreparedScene {
     /// The scene's line set on the GPU ([`crate::RenderScene::lines`]), set by
     /// [`crate::Renderer::prepare`].
     pub(crate) lines: Option<crate::passes::lines::GpuLines>,
+    /// The scene's labels laid out and on the GPU ([`crate::RenderScene::labels`]), set by
+    /// [`crate::Renderer::prepare`].
+    pub(crate) text: Option<crate::passes::text::GpuText>,
 }
 
 impl PreparedScene {
+    /// How many quads (glyphs and label boxes) the text pass draws, in one draw call.
+    pub fn text_quads(&self) -> u32 {
+        self.text.as_ref().map_or(0, |t| t.quad_count())
+    }
+
+    /// Characters of the labels no bundled font has (drawn as nothing), sorted.
+    pub fn missing_glyphs(&self) -> &[char] {
+        self.text.as_ref().map_or(&[], |t| &t.missing)
+    }
+
     /// The scene's bounding-box diagonal, world units (0 when it is empty).
     pub fn diagonal(&self) -> f64 {
         self.diagonal
@@ -510,6 +523,7 @@ impl PreparedScene {
             primitives: primitives.clone(),
             primitive_materials,
             lines: None,
+            text: None,
             diagonal,
             bounds,
             trimmed_faces: surfaces.len(),

@@ -19,6 +19,10 @@ pub enum Binding {
     FloatTexture,
     /// A 2D `u32` texture read with `textureLoad`.
     UintTexture,
+    /// A 2D `f32` texture read through a filtering sampler (naga sees a [`Binding::FloatTexture`]).
+    FilteredTexture,
+    /// A filtering sampler.
+    Sampler,
     /// A read-write storage buffer of `atomic<u32>` (the edges' coverage, summed by the
     /// compute rasterizer).
     AtomicStorage,
@@ -42,7 +46,7 @@ pub struct PassShader {
 
 /// Every shader of the renderer, with what the Rust side binds to it (for the layout tests).
 pub fn pass_shaders() -> Vec<PassShader> {
-    use crate::passes::{backdrop, cracks, edges, lines, pick, shade, visibility};
+    use crate::passes::{backdrop, cracks, edges, lines, pick, shade, text, visibility};
     let shader = |name, source, bindings, instanced| PassShader {
         name,
         source,
@@ -127,6 +131,7 @@ pub fn pass_shaders() -> Vec<PassShader> {
         ),
         shader("lines", lines::draw_source(), lines::DRAW_BINDINGS, false),
         shader("backdrop", backdrop::source(), backdrop::BINDINGS, false),
+        shader("text", text::source(), text::BINDINGS, false),
     ]
 }
 
@@ -649,6 +654,65 @@ pub struct BackdropUniform {
     pub modes: [u32; 4],
 }
 
+/// One quad of the text pass: a glyph, or the box behind a label ([`crate::text`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct TextGlyph {
+    /// The quad around the label's anchor, em, y up: left, bottom, right, top.
+    pub plane: [f32; 4],
+    /// Its atlas texels: left, top, right, bottom (a box: unused).
+    pub texels: [f32; 4],
+    /// Index of its label.
+    pub label: u32,
+    /// [`TEXT_QUAD_GLYPH`] or [`TEXT_QUAD_BOX`].
+    pub kind: u32,
+    /// Padding to 48 bytes.
+    pub pad: [u32; 2],
+}
+
+/// A label as the text pass reads it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct TextLabel {
+    /// Anchor: set-local position (billboard, plane), or output pixels (screen, `xy`).
+    pub origin: [f32; 4],
+    /// Plane labels: the reading direction × model units per em; others unused.
+    pub x_axis: [f32; 4],
+    /// Plane labels: the up direction × model units per em; others unused.
+    pub y_axis: [f32; 4],
+    /// Linear text colour and alpha.
+    pub colour: [f32; 4],
+    /// Linear box colour and alpha.
+    pub background: [f32; 4],
+    /// Output pixels per em (screen, billboard), screen offset x, y (pixels, y down), unused.
+    pub params: [f32; 4],
+    /// Anchor kind (`TEXT_ANCHOR_*`), depth tested (1) or on top (0), unused, unused.
+    pub flags: [u32; 4],
+}
+
+/// The text pass's per-frame constants.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct TextFrame {
+    /// Set-local → clip space (the labels' origin placed relative to the eye in `f64`).
+    pub to_clip: [[f32; 4]; 4],
+    /// Target width and height (pixels), target pixels per output pixel, unused.
+    pub viewport: [f32; 4],
+    /// Atlas width and height (texels), distance range (texels), unused.
+    pub atlas: [f32; 4],
+}
+
+/// [`TextGlyph::kind`]: a glyph from the atlas.
+pub const TEXT_QUAD_GLYPH: u32 = 0;
+/// [`TextGlyph::kind`]: a label's box.
+pub const TEXT_QUAD_BOX: u32 = 1;
+/// [`TextLabel::flags`]`[0]`: fixed to the screen.
+pub const TEXT_ANCHOR_SCREEN: u32 = 0;
+/// [`TextLabel::flags`]`[0]`: at a scene point, facing the viewer.
+pub const TEXT_ANCHOR_BILLBOARD: u32 = 1;
+/// [`TextLabel::flags`]`[0]`: in a plane of the scene.
+pub const TEXT_ANCHOR_PLANE: u32 = 2;
+
 /// [`LineStyleGpu::join`]: miter.
 pub const LINE_JOIN_MITER: u32 = 0;
 /// [`LineStyleGpu::join`]: round.
@@ -696,6 +760,13 @@ gpu_struct!(
     ]
 );
 gpu_struct!(LightGpu, "Light", [position, direction, colour, params]);
+gpu_struct!(TextGlyph, "TextGlyph", [plane, texels, label, kind, pad]);
+gpu_struct!(
+    TextLabel,
+    "TextLabel",
+    [origin, x_axis, y_axis, colour, background, params, flags]
+);
+gpu_struct!(TextFrame, "TextFrame", [to_clip, viewport, atlas]);
 gpu_struct!(LightRig, "LightRig", [lights]);
 gpu_struct!(Segment, "Segment", [a, b, faces, pad]);
 gpu_struct!(

@@ -68,6 +68,7 @@ pub mod scene_file;
 pub mod shadows;
 mod smooth;
 mod solid;
+pub mod text;
 pub mod trim_surfaces;
 pub mod trim_sweeps;
 mod vertex_cache;
@@ -77,6 +78,7 @@ mod viewport;
 pub use analytic::{AnalyticPrimitive, AnalyticShape, QuadricShape};
 pub use backdrop::{Background, GroundGrid};
 pub use bounds::scene_bounds;
+pub use cadre_text::{Align, Baseline};
 pub use camera::{Camera, Frustum, Projection, ViewPreset};
 pub use coverage::MAX_IMAGE_COVERAGE;
 pub use error::RenderError;
@@ -92,6 +94,7 @@ pub use placements::{FLAT_LIMIT, MAX_LOCALS_PER_NODE};
 pub use render_scene::{RenderFace, RenderScene};
 pub use renderer::{DisplayMode, FrameOptions, Renderer};
 pub use smooth::smooth_edges;
+pub use text::{Label, LabelSet, TextAnchor, TextDepth, TextHeight};
 pub use trim_surfaces::TrimScene;
 pub use view::{
     CRACK_FILLED, GAP_CLOSED, InstanceStyle, MAX_HIGHLIGHTED, MAX_SECTIONS, Pick, SECTION_CAP,

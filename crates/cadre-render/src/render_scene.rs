@@ -33,6 +33,8 @@ pub struct RenderScene {
     pub trim: Option<std::sync::Arc<crate::TrimScene>>,
     /// Polylines drawn over the surfaces (toolpaths, sketches, wires) by the lines pass.
     pub lines: crate::LineSet,
+    /// Labels drawn over the surfaces (part names, notes, PMI text) by the text pass.
+    pub labels: crate::LabelSet,
 }
 
 /// What one face id stands for.
@@ -91,6 +93,7 @@ impl RenderScene {
             primitives: Vec::new(),
             trim: None,
             lines: crate::LineSet::default(),
+            labels: crate::LabelSet::default(),
         }
     }
 
@@ -117,6 +120,12 @@ impl RenderScene {
     /// This scene with `lines` drawn over its surfaces.
     pub fn with_lines(mut self, lines: crate::LineSet) -> RenderScene {
         self.lines = lines;
+        self
+    }
+
+    /// This scene with `labels` drawn over its surfaces.
+    pub fn with_labels(mut self, labels: crate::LabelSet) -> RenderScene {
+        self.labels = labels;
         self
     }
 

@@ -14,6 +14,7 @@ use crate::passes::instances::InstanceLayout;
 use crate::passes::lines::{GpuLines, LinesPass};
 use crate::passes::pick::PickPass;
 use crate::passes::shade::{COLOUR, ShadeInputs, ShadePass, ShadeVariant};
+use crate::passes::text::{GpuText, TextPass};
 use crate::passes::visibility::{Phase, VisibilityPass, VisibilityTargets};
 use crate::view::{MAX_HIGHLIGHTED, MAX_SECTIONS, ViewState};
 use crate::viewport::{LastFrame, Viewport};
@@ -149,6 +150,8 @@ pub struct Renderer {
     crack_support: (bool, bool),
     /// The lines pass, built on the first frame with lines.
     lines: std::sync::OnceLock<LinesPass>,
+    /// The text pass, built on the first frame with labels.
+    text: std::sync::OnceLock<TextPass>,
     /// The backdrop pass, built on the first frame with a gradient, an image or a grid.
     backdrop: std::sync::OnceLock<crate::passes::backdrop::BackdropPass>,
 }
@@ -178,6 +181,7 @@ impl Renderer {
             cracks: std::sync::OnceLock::new(),
             crack_support: crack_support(gpu),
             lines: std::sync::OnceLock::new(),
+            text: std::sync::OnceLock::new(),
             backdrop: std::sync::OnceLock::new(),
         };
         match pollster::block_on(scope.pop()) {
@@ -196,6 +200,12 @@ impl Renderer {
     /// without uploading its surfaces again.
     pub fn replace_lines(&self, gpu: &Gpu, scene: &mut PreparedScene, lines: &crate::LineSet) {
         scene.lines = GpuLines::new(gpu, lines, !gpu.compute);
+    }
+
+    /// Replaces the labels of a prepared scene (laid out again) without uploading its
+    /// surfaces again.
+    pub fn replace_labels(&self, gpu: &Gpu, scene: &mut PreparedScene, labels: &crate::LabelSet) {
+        scene.text = GpuText::new(gpu, labels);
     }
 
     /// This renderer timing each frame's stages on the GPU (timestamps between them, where
@@ -345,6 +355,7 @@ impl Renderer {
             self.visibility.draws_trims(),
         );
         prepared.lines = GpuLines::new(gpu, &scene.lines, !gpu.compute);
+        prepared.text = GpuText::new(gpu, &scene.labels);
         prepared
     }
 
@@ -736,8 +747,17 @@ impl Renderer {
             );
             (pass, uniform)
         });
+        let text = match (&scene.text, readback.shaded()) {
+            (Some(text), true) => {
+                let pass = self.text.get_or_init(|| TextPass::new(gpu, self.colour));
+                let scale = w as f32 / options.width.max(1) as f32;
+                Some((pass, text, text.frame(camera, (w, h), scale)))
+            }
+            _ => None,
+        };
         let shading = Shading {
             lines,
+            text,
             backdrop,
             queue: &gpu.queue,
             device,
@@ -986,6 +1006,8 @@ struct Shading<'a> {
     draw_lines: bool,
     /// The lines pass and the scene's line set, when it has one (its scan recorded).
     lines: Option<(&'a LinesPass, &'a GpuLines)>,
+    /// The text pass, the scene's laid-out labels and this frame's constants for them.
+    text: Option<(&'a TextPass, &'a GpuText, crate::layout::TextFrame)>,
     /// The backdrop pass and its constants, when the frame has a gradient, an image or a
     /// grid; and the queue it uploads with.
     backdrop: Option<(
@@ -1071,6 +1093,7 @@ impl Renderer {
             draw_lines,
             shadow,
             lines,
+            text,
             backdrop,
             queue,
         } = *s;
@@ -1122,6 +1145,15 @@ impl Renderer {
         }
         if let Some((pass, set)) = lines {
             pass.record_draw(device, encoder, (frame, set), &targets.depth, colour_view);
+        }
+        if let Some((pass, set, text_frame)) = &text {
+            pass.record(
+                (device, queue),
+                encoder,
+                (frame, set, text_frame),
+                &targets.depth,
+                colour_view,
+            );
         }
     }
 }

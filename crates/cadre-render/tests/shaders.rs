@@ -8,7 +8,7 @@ use cadre_render::layout::{
     Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE, FILL_BACKGROUND, FILL_NONE, FILL_SHADED,
     FrameUniform, GpuStruct, LightGpu, LightRig, LineFrame, LinePoint, LineStyleGpu, Local,
     Material, Member, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Primitive,
-    Segment, TrimSurface, TrimTask,
+    Segment, TextFrame, TextGlyph, TextLabel, TrimSurface, TrimTask,
 };
 use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders};
 
@@ -160,6 +160,9 @@ fn shaders_validate_and_share_the_rust_layouts() {
             ("LineStyle", check::<LineStyleGpu>(pass, &m)),
             ("LineFrame", check::<LineFrame>(pass, &m)),
             ("BackdropUniform", check::<BackdropUniform>(pass, &m)),
+            ("TextGlyph", check::<TextGlyph>(pass, &m)),
+            ("TextLabel", check::<TextLabel>(pass, &m)),
+            ("TextFrame", check::<TextFrame>(pass, &m)),
         ] {
             if hit.unwrap_or_else(|e| panic!("{e}")) {
                 *found.entry(name).or_default() += 1;
@@ -167,7 +170,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         }
     }
     // Every layout was really compared somewhere (naga drops nothing we rely on).
-    assert_eq!(found.len(), 16, "{found:?}");
+    assert_eq!(found.len(), 19, "{found:?}");
 }
 
 #[test]
@@ -300,6 +303,9 @@ fn naga_bindings(module: &naga::Module, group: u32) -> Result<Vec<(u32, Binding)
                 naga::ScalarKind::Uint => Binding::UintTexture,
                 other => return Err(format!("texture of {other:?}")),
             },
+            (naga::AddressSpace::Handle, naga::TypeInner::Sampler { comparison: false }) => {
+                Binding::Sampler
+            }
             (space, inner) => return Err(format!("{:?}: {space:?} {inner:?}", var.name)),
         };
         out.push((rb.binding, binding));
@@ -310,10 +316,14 @@ fn naga_bindings(module: &naga::Module, group: u32) -> Result<Vec<(u32, Binding)
 
 /// Compares a pass's Rust binding list (binding = index) with its WGSL declarations.
 fn compare_bindings(pass: &str, rust: &[Binding], wgsl: &[(u32, Binding)]) -> Result<(), String> {
+    // WGSL does not say whether a float texture is filtered: the sampler bound with it does.
     let rust: Vec<(u32, Binding)> = rust
         .iter()
         .enumerate()
-        .map(|(i, b)| (i as u32, *b))
+        .map(|(i, b)| match b {
+            Binding::FilteredTexture => (i as u32, Binding::FloatTexture),
+            b => (i as u32, *b),
+        })
         .collect();
     if rust != wgsl {
         return Err(format!(
@@ -398,6 +408,17 @@ fn the_shaders_flags_are_the_rust_flags() {
             "LINE_HIDDEN_STYLED",
             cadre_render::layout::LINE_HIDDEN_STYLED,
         ),
+        ("TEXT_QUAD_GLYPH", cadre_render::layout::TEXT_QUAD_GLYPH),
+        ("TEXT_QUAD_BOX", cadre_render::layout::TEXT_QUAD_BOX),
+        (
+            "TEXT_ANCHOR_SCREEN",
+            cadre_render::layout::TEXT_ANCHOR_SCREEN,
+        ),
+        (
+            "TEXT_ANCHOR_BILLBOARD",
+            cadre_render::layout::TEXT_ANCHOR_BILLBOARD,
+        ),
+        ("TEXT_ANCHOR_PLANE", cadre_render::layout::TEXT_ANCHOR_PLANE),
     ] {
         assert_eq!(constant_u32(&visibility, name), Some(value), "{name}");
     }

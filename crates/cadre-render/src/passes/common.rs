@@ -63,6 +63,17 @@ pub(crate) fn entries(
                 Binding::UintTexture => {
                     texture_entry(i, wgpu::TextureSampleType::Uint, texture_stages)
                 }
+                Binding::FilteredTexture => texture_entry(
+                    i,
+                    wgpu::TextureSampleType::Float { filterable: true },
+                    texture_stages,
+                ),
+                Binding::Sampler => wgpu::BindGroupLayoutEntry {
+                    binding: i,
+                    visibility: texture_stages,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
             }
         })
         .collect()

@@ -136,6 +136,37 @@ struct BackdropUniform {
     modes: vec4<u32>,
 }
 
+struct TextGlyph {
+    plane: vec4<f32>,
+    texels: vec4<f32>,
+    label: u32,
+    kind: u32,
+    pad: vec2<u32>,
+}
+
+struct TextLabel {
+    origin: vec4<f32>,
+    x_axis: vec4<f32>,
+    y_axis: vec4<f32>,
+    colour: vec4<f32>,
+    background: vec4<f32>,
+    params: vec4<f32>,
+    flags: vec4<u32>,
+}
+
+struct TextFrame {
+    to_clip: mat4x4<f32>,
+    viewport: vec4<f32>,
+    atlas: vec4<f32>,
+}
+
+// `TextGlyph.kind` and `TextLabel.flags[0]` (layout::TEXT_*).
+const TEXT_QUAD_GLYPH: u32 = 0u;
+const TEXT_QUAD_BOX: u32 = 1u;
+const TEXT_ANCHOR_SCREEN: u32 = 0u;
+const TEXT_ANCHOR_BILLBOARD: u32 = 1u;
+const TEXT_ANCHOR_PLANE: u32 = 2u;
+
 struct LineFrame {
     to_clip: mat4x4<f32>,
     viewport: vec4<f32>,

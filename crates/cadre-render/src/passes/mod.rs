@@ -14,4 +14,5 @@ pub(crate) mod instances;
 pub(crate) mod lines;
 pub(crate) mod pick;
 pub(crate) mod shade;
+pub(crate) mod text;
 pub(crate) mod visibility;

@@ -1,0 +1,162 @@
+//! Labels: text drawn from multi-channel signed distance fields (seed 003), every glyph of
+//! every label of a frame in one instanced draw (`passes/text`).
+//!
+//! A [`Label`] is laid out once (`cadre_text`: the bundled Noto fonts with their fallback
+//! chain for GD&T symbols, HarfRust shaping with kerning) into glyph quads in em; the
+//! camera only moves the anchors, in the vertex shader. A label is fixed to the screen,
+//! stands at a point of the scene facing the viewer (sized in pixels), or lies in a plane of
+//! the scene (an annotation plane; sized in model units). It is tested against the
+//! visibility buffer's depth or drawn on top, over an optional box.
+
+use cadre_text::{Align, Baseline};
+use glam::{DVec3, Vec2};
+
+/// Where a label is and how it turns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TextAnchor {
+    /// Fixed to the screen at this position (output pixels from the top-left corner).
+    Screen(Vec2),
+    /// At this point of the scene, facing the viewer, moved by `offset` output pixels
+    /// (x right, y down).
+    Billboard {
+        /// The point (model units).
+        point: DVec3,
+        /// Screen offset, pixels.
+        offset: Vec2,
+    },
+    /// Lying in a plane of the scene: the text's baseline along `x_axis`, its up along
+    /// `y_axis` (both unit vectors).
+    Plane {
+        /// The anchor (model units).
+        origin: DVec3,
+        /// Reading direction.
+        x_axis: DVec3,
+        /// Up direction.
+        y_axis: DVec3,
+    },
+}
+
+/// How tall a label's capital letters are.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TextHeight {
+    /// Output pixels (screen and billboard labels).
+    Pixels(f32),
+    /// Model units (labels in a plane; the drawing's lettering height).
+    Model(f64),
+}
+
+/// Whether surfaces in front hide a label.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TextDepth {
+    /// Hidden where the visibility buffer has a surface in front.
+    Tested,
+    /// Always drawn.
+    #[default]
+    OnTop,
+}
+
+/// One label.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Label {
+    /// The text (lines split at `\n`).
+    pub text: String,
+    /// Where it is.
+    pub anchor: TextAnchor,
+    /// Cap height.
+    pub height: TextHeight,
+    /// sRGB colour and alpha.
+    pub colour: [f32; 4],
+    /// A box behind the text (sRGB colour and alpha), if any.
+    pub background: Option<[f32; 4]>,
+    /// Horizontal alignment on the anchor.
+    pub align: Align,
+    /// Which height of the block is on the anchor.
+    pub baseline: Baseline,
+    /// Depth test.
+    pub depth: TextDepth,
+}
+
+impl Label {
+    /// Black text `height` pixels tall facing the viewer at `point`, left-aligned, its
+    /// middle on the point, on top.
+    pub fn billboard(text: impl Into<String>, point: DVec3, height: f32) -> Label {
+        Label {
+            text: text.into(),
+            anchor: TextAnchor::Billboard {
+                point,
+                offset: Vec2::ZERO,
+            },
+            height: TextHeight::Pixels(height),
+            colour: [0.0, 0.0, 0.0, 1.0],
+            background: None,
+            align: Align::Left,
+            baseline: Baseline::Middle,
+            depth: TextDepth::OnTop,
+        }
+    }
+
+    /// Black text `height` pixels tall at `position` on the screen (pixels from the
+    /// top-left), its first baseline there.
+    pub fn screen(text: impl Into<String>, position: Vec2, height: f32) -> Label {
+        Label {
+            anchor: TextAnchor::Screen(position),
+            baseline: Baseline::Alphabetic,
+            ..Label::billboard(text, DVec3::ZERO, height)
+        }
+    }
+
+    /// Black text `height` model units tall lying in the plane through `origin` spanned by
+    /// `x_axis` (reading direction) and `y_axis` (up), depth-tested.
+    pub fn in_plane(
+        text: impl Into<String>,
+        origin: DVec3,
+        (x_axis, y_axis): (DVec3, DVec3),
+        height: f64,
+    ) -> Label {
+        Label {
+            anchor: TextAnchor::Plane {
+                origin,
+                x_axis: x_axis.normalize_or(DVec3::X),
+                y_axis: y_axis.normalize_or(DVec3::Y),
+            },
+            height: TextHeight::Model(height),
+            baseline: Baseline::Alphabetic,
+            depth: TextDepth::Tested,
+            ..Label::billboard(text, origin, 1.0)
+        }
+    }
+
+    /// The point of the scene the label hangs on (`None` for a screen label).
+    pub fn point(&self) -> Option<DVec3> {
+        match self.anchor {
+            TextAnchor::Screen(_) => None,
+            TextAnchor::Billboard { point, .. } => Some(point),
+            TextAnchor::Plane { origin, .. } => Some(origin),
+        }
+    }
+}
+
+/// Labels drawn over the scene, in order (later ones over earlier ones).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LabelSet {
+    /// The labels.
+    pub labels: Vec<Label>,
+}
+
+impl LabelSet {
+    /// Whether there is nothing to draw.
+    pub fn is_empty(&self) -> bool {
+        self.labels.iter().all(|l| l.text.trim().is_empty())
+    }
+
+    /// The box of the labels' scene points (screen labels have none).
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        self.labels
+            .iter()
+            .filter_map(Label::point)
+            .fold(None, |b, p| match b {
+                None => Some((p, p)),
+                Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
+            })
+    }
+}
