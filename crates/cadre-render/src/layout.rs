@@ -660,7 +660,7 @@ pub struct BackdropUniform {
 pub struct TextGlyph {
     /// The quad around the label's anchor, em, y up: left, bottom, right, top.
     pub plane: [f32; 4],
-    /// Its atlas texels: left, top, right, bottom (a box: unused).
+    /// Its atlas texels: left, top, right, bottom (a box, a leader: unused).
     pub texels: [f32; 4],
     /// Index of its label.
     pub label: u32,
@@ -686,6 +686,8 @@ pub struct TextLabel {
     pub background: [f32; 4],
     /// Output pixels per em (screen, billboard), screen offset x, y (pixels, y down), unused.
     pub params: [f32; 4],
+    /// Leader start: set-local position, `w` 1 when the label has a leader.
+    pub leader: [f32; 4],
     /// Anchor kind (`TEXT_ANCHOR_*`), depth tested (1) or on top (0), unused, unused.
     pub flags: [u32; 4],
 }
@@ -706,6 +708,8 @@ pub struct TextFrame {
 pub const TEXT_QUAD_GLYPH: u32 = 0;
 /// [`TextGlyph::kind`]: a label's box.
 pub const TEXT_QUAD_BOX: u32 = 1;
+/// [`TextGlyph::kind`]: a label's leader line.
+pub const TEXT_QUAD_LEADER: u32 = 2;
 /// [`TextLabel::flags`]`[0]`: fixed to the screen.
 pub const TEXT_ANCHOR_SCREEN: u32 = 0;
 /// [`TextLabel::flags`]`[0]`: at a scene point, facing the viewer.
@@ -764,7 +768,9 @@ gpu_struct!(TextGlyph, "TextGlyph", [plane, texels, label, kind, pad]);
 gpu_struct!(
     TextLabel,
     "TextLabel",
-    [origin, x_axis, y_axis, colour, background, params, flags]
+    [
+        origin, x_axis, y_axis, colour, background, params, leader, flags
+    ]
 );
 gpu_struct!(TextFrame, "TextFrame", [to_clip, viewport, atlas]);
 gpu_struct!(LightRig, "LightRig", [lights]);

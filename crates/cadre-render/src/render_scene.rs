@@ -159,6 +159,7 @@ impl RenderScene {
             .map(AnalyticPrimitive::world_box)
             .chain(meshes)
             .chain(self.lines.bounds())
+            .chain(self.labels.bounds())
             .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
     }
 }

@@ -362,6 +362,39 @@ fn three_thousand_labels_are_one_quad_a_glyph_in_one_draw() {
 }
 
 #[test]
+fn a_leader_runs_from_its_point_to_the_label() {
+    // 100 units on 200 pixels: (−30, −20) → pixel (40, 140); the label at (30, 20) → (160, 60).
+    let mut label = Label::billboard("X", DVec3::new(30.0, 20.0, 0.0), 10.0)
+        .with_leader(DVec3::new(-30.0, -20.0, 0.0));
+    label.colour = [0.0, 0.0, 0.0, 1.0];
+    let image = render(labels(vec![label.clone()]), &ortho(100.0), (200, 200));
+    // Along the leader, away from the glyph: every sampled pixel is dark.
+    for t in [0.05, 0.25, 0.5, 0.75] {
+        let (x, y) = (40.0 + 120.0 * t, 140.0 - 80.0 * t);
+        let darkest = (-1..=1)
+            .flat_map(|dy| (-1..=1).map(move |dx| (dx, dy)))
+            .map(|(dx, dy)| image.get_pixel((x as i32 + dx) as u32, (y as i32 + dy) as u32)[1])
+            .min()
+            .unwrap_or(255);
+        assert!(darkest < 140, "leader at t = {t}: {darkest}");
+    }
+    // Negative control: without the leader nothing is drawn there.
+    label.leader = None;
+    let bare = render(labels(vec![label]), &ortho(100.0), (200, 200));
+    let ink_between = |i: &RgbaImage| {
+        (50..150)
+            .filter(|&x| {
+                // The leader's row at column x: y = 140 − (x − 40) · 80 / 120.
+                let y = (140.0 - (f64::from(x) + 0.5 - 40.0) * 80.0 / 120.0) as u32;
+                (y - 1..=y + 1).any(|y| i.get_pixel(x, y)[1] < 200)
+            })
+            .count()
+    };
+    assert_eq!(ink_between(&image), 100);
+    assert_eq!(ink_between(&bare), 0);
+}
+
+#[test]
 fn missing_characters_are_reported_and_drawn_as_a_box() {
     let gpu = gpu();
     let renderer = Renderer::new(&gpu).expect("pipelines");
@@ -388,7 +421,8 @@ fn labels_match_their_golden_image() {
         "Part name\nsecond line",
         DVec3::new(-20.0, -10.0, 0.0),
         12.0,
-    );
+    )
+    .with_leader(DVec3::new(-45.0, -45.0, 0.0));
     boxed.background = Some([1.0, 0.95, 0.7, 1.0]);
     boxed.colour = [0.1, 0.1, 0.5, 1.0];
     set.push(boxed);

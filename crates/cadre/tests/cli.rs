@@ -672,3 +672,42 @@ fn render_draws_a_toolpath_over_its_part_and_alone() {
     assert!(!out.status.success());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn render_labels_the_parts_with_callouts() {
+    let dir = scratch_dir("cadre-labels");
+    let render = |extra: &[&str], name: &str| {
+        let path = dir.join(name);
+        let out = cadre()
+            .args(["render", EXAMPLE, "--size", "300x200"])
+            .args(extra)
+            .arg("-o")
+            .arg(&path)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        image::open(&path).unwrap().to_rgba8()
+    };
+    let labelled = render(&["--labels"], "labelled.png");
+    let bare = render(&[], "bare.png");
+    // The label boxes' pale yellow appears only with --labels.
+    let boxes = |i: &image::RgbaImage| {
+        i.pixels()
+            .filter(|p| p[0] > 240 && p[1] > 240 && p[2] > 190 && p[2] < 235)
+            .count()
+    };
+    assert!(boxes(&labelled) > 200, "{}", boxes(&labelled));
+    assert_eq!(boxes(&bare), 0);
+    let out = cadre()
+        .args(["render", EXAMPLE, "--labels", "--label-size", "0", "-o"])
+        .arg(dir.join("never.png"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--label-size"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

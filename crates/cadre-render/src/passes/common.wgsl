@@ -151,6 +151,7 @@ struct TextLabel {
     colour: vec4<f32>,
     background: vec4<f32>,
     params: vec4<f32>,
+    leader: vec4<f32>,
     flags: vec4<u32>,
 }
 
@@ -163,6 +164,7 @@ struct TextFrame {
 // `TextGlyph.kind` and `TextLabel.flags[0]` (layout::TEXT_*).
 const TEXT_QUAD_GLYPH: u32 = 0u;
 const TEXT_QUAD_BOX: u32 = 1u;
+const TEXT_QUAD_LEADER: u32 = 2u;
 const TEXT_ANCHOR_SCREEN: u32 = 0u;
 const TEXT_ANCHOR_BILLBOARD: u32 = 1u;
 const TEXT_ANCHOR_PLANE: u32 = 2u;

@@ -128,6 +128,13 @@ pub struct RenderArgs {
     /// The ground grid's finest spacing, model units (implies --grid).
     #[arg(long, value_name = "MM")]
     grid_spacing: Option<f64>,
+    /// Part names as leader labels (each placed part's name in a box, a leader line from
+    /// its surface).
+    #[arg(long)]
+    labels: bool,
+    /// Cap height of the labels' text, pixels.
+    #[arg(long, default_value_t = 11.0, value_name = "PX")]
+    label_size: f32,
 }
 
 fn parse_gradient(s: &str) -> Result<[[f32; 4]; 2], String> {
@@ -707,6 +714,12 @@ fn draw_file(
 ) -> Result<RgbaImage> {
     let (input, model) = (meshed.input.as_path(), &meshed.loaded.model);
     let scene = RenderScene::from_model(model, &meshed.mesh);
+    if args.labels && !(args.label_size.is_finite() && args.label_size > 0.0) {
+        bail!(
+            "--label-size must be a positive pixel height, got {}",
+            args.label_size
+        );
+    }
     let (w, h) = args.size;
     let program = match &args.toolpath.toolpath {
         Some(path) => Some(load_program(path, true)?),
@@ -757,6 +770,17 @@ fn draw_file(
         lines,
         ..ViewState::default()
     };
+    let mut scene = scene;
+    if args.labels {
+        let anchors = cadre_render::text::leaders::part_anchors(&scene.assembly);
+        scene.labels = cadre_render::text::leaders::callout_labels(
+            &anchors,
+            Some(model_box),
+            &camera,
+            (w, h),
+            args.label_size,
+        );
+    }
     let prepared = renderer.prepare(gpu, &scene);
     let image = renderer
         .render(gpu, &prepared, &camera, &options, &state)

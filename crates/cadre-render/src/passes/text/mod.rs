@@ -6,7 +6,7 @@ use super::common::{blended, colour_pass, entries, layouts, shader, wgsl};
 use crate::Camera;
 use crate::layout::{
     Binding, FrameUniform, GpuStruct, TEXT_ANCHOR_BILLBOARD, TEXT_ANCHOR_PLANE, TEXT_ANCHOR_SCREEN,
-    TEXT_QUAD_BOX, TEXT_QUAD_GLYPH, TextFrame, TextGlyph, TextLabel,
+    TEXT_QUAD_BOX, TEXT_QUAD_GLYPH, TEXT_QUAD_LEADER, TextFrame, TextGlyph, TextLabel,
 };
 use crate::text::{LabelSet, TextAnchor, TextDepth, TextHeight};
 use cadre_text::{FontChain, MsdfAtlas, Shaper};
@@ -31,8 +31,7 @@ pub(crate) fn source() -> String {
     wgsl(&[include_str!("text.wgsl")])
 }
 
-/// Margin of a label's box around its text, em.
-const BOX_MARGIN: f32 = 0.25;
+use crate::text::BOX_MARGIN;
 
 /// A label set laid out and uploaded: its quads, labels and the atlas they read.
 pub struct GpuText {
@@ -130,8 +129,18 @@ pub(crate) fn build(
                 gpu.flags[0] = TEXT_ANCHOR_PLANE;
             }
         }
-        labels.push(gpu);
         let index = index as u32;
+        if let Some(from) = label.leader
+            && gpu.flags[0] == TEXT_ANCHOR_BILLBOARD
+        {
+            gpu.leader = local(from);
+            quads.push(TextGlyph {
+                label: index,
+                kind: TEXT_QUAD_LEADER,
+                ..TextGlyph::default()
+            });
+        }
+        labels.push(gpu);
         if label.background.is_some() && !text.glyphs.is_empty() {
             quads.push(TextGlyph {
                 plane: [

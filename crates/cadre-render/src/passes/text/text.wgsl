@@ -42,6 +42,9 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) ii: u32) -> 
         / tf.atlas.xy;
     let scale = tf.viewport.z;
     let kind = l.flags.x;
+    if q.kind == TEXT_QUAD_LEADER {
+        return leader_corner(l, vi, out);
+    }
     var clip: vec4<f32>;
     if kind == TEXT_ANCHOR_SCREEN {
         let px = (l.origin.xy + vec2<f32>(em.x, -em.y) * l.params.x) * scale;
@@ -65,6 +68,38 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) ii: u32) -> 
     return out;
 }
 
+// Half the leader line's width plus the anti-aliasing fringe, target pixels.
+const LEADER_HALF: f32 = 0.5;
+
+// Corner `vi` of a billboard label's leader: a quad around the screen segment from the
+// leader's start to the label's anchor, a pixel of fringe around it; `uv.x` carries the
+// signed distance across, in target pixels.
+fn leader_corner(l: TextLabel, vi: u32, base: TextOut) -> TextOut {
+    var out = base;
+    let a = tf.to_clip * vec4<f32>(l.leader.xyz, 1.0);
+    let b = tf.to_clip * vec4<f32>(l.origin.xyz, 1.0);
+    if (a.w <= 0.0) || (b.w <= 0.0) {
+        out.position = vec4<f32>(0.0, 0.0, -1.0, 1.0);
+        return out;
+    }
+    let half_size = 0.5 * tf.viewport.xy;
+    let pa = a.xy / a.w * half_size;
+    // The label's screen offset moves its end (pixels, y down).
+    let pb = b.xy / b.w * half_size + vec2<f32>(l.params.y, -l.params.z) * tf.viewport.z;
+    let d = pb - pa;
+    let len = length(d);
+    let dir = select(vec2<f32>(1.0, 0.0), d / len, len > 1e-6);
+    let side = vec2<f32>(-dir.y, dir.x);
+    let reach = LEADER_HALF * tf.viewport.z + 1.0;
+    let at_b = (vi & 1u) == 1u;
+    let across = select(-1.0, 1.0, (vi & 2u) != 0u) * reach;
+    let p = select(pa - dir, pb + dir, at_b) + side * across;
+    out.position = vec4<f32>(p / half_size, 1.0, 1.0);
+    out.uv = vec2<f32>(across, 0.0);
+    out.depth = 1.0;
+    return out;
+}
+
 fn median3(c: vec3<f32>) -> f32 {
     return max(min(c.r, c.g), min(max(c.r, c.g), c.b));
 }
@@ -83,6 +118,10 @@ fn fs_main(in: TextOut) -> @location(0) vec4<f32> {
     }
     if in.kind == TEXT_QUAD_BOX {
         return l.background;
+    }
+    if in.kind == TEXT_QUAD_LEADER {
+        let cover = clamp(LEADER_HALF * tf.viewport.z + 0.5 - abs(in.uv.x), 0.0, 1.0);
+        return vec4<f32>(l.colour.rgb, l.colour.a * cover);
     }
     // Distance range in screen pixels: the atlas range over the texels a pixel spans.
     let range_px = max(tf.atlas.z / max(0.5 * (texels_per_pixel.x + texels_per_pixel.y), 1e-6), 1.0);

@@ -8,6 +8,11 @@
 //! the scene (an annotation plane; sized in model units). It is tested against the
 //! visibility buffer's depth or drawn on top, over an optional box.
 
+pub mod leaders;
+
+/// Margin of a label's box around its text, em.
+pub const BOX_MARGIN: f32 = 0.2;
+
 use cadre_text::{Align, Baseline};
 use glam::{DVec3, Vec2};
 
@@ -74,6 +79,9 @@ pub struct Label {
     pub baseline: Baseline,
     /// Depth test.
     pub depth: TextDepth,
+    /// A leader line from this point of the scene to the label (billboard labels), drawn
+    /// one pixel wide in the text's colour under the label's box.
+    pub leader: Option<DVec3>,
 }
 
 impl Label {
@@ -92,6 +100,7 @@ impl Label {
             align: Align::Left,
             baseline: Baseline::Middle,
             depth: TextDepth::OnTop,
+            leader: None,
         }
     }
 
@@ -126,6 +135,12 @@ impl Label {
         }
     }
 
+    /// This label with a leader line from `point`.
+    pub fn with_leader(mut self, point: DVec3) -> Label {
+        self.leader = Some(point);
+        self
+    }
+
     /// The point of the scene the label hangs on (`None` for a screen label).
     pub fn point(&self) -> Option<DVec3> {
         match self.anchor {
@@ -149,11 +164,11 @@ impl LabelSet {
         self.labels.iter().all(|l| l.text.trim().is_empty())
     }
 
-    /// The box of the labels' scene points (screen labels have none).
+    /// The box of the labels' scene points and leader ends (screen labels have none).
     pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
         self.labels
             .iter()
-            .filter_map(Label::point)
+            .flat_map(|l| l.point().into_iter().chain(l.leader))
             .fold(None, |b, p| match b {
                 None => Some((p, p)),
                 Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
