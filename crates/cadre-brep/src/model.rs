@@ -78,6 +78,8 @@ pub struct Model {
     pub schemas: Vec<String>,
     /// Problems met while reading; each names the instance and line where known.
     pub warnings: Vec<Warning>,
+    /// Product manufacturing information: annotations, saved views, semantic PMI.
+    pub pmi: crate::pmi::Pmi,
     /// Every edge's parameter range at the default accuracy, worked out on first use of
     /// [`Model::edge_range`] (bounds, edge sampling and closure checks all need them, and
     /// each costs two curve projections). Code that edits vertices, edges or curves after

@@ -11,6 +11,7 @@ mod access;
 mod context;
 mod error;
 mod geometry;
+mod pmi;
 mod product;
 mod style;
 mod tessellated;
@@ -32,6 +33,7 @@ pub fn map_file(file: &StepFile) -> Model {
     mapper.model.schemas = file.header().schemas.clone();
     product::map_products(&mut mapper);
     style::map_styles(&mut mapper);
+    pmi::map_pmi(&mut mapper);
     let mut model = mapper.finish();
     report_vertex_repairs(&mut model, file);
     model

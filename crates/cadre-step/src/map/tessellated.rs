@@ -117,6 +117,13 @@ impl FaceAppender<'_> {
     }
 }
 
+/// The triangles of one triangulated face or surface set (an annotation's filled areas).
+pub(super) fn triangles(m: &Mapper<'_>, id: u64) -> MapResult<TriangleMesh> {
+    let mut mesh = TriangleMesh::default();
+    FaceAppender { mesh: &mut mesh }.add(m, id)?;
+    Ok(mesh)
+}
+
 fn index_list(a: &Attrs<'_, '_>, items: &[Param<'_>], i: usize) -> MapResult<Vec<usize>> {
     if items.len() > MAX_MESH_ELEMENTS {
         return Err(a.err("index list is beyond reason"));
@@ -132,7 +139,7 @@ fn index_list(a: &Attrs<'_, '_>, items: &[Param<'_>], i: usize) -> MapResult<Vec
 }
 
 /// A `COORDINATES_LIST` in mm, decoded once per mapping.
-fn coordinates(m: &Mapper<'_>, id: u64) -> MapResult<std::rc::Rc<Vec<Vec3>>> {
+pub(super) fn coordinates(m: &Mapper<'_>, id: u64) -> MapResult<std::rc::Rc<Vec<Vec3>>> {
     if let Some(c) = m.coordinates.borrow().get(&m.key(id)) {
         return Ok(c.clone());
     }

@@ -143,6 +143,26 @@ fn print_faces(model: &Model, with_edges: bool) {
 }
 
 /// Runs `cadre info`.
+/// The model's PMI as `cadre info --json` lists it: annotations, dimensions, tolerances,
+/// datums and datum targets counted as OCCT's XCAF document counts them (dimensions include
+/// one per annotation that presents no semantic item), the saved views' names, and what the
+/// annotations hold.
+fn pmi_json(pmi: &cadre_brep::Pmi) -> serde_json::Value {
+    let s = &pmi.semantic;
+    json!({
+        "annotations": pmi.annotations.len(),
+        "dimensions": pmi.occt_dimensions(),
+        "tolerances": s.tolerances(),
+        "datums": s.datums(),
+        "datum_targets": s.datum_targets(),
+        "saved_views": pmi.views.iter().map(|v| v.name.as_str()).collect::<Vec<_>>(),
+        "semantic_dimensions": s.dimensions(),
+        "annotation_planes": pmi.planes.len(),
+        "annotation_points": pmi.annotations.iter().map(|a| a.point_count()).sum::<usize>(),
+        "annotation_texts": pmi.annotations.iter().map(|a| a.texts.len()).sum::<usize>(),
+    })
+}
+
 pub fn run(args: &InfoArgs) -> Result<()> {
     let loaded = load_step(&args.file)?;
     let model = &loaded.model;
@@ -178,6 +198,7 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             "entities": loaded.file.len(),
             "entity_types": entity_counts(&loaded.file),
             "bbox": if bbox.is_empty() { serde_json::Value::Null } else { json!(bbox.to_array()) },
+            "pmi": pmi_json(&model.pmi),
             "warnings": warnings,
             "parse_seconds": loaded.parse_seconds,
             "map_seconds": loaded.map_seconds,

@@ -1,0 +1,263 @@
+//! Product manufacturing information (PMI): what a STEP AP242 file (or an AP203/AP214 file
+//! with draughting annotations) says about tolerances beside the shape.
+//!
+//! - **Graphic PMI** ([`Annotation`]): the presentation, as the file draws it — polylines
+//!   (tessellated curve sets, polylines of annotation curve occurrences and draughting
+//!   callouts), text literals, with their curve style (width in model units, colour) and
+//!   annotation plane; and the faces each annotation applies to.
+//! - **Saved views** ([`SavedView`]): named cameras (direction, up, projection, window,
+//!   clipping) with the annotations each shows.
+//! - **Semantic PMI** ([`SemanticPmi`]): dimensions, geometric tolerances, datums and datum
+//!   targets, counted as OCCT's XCAF document counts them, each with the faces it applies to.
+//!
+//! Lengths are millimetres, positions in the coordinates of the part the annotations belong
+//! to (the file's draughting model shares its shape's context).
+
+use crate::FaceId;
+use crate::style::Rgb;
+use cadre_geom::Vec3;
+
+/// What kind of presentation an annotation is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AnnotationKind {
+    /// `TESSELLATED_ANNOTATION_OCCURRENCE`: tessellated curve sets (AP242).
+    Tessellated,
+    /// `ANNOTATION_CURVE_OCCURRENCE` / `ANNOTATION_OCCURRENCE` / `ANNOTATION_TEXT_OCCURRENCE`.
+    Occurrence,
+    /// `DRAUGHTING_CALLOUT` (and its dimension-callout subtypes): a group of occurrences.
+    Callout,
+    /// `ANNOTATION_PLACEHOLDER_OCCURRENCE` (AP242 edition 2): where a viewer puts text.
+    Placeholder,
+}
+
+/// A text of an annotation: a string lying in a plane of the scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AnnotationText {
+    /// The text.
+    pub text: String,
+    /// Where its baseline starts.
+    pub origin: Vec3,
+    /// Reading direction (unit).
+    pub x_axis: Vec3,
+    /// Up direction (unit).
+    pub y_axis: Vec3,
+    /// Lettering (cap) height, mm.
+    pub height: f64,
+}
+
+/// One graphic annotation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Annotation {
+    /// STEP id of the occurrence.
+    pub step_id: u64,
+    /// Its name (`Flatness.1`, `Datum A`, ...).
+    pub name: String,
+    /// Its kind.
+    pub kind: AnnotationKind,
+    /// Its polylines (each at least two points).
+    pub polylines: Vec<Vec<Vec3>>,
+    /// Its filled areas (arrowheads, filled lettering) as triangles.
+    pub fills: Vec<[Vec3; 3]>,
+    /// Its texts.
+    pub texts: Vec<AnnotationText>,
+    /// Curve width from its curve style, mm (`None`: not given).
+    pub width: Option<f64>,
+    /// Curve colour from its curve style.
+    pub colour: Option<Rgb>,
+    /// Index into [`Pmi::planes`] of its annotation plane.
+    pub plane: Option<usize>,
+    /// The faces it applies to (through its draughting model item association).
+    pub faces: Vec<FaceId>,
+    /// Index into [`SemanticPmi::items`] of the semantic item it presents, if any.
+    pub semantic: Option<usize>,
+    /// Whether its geometry is tessellated (AP242 tessellated annotation occurrences).
+    pub tessellated: bool,
+}
+
+impl Annotation {
+    /// How many points its polylines hold.
+    pub fn point_count(&self) -> usize {
+        self.polylines.iter().map(Vec::len).sum()
+    }
+
+    /// Whether it has nothing to draw.
+    pub fn is_empty(&self) -> bool {
+        self.polylines.is_empty() && self.fills.is_empty() && self.texts.is_empty()
+    }
+}
+
+/// An annotation plane: where a group of annotations lies, and which way it faces.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AnnotationPlane {
+    /// STEP id.
+    pub step_id: u64,
+    /// Its name.
+    pub name: String,
+    /// A point of the plane.
+    pub origin: Vec3,
+    /// Its normal (unit; the side the annotations are read from).
+    pub normal: Vec3,
+    /// Its reading direction (unit).
+    pub x_axis: Vec3,
+}
+
+/// A saved view (`CAMERA_MODEL_D3` and the draughting model that holds it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SavedView {
+    /// STEP id of the camera model.
+    pub step_id: u64,
+    /// Its name (`MBD_A`, ...).
+    pub name: String,
+    /// The view reference point (the camera placement's origin).
+    pub origin: Vec3,
+    /// Direction of view (unit): the camera placement's axis.
+    pub direction: Vec3,
+    /// Up on screen (unit): the camera placement's y axis.
+    pub up: Vec3,
+    /// Parallel (orthographic) projection, else central (perspective).
+    pub parallel: bool,
+    /// The projection point (the eye of a central projection).
+    pub eye: Vec3,
+    /// The view window's width and height, mm, in the view plane.
+    pub window: (f64, f64),
+    /// The view window's centre (in the view plane).
+    pub window_centre: Vec3,
+    /// Distance of the view plane from the projection point along the view, mm.
+    pub view_plane_distance: f64,
+    /// Front clipping distance along the view, when clipped.
+    pub front_clip: Option<f64>,
+    /// Back clipping distance along the view, when clipped.
+    pub back_clip: Option<f64>,
+    /// Clipping planes (`CAMERA_MODEL_D3_MULTI_CLIPPING`): a point and the normal of the
+    /// half-space kept.
+    pub clip_planes: Vec<(Vec3, Vec3)>,
+    /// Indices into [`Pmi::annotations`] of the annotations it shows.
+    pub annotations: Vec<usize>,
+}
+
+/// Kinds of semantic dimension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DimensionKind {
+    /// `DIMENSIONAL_SIZE` (and its subtypes: angular size, with path).
+    Size,
+    /// `DIMENSIONAL_LOCATION` (angular location, location with path).
+    Location,
+}
+
+/// One semantic PMI item.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SemanticItem {
+    /// A dimension: its kind, name (`diameter`, `linear distance`, ...) and nominal value
+    /// (mm or radians) where the file gives one.
+    Dimension {
+        /// STEP id.
+        step_id: u64,
+        /// Size or location.
+        kind: DimensionKind,
+        /// The dimension's name.
+        name: String,
+        /// Nominal value.
+        value: Option<f64>,
+        /// Upper and lower deviation (a plus-minus tolerance).
+        tolerance: Option<(f64, f64)>,
+        /// The faces it applies to.
+        faces: Vec<FaceId>,
+    },
+    /// A geometric tolerance: its type (`FLATNESS_TOLERANCE`, `POSITION_TOLERANCE`, ...) and
+    /// magnitude (mm).
+    Tolerance {
+        /// STEP id.
+        step_id: u64,
+        /// The tolerance's entity type.
+        kind: String,
+        /// Its magnitude, mm.
+        magnitude: Option<f64>,
+        /// The datums it refers to, by their identifications (`A`, `B`, ...).
+        datums: Vec<String>,
+        /// The faces it applies to.
+        faces: Vec<FaceId>,
+    },
+    /// A datum feature: its identification (`A`, `B`, ...).
+    Datum {
+        /// STEP id.
+        step_id: u64,
+        /// The identification letter(s).
+        label: String,
+        /// The faces it is on.
+        faces: Vec<FaceId>,
+    },
+    /// A datum target (`A1`, ...).
+    DatumTarget {
+        /// STEP id.
+        step_id: u64,
+        /// The target's identification.
+        label: String,
+    },
+}
+
+/// The semantic PMI of a model.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SemanticPmi {
+    /// Every item, in file order.
+    pub items: Vec<SemanticItem>,
+}
+
+impl SemanticPmi {
+    /// How many dimensions.
+    pub fn dimensions(&self) -> usize {
+        self.count(|i| matches!(i, SemanticItem::Dimension { .. }))
+    }
+
+    /// How many geometric tolerances.
+    pub fn tolerances(&self) -> usize {
+        self.count(|i| matches!(i, SemanticItem::Tolerance { .. }))
+    }
+
+    /// How many datums.
+    pub fn datums(&self) -> usize {
+        self.count(|i| matches!(i, SemanticItem::Datum { .. }))
+    }
+
+    /// How many datum targets.
+    pub fn datum_targets(&self) -> usize {
+        self.count(|i| matches!(i, SemanticItem::DatumTarget { .. }))
+    }
+
+    fn count(&self, f: impl Fn(&SemanticItem) -> bool) -> usize {
+        self.items.iter().filter(|i| f(i)).count()
+    }
+}
+
+/// Everything a model says about its product manufacturing information.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Pmi {
+    /// Graphic annotations.
+    pub annotations: Vec<Annotation>,
+    /// Annotation planes.
+    pub planes: Vec<AnnotationPlane>,
+    /// Saved views.
+    pub views: Vec<SavedView>,
+    /// Semantic PMI.
+    pub semantic: SemanticPmi,
+}
+
+impl Pmi {
+    /// Whether the model has none.
+    pub fn is_empty(&self) -> bool {
+        self.annotations.is_empty() && self.views.is_empty() && self.semantic.items.is_empty()
+    }
+
+    /// The dimensions as OCCT's XCAF document counts them: the semantic dimensions, and one
+    /// per tessellated annotation (OCCT's "dimension presentation" or "common label", whether
+    /// or not it presents a semantic item; it reads no other graphic PMI).
+    pub fn occt_dimensions(&self) -> usize {
+        self.semantic.dimensions() + self.annotations.iter().filter(|a| a.tessellated).count()
+    }
+
+    /// The saved view named `name` (case-insensitive).
+    pub fn view(&self, name: &str) -> Option<&SavedView> {
+        self.views
+            .iter()
+            .find(|v| v.name.eq_ignore_ascii_case(name))
+    }
+}
