@@ -122,7 +122,7 @@ impl Frustum {
 }
 
 /// Default vertical field of view of a fitted perspective camera (30°).
-const FIT_FOV: f64 = std::f64::consts::PI / 6.0;
+pub(crate) const FIT_FOV: f64 = std::f64::consts::PI / 6.0;
 
 impl Camera {
     /// A camera looking at the box `lo`..`hi` from `preset`, framing its bounding sphere in an
@@ -134,7 +134,24 @@ impl Camera {
         orthographic: bool,
         aspect: f64,
     ) -> Camera {
-        let (dir, up) = preset.direction();
+        Camera::fit_along(lo, hi, preset.direction(), orthographic, aspect)
+    }
+
+    /// Fits the box `lo`..`hi` into the view seen from direction `dir` (unit, from the target
+    /// towards the eye) with `up` (a saved view's orientation; [`Camera::fit`] for the presets).
+    pub fn fit_along(
+        lo: DVec3,
+        hi: DVec3,
+        (dir, up): (DVec3, DVec3),
+        orthographic: bool,
+        aspect: f64,
+    ) -> Camera {
+        let dir = dir.normalize_or(DVec3::Z);
+        let up = if up.cross(dir).length_squared() > 1e-12 {
+            up
+        } else {
+            dir.any_orthonormal_vector()
+        };
         let centre = 0.5 * (lo + hi);
         let radius = (0.5 * (hi - lo).length()).max(1e-9 * (1.0 + centre.abs().max_element()));
         let aspect = if aspect.is_finite() && aspect > 0.0 {

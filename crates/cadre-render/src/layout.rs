@@ -710,6 +710,9 @@ pub const TEXT_QUAD_GLYPH: u32 = 0;
 pub const TEXT_QUAD_BOX: u32 = 1;
 /// [`TextGlyph::kind`]: a label's leader line.
 pub const TEXT_QUAD_LEADER: u32 = 2;
+/// [`TextGlyph::kind`]: a filled triangle (its "label" holds a corner and the two edges
+/// from it, as an in-plane label's origin and axes).
+pub const TEXT_QUAD_FILL: u32 = 3;
 /// [`TextLabel::flags`]`[0]`: fixed to the screen.
 pub const TEXT_ANCHOR_SCREEN: u32 = 0;
 /// [`TextLabel::flags`]`[0]`: at a scene point, facing the viewer.

@@ -60,6 +60,7 @@ mod pass_timer;
 mod passes;
 mod pick;
 mod placements;
+pub mod pmi;
 mod position_key;
 pub mod raycast;
 mod render_scene;
@@ -94,7 +95,7 @@ pub use placements::{FLAT_LIMIT, MAX_LOCALS_PER_NODE};
 pub use render_scene::{RenderFace, RenderScene};
 pub use renderer::{DisplayMode, FrameOptions, Renderer};
 pub use smooth::smooth_edges;
-pub use text::{Label, LabelSet, TextAnchor, TextDepth, TextHeight};
+pub use text::{Fill, Label, LabelSet, TextAnchor, TextDepth, TextHeight};
 pub use trim_surfaces::TrimScene;
 pub use view::{
     CRACK_FILLED, GAP_CLOSED, InstanceStyle, MAX_HIGHLIGHTED, MAX_SECTIONS, Pick, SECTION_CAP,

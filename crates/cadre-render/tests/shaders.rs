@@ -411,6 +411,7 @@ fn the_shaders_flags_are_the_rust_flags() {
         ("TEXT_QUAD_GLYPH", cadre_render::layout::TEXT_QUAD_GLYPH),
         ("TEXT_QUAD_BOX", cadre_render::layout::TEXT_QUAD_BOX),
         ("TEXT_QUAD_LEADER", cadre_render::layout::TEXT_QUAD_LEADER),
+        ("TEXT_QUAD_FILL", cadre_render::layout::TEXT_QUAD_FILL),
         (
             "TEXT_ANCHOR_SCREEN",
             cadre_render::layout::TEXT_ANCHOR_SCREEN,

@@ -52,7 +52,10 @@ fn render(scene: RenderScene, camera: &Camera, size: (u32, u32)) -> RgbaImage {
 }
 
 fn labels(labels: Vec<Label>) -> RenderScene {
-    RenderScene::default().with_labels(LabelSet { labels })
+    RenderScene::default().with_labels(LabelSet {
+        labels,
+        fills: Vec::new(),
+    })
 }
 
 /// Pixels darker than mid-grey (black text on the white background).
@@ -392,6 +395,41 @@ fn a_leader_runs_from_its_point_to_the_label() {
     };
     assert_eq!(ink_between(&image), 100);
     assert_eq!(ink_between(&bare), 0);
+}
+
+#[test]
+fn a_fill_covers_its_triangle_and_nothing_else() {
+    use cadre_render::Fill;
+    // 100 units on 100 pixels: the triangle (−40, −40), (40, −40), (−40, 40).
+    let set = LabelSet {
+        labels: Vec::new(),
+        fills: vec![Fill {
+            corners: [
+                DVec3::new(-40.0, -40.0, 0.0),
+                DVec3::new(40.0, -40.0, 0.0),
+                DVec3::new(-40.0, 40.0, 0.0),
+            ],
+            colour: [0.0, 0.0, 0.0, 1.0],
+            depth: TextDepth::OnTop,
+        }],
+    };
+    let image = render(RenderScene::default().with_labels(set), &ortho(100.0), (100, 100));
+    let (mut wrong, mut checked) = (0, 0);
+    for (x, y, p) in image.enumerate_pixels() {
+        // Pixel centre in model units (y up).
+        let (u, v) = (f64::from(x) + 0.5 - 50.0, 50.0 - (f64::from(y) + 0.5));
+        let inside = u > -40.0 && v > -40.0 && u + v < 0.0;
+        let near_edge = (u + 40.0).abs() < 1.0 || (v + 40.0).abs() < 1.0 || (u + v).abs() < 1.5;
+        if near_edge {
+            continue;
+        }
+        checked += 1;
+        if (p[1] < 128) != inside {
+            wrong += 1;
+        }
+    }
+    assert!(checked > 9000);
+    assert_eq!(wrong, 0);
 }
 
 #[test]

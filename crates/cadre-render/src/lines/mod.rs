@@ -197,6 +197,24 @@ pub struct LineSet {
 }
 
 impl LineSet {
+    /// Appends `other`'s polylines after this set's, with their styles.
+    pub fn extend(&mut self, other: LineSet) {
+        let offset = self.styles.len() as u32;
+        // A polyline naming a style past the end takes the first style: keep that meaning.
+        let first = other.styles.first().copied().unwrap_or_default();
+        let count = other.styles.len() as u32;
+        self.styles.extend(other.styles);
+        if count == 0 {
+            self.styles.push(first);
+        }
+        let count = count.max(1);
+        self.polylines
+            .extend(other.polylines.into_iter().map(|mut p| {
+                p.style = offset + if p.style < count { p.style } else { 0 };
+                p
+            }));
+    }
+
     /// Whether it has no segment to draw.
     pub fn is_empty(&self) -> bool {
         self.polylines.iter().all(|p| p.points.len() < 2)

@@ -165,6 +165,7 @@ struct TextFrame {
 const TEXT_QUAD_GLYPH: u32 = 0u;
 const TEXT_QUAD_BOX: u32 = 1u;
 const TEXT_QUAD_LEADER: u32 = 2u;
+const TEXT_QUAD_FILL: u32 = 3u;
 const TEXT_ANCHOR_SCREEN: u32 = 0u;
 const TEXT_ANCHOR_BILLBOARD: u32 = 1u;
 const TEXT_ANCHOR_PLANE: u32 = 2u;

@@ -176,7 +176,10 @@ pub fn callout_labels(
             });
         }
     }
-    LabelSet { labels }
+    LabelSet {
+        labels,
+        fills: Vec::new(),
+    }
 }
 
 /// Heights for boxes wanted at `wanted` (sorted), at least `pitch` apart, as near their

@@ -151,17 +151,38 @@ impl Label {
     }
 }
 
-/// Labels drawn over the scene, in order (later ones over earlier ones).
+/// A filled triangle drawn with the labels (an annotation's arrowhead or filled lettering),
+/// flat in its colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fill {
+    /// Its corners (model units).
+    pub corners: [DVec3; 3],
+    /// sRGB colour and alpha.
+    pub colour: [f32; 4],
+    /// Depth test.
+    pub depth: TextDepth,
+}
+
+/// Labels drawn over the scene, in order (later ones over earlier ones), and filled
+/// triangles under them.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LabelSet {
     /// The labels.
     pub labels: Vec<Label>,
+    /// Filled triangles, drawn before the labels.
+    pub fills: Vec<Fill>,
 }
 
 impl LabelSet {
+    /// Appends `other`'s labels and fills after these.
+    pub fn extend(&mut self, other: LabelSet) {
+        self.labels.extend(other.labels);
+        self.fills.extend(other.fills);
+    }
+
     /// Whether there is nothing to draw.
     pub fn is_empty(&self) -> bool {
-        self.labels.iter().all(|l| l.text.trim().is_empty())
+        self.fills.is_empty() && self.labels.iter().all(|l| l.text.trim().is_empty())
     }
 
     /// The box of the labels' scene points and leader ends (screen labels have none).
@@ -169,6 +190,7 @@ impl LabelSet {
         self.labels
             .iter()
             .flat_map(|l| l.point().into_iter().chain(l.leader))
+            .chain(self.fills.iter().flat_map(|f| f.corners))
             .fold(None, |b, p| match b {
                 None => Some((p, p)),
                 Some((lo, hi)) => Some((lo.min(p), hi.max(p))),

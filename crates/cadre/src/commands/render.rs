@@ -135,6 +135,15 @@ pub struct RenderArgs {
     /// Cap height of the labels' text, pixels.
     #[arg(long, default_value_t = 11.0, value_name = "PX")]
     label_size: f32,
+    /// Draw the file's PMI annotations (AP242 graphic PMI: tessellated and polyline
+    /// annotations, filled areas, texts) over the model.
+    #[arg(long)]
+    pmi: bool,
+    /// Render a saved view of the file (AP242 camera models; `cadre info --json` lists
+    /// them under "pmi"): its direction, up and projection, fitted to the part and the
+    /// view's annotations, which are drawn (implies --pmi for that view's annotations).
+    #[arg(long, value_name = "NAME", conflicts_with_all = ["camera", "zoom"])]
+    saved_view: Option<String>,
 }
 
 fn parse_gradient(s: &str) -> Result<[[f32; 4]; 2], String> {
@@ -736,10 +745,47 @@ fn draw_file(
             model.warnings.len()
         );
     };
-    // The view takes in the toolpath too.
+    // The view takes in the toolpath and the PMI drawn too.
     let (lo, hi) = match program.as_ref().and_then(program_bounds) {
         Some((a, b)) => (model_box.0.min(a), model_box.1.max(b)),
         None => model_box,
+    };
+    let saved_view = match &args.saved_view {
+        Some(name) => Some(model.pmi.view(name).with_context(|| {
+            let names: Vec<&str> = model.pmi.views.iter().map(|v| v.name.as_str()).collect();
+            format!(
+                "{}: no saved view {name:?} (the file has {})",
+                input.display(),
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.join(", ")
+                }
+            )
+        })?),
+        None => None,
+    };
+    let pmi = (args.pmi || saved_view.is_some()).then(|| {
+        let overlay = cadre_render::pmi::overlay(&model.pmi, saved_view, args.background);
+        if overlay.annotations == 0 {
+            eprintln!("{}: no PMI annotation to draw", input.display());
+        } else if overlay.recoloured > 0 {
+            eprintln!(
+                "{}: {} of {} annotation(s) drawn in dark blue: their colour does not show on \
+                 the background",
+                input.display(),
+                overlay.recoloured,
+                overlay.annotations
+            );
+        }
+        overlay
+    });
+    if pmi.is_some() && args.toolpath.up_to.is_some() {
+        bail!("--up-to cannot be combined with PMI: it counts along every line drawn");
+    }
+    let (lo, hi) = match pmi.as_ref().and_then(cadre_render::pmi::overlay_bounds) {
+        Some((a, b)) => (lo.min(a), hi.max(b)),
+        None => (lo, hi),
     };
     let scene = match args.method {
         Method::Mesh => scene,
@@ -748,7 +794,12 @@ fn draw_file(
             with_trims(renderer, scene, model, relative, input)
         }
     };
-    let fitted = fitted_camera(args, (lo, hi));
+    let fitted = match saved_view {
+        Some(view) => {
+            cadre_render::pmi::saved_view_camera(view, (lo, hi), f64::from(w) / f64::from(h))
+        }
+        None => fitted_camera(args, (lo, hi)),
+    };
     let camera = if args.zoom == 1.0 {
         fitted
     } else {
@@ -771,15 +822,21 @@ fn draw_file(
         ..ViewState::default()
     };
     let mut scene = scene;
+    if let Some(overlay) = pmi {
+        scene.lines.extend(overlay.lines);
+        scene.labels.extend(overlay.labels);
+    }
     if args.labels {
         let anchors = cadre_render::text::leaders::part_anchors(&scene.assembly);
-        scene.labels = cadre_render::text::leaders::callout_labels(
-            &anchors,
-            Some(model_box),
-            &camera,
-            (w, h),
-            args.label_size,
-        );
+        scene
+            .labels
+            .extend(cadre_render::text::leaders::callout_labels(
+                &anchors,
+                Some(model_box),
+                &camera,
+                (w, h),
+                args.label_size,
+            ));
     }
     let prepared = renderer.prepare(gpu, &scene);
     let image = renderer

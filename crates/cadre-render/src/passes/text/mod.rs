@@ -6,7 +6,8 @@ use super::common::{blended, colour_pass, entries, layouts, shader, wgsl};
 use crate::Camera;
 use crate::layout::{
     Binding, FrameUniform, GpuStruct, TEXT_ANCHOR_BILLBOARD, TEXT_ANCHOR_PLANE, TEXT_ANCHOR_SCREEN,
-    TEXT_QUAD_BOX, TEXT_QUAD_GLYPH, TEXT_QUAD_LEADER, TextFrame, TextGlyph, TextLabel,
+    TEXT_QUAD_BOX, TEXT_QUAD_FILL, TEXT_QUAD_GLYPH, TEXT_QUAD_LEADER, TextFrame, TextGlyph,
+    TextLabel,
 };
 use crate::text::{LabelSet, TextAnchor, TextDepth, TextHeight};
 use cadre_text::{FontChain, MsdfAtlas, Shaper};
@@ -66,6 +67,7 @@ pub(crate) fn build(
         .labels
         .iter()
         .find_map(|l| l.point())
+        .or_else(|| set.fills.first().map(|f| f.corners[0]))
         .unwrap_or(DVec3::ZERO);
     let layouts: Vec<_> = set
         .labels
@@ -91,8 +93,33 @@ pub(crate) fn build(
         [f(c[0]), f(c[1]), f(c[2]), c[3]]
     };
     let mut quads = Vec::new();
-    let mut labels = Vec::with_capacity(set.labels.len());
+    let mut labels = Vec::with_capacity(set.labels.len() + set.fills.len());
     let mut missing = Vec::new();
+    // Fills first (under the labels): a label record each, its corner and two edges.
+    for fill in &set.fills {
+        let [a, b, c] = fill.corners;
+        let edge = |p: DVec3| (p - a).as_vec3().extend(0.0).to_array();
+        quads.push(TextGlyph {
+            plane: [0.0, 0.0, 1.0, 1.0],
+            label: labels.len() as u32,
+            kind: TEXT_QUAD_FILL,
+            ..TextGlyph::default()
+        });
+        labels.push(TextLabel {
+            origin: (a - origin).as_vec3().extend(1.0).to_array(),
+            x_axis: edge(b),
+            y_axis: edge(c),
+            colour: linear(fill.colour),
+            flags: [
+                TEXT_ANCHOR_PLANE,
+                u32::from(fill.depth == TextDepth::Tested),
+                0,
+                0,
+            ],
+            ..TextLabel::default()
+        });
+    }
+    let first_label = labels.len() as u32;
     for (index, (label, text)) in set.labels.iter().zip(&layouts).enumerate() {
         missing.extend_from_slice(&text.missing);
         // Units per em: pixels for screen and billboard labels, model units in a plane.
@@ -129,7 +156,7 @@ pub(crate) fn build(
                 gpu.flags[0] = TEXT_ANCHOR_PLANE;
             }
         }
-        let index = index as u32;
+        let index = first_label + index as u32;
         if let Some(from) = label.leader
             && gpu.flags[0] == TEXT_ANCHOR_BILLBOARD
         {

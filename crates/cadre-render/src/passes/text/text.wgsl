@@ -32,7 +32,11 @@ fn pixels_to_clip(px: vec2<f32>, z: f32) -> vec4<f32> {
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) ii: u32) -> TextOut {
     let q = quads[ii];
     let l = labels[q.label];
-    let corner = vec2<f32>(f32(vi & 1u), f32(vi >> 1u));
+    var corner = vec2<f32>(f32(vi & 1u), f32(vi >> 1u));
+    if (q.kind == TEXT_QUAD_FILL) && (vi == 3u) {
+        // A triangle: the strip's last corner falls on the one before.
+        corner = vec2<f32>(0.0, 1.0);
+    }
     let em = mix(q.plane.xy, q.plane.zw, corner);
     var out: TextOut;
     out.label = q.label;
@@ -118,6 +122,9 @@ fn fs_main(in: TextOut) -> @location(0) vec4<f32> {
     }
     if in.kind == TEXT_QUAD_BOX {
         return l.background;
+    }
+    if in.kind == TEXT_QUAD_FILL {
+        return l.colour;
     }
     if in.kind == TEXT_QUAD_LEADER {
         let cover = clamp(LEADER_HALF * tf.viewport.z + 0.5 - abs(in.uv.x), 0.0, 1.0);
