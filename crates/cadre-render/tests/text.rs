@@ -413,7 +413,11 @@ fn a_fill_covers_its_triangle_and_nothing_else() {
             depth: TextDepth::OnTop,
         }],
     };
-    let image = render(RenderScene::default().with_labels(set), &ortho(100.0), (100, 100));
+    let image = render(
+        RenderScene::default().with_labels(set),
+        &ortho(100.0),
+        (100, 100),
+    );
     let (mut wrong, mut checked) = (0, 0);
     for (x, y, p) in image.enumerate_pixels() {
         // Pixel centre in model units (y up).

@@ -1,0 +1,143 @@
+//! PMI drawn (issue 20) on the corpus's NIST test file (`bug33661_nist_ftc_08_asme1_ap242-
+//! e1-tg.stp`, graphic PMI only): every one of its 60 annotations puts ink on the image by
+//! itself, each of its 4 saved views matches its golden image, and one view's image is not
+//! another's (negative control). Skips with a message when `../shared` is absent.
+
+mod common;
+
+use cadre_render::pmi::{overlay, overlay_bounds, saved_view_camera};
+use cadre_render::{Camera, FrameOptions, RenderScene, Renderer, ViewState};
+use common::{check_golden, gpu, model_and_scene_of};
+use image::RgbaImage;
+use std::path::Path;
+
+const NIST: &str = "bug33661_nist_ftc_08_asme1_ap242-e1-tg.stp";
+
+fn nist() -> Option<Vec<u8>> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/corpus/step")
+        .join(NIST);
+    match std::fs::read(&path) {
+        Ok(bytes) => Some(bytes),
+        Err(_) => {
+            eprintln!(
+                "skipping: {} not found (clone without the shared data)",
+                path.display()
+            );
+            None
+        }
+    }
+}
+
+fn options(width: u32, height: u32) -> FrameOptions {
+    FrameOptions {
+        width,
+        height,
+        supersample: 1,
+        ..FrameOptions::default()
+    }
+}
+
+/// Pixels of the PMI colour (dark blue: blue well above red and green).
+fn pmi_ink(image: &RgbaImage) -> usize {
+    image
+        .pixels()
+        .filter(|p| i32::from(p[2]) - i32::from(p[0]) > 60 && p[0] < 150)
+        .count()
+}
+
+#[test]
+fn every_nist_annotation_is_drawn_and_each_saved_view_matches_its_golden_image() {
+    let Some(bytes) = nist() else { return };
+    let (model, scene) = model_and_scene_of(bytes, 0.2);
+    let pmi = &model.pmi;
+    assert_eq!(pmi.annotations.len(), 60);
+    assert_eq!(
+        pmi.annotations
+            .iter()
+            .map(|a| a.point_count())
+            .sum::<usize>(),
+        34_138
+    );
+    assert_eq!(pmi.views.len(), 4);
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let white = [1.0, 1.0, 1.0, 1.0];
+    let part = scene.bounds().expect("a part");
+    // Each annotation alone, seen from its plane's side (or from above), leaves ink.
+    let all = overlay(pmi, None, white);
+    let (lo, hi) = overlay_bounds(&all).map_or(part, |(a, b)| (part.0.min(a), part.1.max(b)));
+    let mut blank = Vec::new();
+    for (k, a) in pmi.annotations.iter().enumerate() {
+        let one = cadre_brep::Pmi {
+            annotations: vec![a.clone()],
+            ..cadre_brep::Pmi::default()
+        };
+        let o = overlay(&one, None, white);
+        let to_eye = a
+            .plane
+            .map(|p| {
+                let n = pmi.planes[p].normal;
+                glam::DVec3::new(n.x, n.y, n.z)
+            })
+            .unwrap_or(glam::DVec3::Z);
+        let up = if to_eye.z.abs() > 0.9 {
+            glam::DVec3::Y
+        } else {
+            glam::DVec3::Z
+        };
+        let camera = Camera::fit_along(lo, hi, (to_eye, up), true, 1.0);
+        let lines_only = RenderScene::default()
+            .with_lines(o.lines)
+            .with_labels(o.labels);
+        let prepared = renderer.prepare(&gpu, &lines_only);
+        let image = renderer
+            .render(
+                &gpu,
+                &prepared,
+                &camera,
+                &options(160, 160),
+                &ViewState::default(),
+            )
+            .expect("image");
+        if pmi_ink(&image) == 0 {
+            blank.push(format!("{k} {}", a.name));
+        }
+    }
+    assert!(blank.is_empty(), "annotations that draw nothing: {blank:?}");
+    // The saved views.
+    let mut images = Vec::new();
+    for view in &pmi.views {
+        let o = overlay(pmi, Some(view), white);
+        assert!(o.annotations > 0, "{} shows annotations", view.name);
+        // The part and this view's annotations, as `cadre render --saved-view` fits them.
+        let (vlo, vhi) = overlay_bounds(&o).map_or(part, |(a, b)| (part.0.min(a), part.1.max(b)));
+        let camera = saved_view_camera(view, (vlo, vhi), 4.0 / 3.0);
+        let mut scene: RenderScene = scene.clone();
+        scene.lines = o.lines;
+        scene.labels = o.labels;
+        let prepared = renderer.prepare(&gpu, &scene);
+        let image = renderer
+            .render(
+                &gpu,
+                &prepared,
+                &camera,
+                &options(320, 240),
+                &ViewState::default(),
+            )
+            .expect("image");
+        assert!(pmi_ink(&image) > 300, "{}: {}", view.name, pmi_ink(&image));
+        check_golden(
+            &format!("pmi-nist-ftc08-{}.png", view.name.to_lowercase()),
+            &image,
+        );
+        images.push(image);
+    }
+    // Negative control: two views differ far beyond the golden tolerance.
+    let c = cadre_render::compare::compare(&images[0], &images[1], 8);
+    assert!(
+        c.differing > 0.05,
+        "MBD_A and MBD_B images differ in {}",
+        c.differing
+    );
+}
