@@ -7,7 +7,9 @@
 
 use crate::fonts::{FontChain, GlyphKey};
 use glam::Vec2;
-use harfrust::{FontRef, ShapeOptions, ShaperData, UnicodeBuffer};
+use harfrust::{Direction, FontRef, Script, ShapeOptions, ShapePlan, ShaperData, UnicodeBuffer};
+use std::collections::HashMap;
+use std::sync::Mutex;
 
 /// Horizontal alignment of each line on the anchor.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -58,23 +60,30 @@ pub struct TextLayout {
     pub missing: Vec<char>,
 }
 
-/// Shaping data of each font of a chain, made once.
+/// Shaping data of each font of a chain, made once, and the shape plans made so far (a
+/// plan per font, script and direction: making one for every run was a third of a label's
+/// layout time).
 pub struct Shaper {
     data: Vec<ShaperData>,
+    fonts: Vec<Option<FontRef<'static>>>,
+    plans: Mutex<HashMap<(u16, Script, Direction), std::sync::Arc<ShapePlan>>>,
 }
 
 impl Shaper {
     /// The shaping tables of every font of `chain`.
     pub fn new(chain: &FontChain) -> Shaper {
+        let fonts: Vec<Option<FontRef<'static>>> = chain
+            .fonts()
+            .iter()
+            .map(|f| FontRef::new(f.bytes).ok())
+            .collect();
         Shaper {
-            data: chain
-                .fonts()
+            data: fonts
                 .iter()
-                .map(|f| match FontRef::new(f.bytes) {
-                    Ok(font) => ShaperData::new(&font),
-                    Err(_) => ShaperData::new(&empty_font()),
-                })
+                .map(|font| ShaperData::new(font.as_ref().unwrap_or(&empty_font())))
                 .collect(),
+            fonts,
+            plans: Mutex::new(HashMap::new()),
         }
     }
 
@@ -155,14 +164,24 @@ fn shape_line(chain: &FontChain, shaper: &Shaper, line: &str, y: f32, out: &mut 
     let mut pen = 0.0f32;
     for (font, run) in runs(chain, line, &mut out.missing) {
         let info = &chain.fonts()[usize::from(font)];
-        let Ok(font_ref) = FontRef::new(info.bytes) else {
+        let Some(Some(font_ref)) = shaper.fonts.get(usize::from(font)) else {
             continue;
         };
-        let shaper = shaper.data[usize::from(font)].shaper(&font_ref).build();
+        let built = shaper.data[usize::from(font)].shaper(font_ref).build();
         let mut buffer = UnicodeBuffer::new();
         buffer.push_str(run);
         buffer.guess_segment_properties();
-        let shaped = shaper.shape(buffer, ShapeOptions::new());
+        let key = (font, buffer.script(), buffer.direction());
+        let plan = {
+            let mut plans = shaper.plans.lock().unwrap_or_else(|e| e.into_inner());
+            plans
+                .entry(key)
+                .or_insert_with(|| {
+                    std::sync::Arc::new(ShapePlan::new(&built, key.2, Some(key.1), None, &[]))
+                })
+                .clone()
+        };
+        let shaped = built.shape(buffer, ShapeOptions::new().plan(Some(&plan)));
         let per_unit = 1.0 / info.units_per_em;
         for (glyph, position) in shaped.glyph_infos().iter().zip(shaped.glyph_positions()) {
             out.glyphs.push(PlacedGlyph {

@@ -12,6 +12,7 @@ use crate::layout::{
 use crate::text::{LabelSet, TextAnchor, TextDepth, TextHeight};
 use cadre_text::{FontChain, MsdfAtlas, Shaper};
 use glam::{DMat4, DVec3};
+use rayon::prelude::*;
 use std::sync::Arc;
 use wgpu::util::DeviceExt;
 
@@ -71,7 +72,7 @@ pub(crate) fn build(
         .unwrap_or(DVec3::ZERO);
     let layouts: Vec<_> = set
         .labels
-        .iter()
+        .par_iter()
         .map(|l| cadre_text::layout(chain, shaper, &l.text, (l.align, l.baseline), 1.0))
         .collect();
     let mut atlas = cadre_text::cache::base_atlas();
