@@ -8,9 +8,10 @@
 //! the replacement counted, so a PMI view on a white page stays readable.
 
 use crate::lines::{Cap, Hidden, Join, LineSet, LineStyle, LineWidth, Polyline, Stipple};
-use crate::text::{Fill, Label, LabelSet, TextDepth};
+use crate::text::{Fill, Label, LabelSet, TextAnchor, TextDepth};
 use crate::{Camera, Projection};
-use cadre_brep::pmi::{Pmi, SavedView};
+use cadre_brep::FaceId;
+use cadre_brep::pmi::{DimensionKind, Pmi, SavedView, SemanticItem};
 use glam::DVec3;
 
 /// Colour of annotations whose own colour would not show on the background (sRGB): the
@@ -95,6 +96,134 @@ pub fn overlay(pmi: &Pmi, view: Option<&SavedView>, background: [f32; 4]) -> Pmi
             out.labels.labels.push(label);
         }
         out.annotations += 1;
+    }
+    out
+}
+
+/// The GD&T symbol of a geometric tolerance's entity type (ASME Y14.5 / ISO 1101).
+pub fn tolerance_symbol(kind: &str) -> &'static str {
+    match kind {
+        "FLATNESS_TOLERANCE" => "⏥",
+        "STRAIGHTNESS_TOLERANCE" => "⏤",
+        "ROUNDNESS_TOLERANCE" => "○",
+        "CYLINDRICITY_TOLERANCE" => "⌭",
+        "LINE_PROFILE_TOLERANCE" => "⌒",
+        "SURFACE_PROFILE_TOLERANCE" => "⌓",
+        "ANGULARITY_TOLERANCE" => "∠",
+        "PERPENDICULARITY_TOLERANCE" => "⟂",
+        "PARALLELISM_TOLERANCE" => "∥",
+        "POSITION_TOLERANCE" => "⌖",
+        "CONCENTRICITY_TOLERANCE" | "COAXIALITY_TOLERANCE" => "◎",
+        "SYMMETRY_TOLERANCE" => "⌯",
+        "CIRCULAR_RUNOUT_TOLERANCE" => "↗",
+        "TOTAL_RUNOUT_TOLERANCE" => "⌰",
+        _ => "?",
+    }
+}
+
+/// A length or deviation as drawings write it: up to four decimals, no trailing zeros.
+fn number(v: f64) -> String {
+    let s = format!("{v:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.replace('-', "−")
+    }
+}
+
+/// The text a semantic item is drawn with when the file gives it no presentation: a
+/// dimension's value with its symbol and deviations, a tolerance's feature-control frame
+/// (symbol, value, datums between bars), a datum's letter.
+pub fn semantic_text(item: &SemanticItem) -> String {
+    match item {
+        SemanticItem::Dimension {
+            name,
+            value,
+            tolerance,
+            kind,
+            ..
+        } => {
+            let lower = name.to_lowercase();
+            let angular = lower.contains("angle") || lower.contains("angular");
+            let mut text = match value {
+                Some(v) if angular => format!("{}°", number(v.to_degrees())),
+                Some(v) if lower.contains("diameter") => format!("⌀{}", number(*v)),
+                Some(v) if lower.contains("radius") => format!("R{}", number(*v)),
+                Some(v) => number(*v),
+                None => match kind {
+                    DimensionKind::Size => format!("size ({name})"),
+                    DimensionKind::Location => format!("location ({name})"),
+                },
+            };
+            match tolerance {
+                Some((upper, lower)) if (upper + lower).abs() < 1e-12 => {
+                    text += &format!(" ±{}", number(*upper));
+                }
+                Some((upper, lower)) => {
+                    text += &format!(" +{}/{}", number(*upper), number(*lower));
+                }
+                None => {}
+            }
+            text
+        }
+        SemanticItem::Tolerance {
+            kind,
+            magnitude,
+            datums,
+            ..
+        } => {
+            let mut cells = vec![tolerance_symbol(kind).to_string()];
+            cells.push(magnitude.map_or_else(|| "?".into(), number));
+            cells.extend(datums.iter().filter(|d| !d.is_empty()).cloned());
+            cells.join(" | ")
+        }
+        SemanticItem::Datum { label, .. } | SemanticItem::DatumTarget { label, .. } => {
+            label.clone()
+        }
+    }
+}
+
+/// Callouts for the semantic items no annotation presents: [`semantic_text`] in a box,
+/// `height` pixels tall, beside the point `anchor_of` gives for its faces, with a leader
+/// to it. Items on no face (or whose faces give no point) are left out.
+pub fn semantic_callouts(
+    pmi: &Pmi,
+    anchor_of: impl Fn(&[FaceId]) -> Option<DVec3>,
+    height: f32,
+) -> LabelSet {
+    let presented: std::collections::HashSet<usize> =
+        pmi.annotations.iter().filter_map(|a| a.semantic).collect();
+    let mut out = LabelSet::default();
+    for (k, item) in pmi.semantic.items.iter().enumerate() {
+        if presented.contains(&k) {
+            continue;
+        }
+        let faces: &[FaceId] = match item {
+            SemanticItem::Dimension { faces, .. }
+            | SemanticItem::Tolerance { faces, .. }
+            | SemanticItem::Datum { faces, .. } => faces,
+            SemanticItem::DatumTarget { .. } => &[],
+        };
+        let Some(point) = anchor_of(faces) else {
+            continue;
+        };
+        // Alternate sides and heights so neighbours' boxes part.
+        let side = if out.labels.len() % 2 == 0 { 1.0 } else { -1.0 };
+        let rise = -2.5 * height * (1.0 + (out.labels.len() / 2 % 3) as f32);
+        let mut label = Label::billboard(semantic_text(item), point, height).with_leader(point);
+        label.anchor = TextAnchor::Billboard {
+            point,
+            offset: glam::Vec2::new(side * 5.0 * height, rise),
+        };
+        label.align = if side > 0.0 {
+            cadre_text::Align::Left
+        } else {
+            cadre_text::Align::Right
+        };
+        label.colour = PMI_COLOUR;
+        label.background = Some([1.0, 1.0, 1.0, 0.9]);
+        out.labels.push(label);
     }
     out
 }
@@ -196,5 +325,53 @@ mod tests {
         let camera = saved_view_camera(&view, (DVec3::splat(-1.0), DVec3::splat(1.0)), 1.0);
         assert!(camera.eye.z > camera.target.z);
         assert!(camera.is_orthographic());
+    }
+
+    #[test]
+    fn semantic_items_read_as_drawings_write_them() {
+        let dim = |name: &str, value: f64, tolerance| SemanticItem::Dimension {
+            step_id: 1,
+            kind: DimensionKind::Size,
+            name: name.into(),
+            value: Some(value),
+            tolerance,
+            faces: vec![FaceId(0)],
+        };
+        assert_eq!(
+            semantic_text(&dim("diameter", 6.5, Some((0.2, -0.1)))),
+            "⌀6.5 +0.2/−0.1"
+        );
+        assert_eq!(
+            semantic_text(&dim("radius", 5.0, Some((0.05, -0.05)))),
+            "R5 ±0.05"
+        );
+        assert_eq!(
+            semantic_text(&dim("linear distance", 25.125, None)),
+            "25.125"
+        );
+        assert_eq!(
+            semantic_text(&dim("angular size", std::f64::consts::FRAC_PI_6, None)),
+            "30°"
+        );
+        let tol = SemanticItem::Tolerance {
+            step_id: 2,
+            kind: "POSITION_TOLERANCE".into(),
+            magnitude: Some(0.1),
+            datums: vec!["A".into(), "B".into()],
+            faces: vec![FaceId(0)],
+        };
+        assert_eq!(semantic_text(&tol), "⌖ | 0.1 | A | B");
+        // Items presented by an annotation get no callout; the others do, with a leader.
+        let mut pmi = Pmi::default();
+        pmi.semantic.items = vec![dim("diameter", 6.5, None), tol];
+        let mut presenting = annotation(None);
+        presenting.semantic = Some(0);
+        pmi.annotations.push(presenting);
+        let set = semantic_callouts(&pmi, |_| Some(DVec3::ZERO), 10.0);
+        assert_eq!(set.labels.len(), 1);
+        assert_eq!(set.labels[0].text, "⌖ | 0.1 | A | B");
+        assert_eq!(set.labels[0].leader, Some(DVec3::ZERO));
+        // No point for the faces: no callout.
+        assert!(semantic_callouts(&pmi, |_| None, 10.0).labels.is_empty());
     }
 }

@@ -711,3 +711,79 @@ fn render_labels_the_parts_with_callouts() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--label-size"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+const PMI_BLOCK: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../examples/pmi/block-pmi.step"
+);
+
+#[test]
+fn pmi_is_listed_drawn_and_its_saved_view_rendered() {
+    let out = cadre()
+        .args(["info", "--json", PMI_BLOCK])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let pmi = &v["pmi"];
+    assert_eq!(pmi["annotations"], 1);
+    assert_eq!(pmi["dimensions"], 1);
+    assert_eq!(pmi["tolerances"], 1);
+    assert_eq!(pmi["datums"], 1);
+    assert_eq!(pmi["datum_targets"], 0);
+    assert_eq!(pmi["saved_views"], serde_json::json!(["Top"]));
+    assert_eq!(v["warnings"].as_array().map(Vec::len), Some(0));
+    let dir = scratch_dir("cadre-pmi");
+    let render = |extra: &[&str], name: &str| {
+        let path = dir.join(name);
+        let out = cadre()
+            .args([
+                "render",
+                PMI_BLOCK,
+                "--size",
+                "480x360",
+                "--antialias",
+                "none",
+            ])
+            .args(extra)
+            .arg("-o")
+            .arg(&path)
+            .output()
+            .unwrap();
+        (out, path)
+    };
+    // The callout is green (its curve style), the generated callouts dark blue.
+    let green = |i: &image::RgbaImage| {
+        i.pixels()
+            .filter(|p| p[1] > p[0].saturating_add(25) && p[1] > p[2].saturating_add(15))
+            .count()
+    };
+    let (out, path) = render(&["--pmi"], "pmi.png");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains("2 semantic PMI item(s)"));
+    let with = image::open(&path).unwrap().to_rgba8();
+    let (out, path) = render(&[], "bare.png");
+    assert!(out.status.success());
+    let without = image::open(&path).unwrap().to_rgba8();
+    assert!(green(&with) > 50, "{}", green(&with));
+    assert_eq!(green(&without), 0);
+    let (out, path) = render(&["--saved-view", "top"], "top.png");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(green(&image::open(&path).unwrap().to_rgba8()) > 50);
+    let (out, _) = render(&["--saved-view", "side"], "never.png");
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no saved view \"side\"") && err.contains("Top"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -160,6 +160,16 @@ impl Mapper<'_> {
     pub fn placement3(&self, id: u64) -> MapResult<Frame> {
         let inst = self.inst(id)?;
         let a = Attrs::first(&inst)?;
+        if a.keyword == "AXIS2_PLACEMENT_2D" {
+            // Its point has two coordinates: read as 2D, not as a 3D point missing one.
+            let f = placement_2d(self, id, self.units.length_to_mm)?;
+            return Ok(Frame {
+                origin: f.origin.extend(0.0),
+                x: f.x.extend(0.0),
+                y: f.y.extend(0.0),
+                z: Vec3::Z,
+            });
+        }
         let origin = self.point3(a.r#ref(1)?)?;
         let axis = match a.opt_ref(2) {
             Some(d) => self.direction(d)?,

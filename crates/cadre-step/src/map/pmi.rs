@@ -638,23 +638,42 @@ fn map_semantic(m: &mut Mapper<'_>) {
         let magnitude = Attrs::of(&inst, "GEOMETRIC_TOLERANCE")
             .ok()
             .and_then(|a| a.params.get(2).and_then(|p| measure(m, p)));
+        let datums = Attrs::of(&inst, "GEOMETRIC_TOLERANCE_WITH_DATUM_REFERENCE")
+            .ok()
+            .and_then(|a| a.refs(0).ok())
+            .map(|refs| refs.iter().flat_map(|&r| datum_letters(m, r, 0)).collect())
+            .unwrap_or_default();
         items.push((
             id,
             SemanticItem::Tolerance {
                 step_id: id,
                 kind,
                 magnitude,
-                datums: Vec::new(),
+                datums,
                 faces: Vec::new(),
             },
         ));
     }
+    // A datum feature's letter: that of the datum of the same name (AP214), else its name.
+    let mut letter_of_name: HashMap<String, String> = HashMap::new();
+    for id in m.file.ids_with_keyword("DATUM") {
+        if let Ok(inst) = m.inst(id)
+            && let Ok(a) = Attrs::of(&inst, "DATUM")
+        {
+            letter_of_name.insert(a.str_or_empty(0), a.str_or_empty(4));
+        }
+    }
     for id in m.file.ids_with_keyword("DATUM_FEATURE") {
-        let label = m
+        let name = m
             .inst(id)
             .ok()
             .and_then(|i| Attrs::first(&i).ok().map(|a| a.str_or_empty(0)))
             .unwrap_or_default();
+        let label = letter_of_name
+            .get(&name)
+            .filter(|l| !l.is_empty())
+            .cloned()
+            .unwrap_or(name);
         items.push((
             id,
             SemanticItem::Datum {
@@ -686,6 +705,58 @@ fn map_semantic(m: &mut Mapper<'_>) {
     m.model.pmi.semantic.items = items.into_iter().map(|(_, item)| item).collect();
 }
 
+/// The datum letters a datum reference, datum system or compartment names, in order.
+fn datum_letters(m: &Mapper<'_>, id: u64, depth: u32) -> Vec<String> {
+    if depth > MAX_DEPTH {
+        return Vec::new();
+    }
+    let Ok(inst) = m.inst(id) else {
+        return Vec::new();
+    };
+    if let Ok(a) = Attrs::of(&inst, "DATUM") {
+        // (name, description, of_shape, product_definitional, identification)
+        return vec![a.str_or_empty(4)];
+    }
+    let Ok(a) = Attrs::first(&inst) else {
+        return Vec::new();
+    };
+    match a.keyword {
+        // (precedence, referenced_datum)
+        "DATUM_REFERENCE" => a
+            .opt_ref(1)
+            .map(|d| datum_letters(m, d, depth + 1))
+            .unwrap_or_default(),
+        // (name, description, of_shape, product_definitional, constituents)
+        "DATUM_SYSTEM" => a
+            .refs(4)
+            .unwrap_or_default()
+            .iter()
+            .flat_map(|&c| datum_letters(m, c, depth + 1))
+            .collect(),
+        // (..., base, modifiers): the base is a datum or a list of reference elements.
+        "DATUM_REFERENCE_COMPARTMENT" | "DATUM_REFERENCE_ELEMENT" => {
+            let base = a.params.get(4);
+            let refs: Vec<u64> = match base {
+                Some(p) => p
+                    .as_ref_id()
+                    .into_iter()
+                    .chain(
+                        p.as_list()
+                            .unwrap_or(&[])
+                            .iter()
+                            .filter_map(|q| q.as_ref_id()),
+                    )
+                    .collect(),
+                None => Vec::new(),
+            };
+            refs.iter()
+                .flat_map(|&r| datum_letters(m, r, depth + 1))
+                .collect()
+        }
+        _ => Vec::new(),
+    }
+}
+
 /// Each dimension's nominal value (its `DIMENSIONAL_CHARACTERISTIC_REPRESENTATION`) and
 /// plus-minus deviations (`PLUS_MINUS_TOLERANCE`).
 fn dimension_values(m: &Mapper<'_>, items: &mut [(u64, SemanticItem)]) {
@@ -709,7 +780,19 @@ fn dimension_values(m: &Mapper<'_>, items: &mut [(u64, SemanticItem)]) {
                         && r.params.first().and_then(|p| p.as_str()) == Some("nominal value")
                 });
                 let value = v.records.iter().find_map(|r| {
-                    (r.keyword == "MEASURE_WITH_UNIT").then(|| r.params.first()?.as_f64())?
+                    if r.keyword != "MEASURE_WITH_UNIT" {
+                        return None;
+                    }
+                    let p = r.params.first()?;
+                    let angle = matches!(p, crate::syntax::Param::Typed { keyword, .. }
+                        if keyword.contains("ANGLE"));
+                    // Lengths in mm, angles in radians.
+                    let scale = if angle {
+                        m.units.angle_to_rad
+                    } else {
+                        m.units.length_to_mm
+                    };
+                    Some(p.as_f64()? * scale)
                 })?;
                 (is_nominal || items.len() == 1).then_some(value)
             })?;
@@ -720,7 +803,7 @@ fn dimension_values(m: &Mapper<'_>, items: &mut [(u64, SemanticItem)]) {
         if let Some(&k) = index.get(&dimension)
             && let SemanticItem::Dimension { value: v, .. } = &mut items[k].1
         {
-            *v = Some(value * m.units.length_to_mm);
+            *v = Some(value);
         }
     }
     for id in m.file.ids_with_keyword("PLUS_MINUS_TOLERANCE") {

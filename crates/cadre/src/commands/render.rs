@@ -426,6 +426,21 @@ fn frame_options(args: &RenderArgs, gpu: &Gpu) -> Result<FrameOptions> {
     })
 }
 
+/// The centre of the box of `faces` (a point for a generated PMI callout's leader).
+fn faces_centre(model: &cadre_brep::Model, faces: &[cadre_brep::FaceId]) -> Option<glam::DVec3> {
+    let mut total = cadre_geom::BoundingBox::EMPTY;
+    for &f in faces {
+        let face = model.faces.get(f.index())?;
+        let (b, _) = cadre_brep::bounds::face_bounds(model, face, cadre_geom::Accuracy::default());
+        total = total.union(&b);
+    }
+    if total.is_empty() {
+        return None;
+    }
+    let c = 0.5 * (total.min + total.max);
+    Some(glam::DVec3::new(c.x, c.y, c.z))
+}
+
 /// The camera `--camera` or `--view` asks for, fitted to `lo`–`hi`, before any zoom.
 fn fitted_camera(args: &RenderArgs, (lo, hi): (glam::DVec3, glam::DVec3)) -> Camera {
     let (w, h) = args.size;
@@ -766,7 +781,25 @@ fn draw_file(
         None => None,
     };
     let pmi = (args.pmi || saved_view.is_some()).then(|| {
-        let overlay = cadre_render::pmi::overlay(&model.pmi, saved_view, args.background);
+        let mut overlay = cadre_render::pmi::overlay(&model.pmi, saved_view, args.background);
+        // Semantic PMI the file does not present: generated callouts (not in saved views,
+        // which show what their author placed).
+        if saved_view.is_none() {
+            let generated = cadre_render::pmi::semantic_callouts(
+                &model.pmi,
+                |faces| faces_centre(model, faces),
+                args.label_size,
+            );
+            if !generated.labels.is_empty() {
+                eprintln!(
+                    "{}: {} semantic PMI item(s) without a presentation drawn as generated \
+                     callouts",
+                    input.display(),
+                    generated.labels.len()
+                );
+            }
+            overlay.labels.extend(generated);
+        }
         if overlay.annotations == 0 {
             eprintln!("{}: no PMI annotation to draw", input.display());
         } else if overlay.recoloured > 0 {
