@@ -270,7 +270,7 @@ fn glyph_field(chain: &FontChain, key: GlyphKey) -> Result<Option<GlyphField>, T
     let id = ttf_parser::GlyphId(key.glyph);
     let (Some(bbox), Some(shape)) = (
         face.glyph_bounding_box(id),
-        fdsm_ttf_parser::load_shape_from_face(&face, id),
+        fdsm_ttf_parser::load_shape_from_face(face, id),
     ) else {
         return Ok(None);
     };
