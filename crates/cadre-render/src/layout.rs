@@ -740,6 +740,8 @@ pub const LINE_POINT_COLOURS: u32 = 2;
 pub const LINE_HIDDEN_SHOWN: u32 = 4;
 /// [`LineStyleGpu::flags`]: hidden parts drawn in the hidden colour and pattern.
 pub const LINE_HIDDEN_STYLED: u32 = 8;
+/// [`LineStyleGpu::flags`]: drawn whole, whatever the [`crate::LineView`] (not cut).
+pub const LINE_WHOLE: u32 = 16;
 
 gpu_struct!(
     FrameUniform,

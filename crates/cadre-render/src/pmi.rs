@@ -70,6 +70,7 @@ pub fn overlay(pmi: &Pmi, view: Option<&SavedView>, background: [f32; 4]) -> Pmi
             join: Join::Round,
             cap: Cap::Round,
             hidden: Hidden::Show,
+            follows_view: false,
         });
         for line in &a.polylines {
             out.lines.polylines.push(Polyline {

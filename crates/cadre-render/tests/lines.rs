@@ -535,6 +535,36 @@ fn the_travel_shown_and_the_clip_box_cut_the_set() {
         "{clipped:?}"
     );
     assert!(columns(&boxed, 40).is_empty());
+    // A style that does not follow the view (an annotation's) is drawn whole and does not
+    // count along the travel: the same cuts leave it alone.
+    let mixed = || {
+        let mut s = set();
+        s.polylines
+            .insert(0, polyline(&[(-40.0, -20.0), (40.0, -20.0)], 1));
+        s.styles.push(LineStyle {
+            follows_view: false,
+            ..black(3.0)
+        });
+        s
+    };
+    assert_eq!(mixed().travel(), 80.0);
+    assert_eq!(
+        mixed().point_at_travel(60.0),
+        Some(DVec3::new(20.0, 10.0, 0.0))
+    );
+    let cut_both = LineView {
+        up_to: Some(60.0),
+        clip_box: Some((DVec3::new(-20.0, -5.0, -1.0), DVec3::new(30.0, 15.0, 1.0))),
+    };
+    let image = render(mixed(), &ortho(100.0), (100, 100), cut_both);
+    // Row 69/70 holds y = −20: all 80 columns; the toolpath's rows are cut as before.
+    assert_eq!(columns(&image, 70).len(), 80);
+    assert_eq!(columns(&image, 40).len(), 20);
+    // Negative control: following the view, the same polyline is cut by the box.
+    let mut follows = mixed();
+    follows.styles[1].follows_view = true;
+    let image = render(follows, &ortho(100.0), (100, 100), cut_both);
+    assert!(columns(&image, 70).is_empty());
 }
 
 #[test]

@@ -408,6 +408,7 @@ fn the_shaders_flags_are_the_rust_flags() {
             "LINE_HIDDEN_STYLED",
             cadre_render::layout::LINE_HIDDEN_STYLED,
         ),
+        ("LINE_WHOLE", cadre_render::layout::LINE_WHOLE),
         ("TEXT_QUAD_GLYPH", cadre_render::layout::TEXT_QUAD_GLYPH),
         ("TEXT_QUAD_BOX", cadre_render::layout::TEXT_QUAD_BOX),
         ("TEXT_QUAD_LEADER", cadre_render::layout::TEXT_QUAD_LEADER),

@@ -151,6 +151,10 @@ pub struct LineStyle {
     pub cap: Cap,
     /// What is drawn behind surfaces.
     pub hidden: Hidden,
+    /// Whether a [`LineView`] cuts this style's polylines (its travel and clip box: a
+    /// toolpath's); `false` draws them whole and leaves them out of [`LineSet::travel`] (an
+    /// annotation's, a leader's).
+    pub follows_view: bool,
 }
 
 impl Default for LineStyle {
@@ -170,6 +174,7 @@ impl Default for LineStyle {
                     factor: 1,
                 },
             },
+            follows_view: true,
         }
     }
 }
@@ -253,10 +258,12 @@ impl LineSet {
             .unwrap_or_default()
     }
 
-    /// The model-space length of every polyline, in order: where [`LineView::up_to`] counts.
+    /// The model-space length of every polyline that follows the view, in order: where
+    /// [`LineView::up_to`] counts.
     pub fn travel(&self) -> f64 {
         self.polylines
             .iter()
+            .filter(|p| self.style_of(p).follows_view)
             .map(|p| {
                 p.points
                     .windows(2)
@@ -271,7 +278,11 @@ impl LineSet {
     pub fn point_at_travel(&self, distance: f64) -> Option<DVec3> {
         let mut left = distance.max(0.0);
         let mut last = None;
-        for polyline in &self.polylines {
+        for polyline in self
+            .polylines
+            .iter()
+            .filter(|p| self.style_of(p).follows_view)
+        {
             for w in polyline.points.windows(2) {
                 let length = w[0].distance(w[1]);
                 if left <= length && length > 0.0 {

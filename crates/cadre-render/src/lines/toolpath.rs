@@ -51,6 +51,7 @@ impl Default for ToolpathStyle {
                 join: Join::Bevel,
                 cap: Cap::Butt,
                 hidden: faded([0.95, 0.35, 0.1]),
+                follows_view: true,
             },
             cut: LineStyle {
                 colour: [0.1, 0.35, 0.85, 1.0],
@@ -59,6 +60,7 @@ impl Default for ToolpathStyle {
                 join: Join::Round,
                 cap: Cap::Round,
                 hidden: faded([0.3, 0.4, 0.6]),
+                follows_view: true,
             },
             colour_by: ColourBy::Feed,
         }

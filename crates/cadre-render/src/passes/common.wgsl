@@ -190,6 +190,7 @@ const LINE_WORLD_WIDTH: u32 = 1u;
 const LINE_POINT_COLOURS: u32 = 2u;
 const LINE_HIDDEN_SHOWN: u32 = 4u;
 const LINE_HIDDEN_STYLED: u32 = 8u;
+const LINE_WHOLE: u32 = 16u;
 
 @group(0) @binding(0) var<uniform> frame: FrameUniform;
 

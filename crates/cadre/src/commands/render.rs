@@ -813,9 +813,6 @@ fn draw_file(
         }
         overlay
     });
-    if pmi.is_some() && args.toolpath.up_to.is_some() {
-        bail!("--up-to cannot be combined with PMI: it counts along every line drawn");
-    }
     let (lo, hi) = match pmi.as_ref().and_then(cadre_render::pmi::overlay_bounds) {
         Some((a, b)) => (lo.min(a), hi.max(b)),
         None => (lo, hi),

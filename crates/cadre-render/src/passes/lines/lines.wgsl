@@ -87,10 +87,11 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) i: u32) -> L
     let style = styles[style_index];
     // The part shown: up to the travel, inside the box, in front of the near plane.
     var range = vec2<f32>(0.0, 1.0);
-    if b.travel > lf.limits.x {
+    let whole = (style.flags & LINE_WHOLE) != 0u;
+    if (b.travel > lf.limits.x) & !whole {
         range.y = select(0.0, (lf.limits.x - a.travel) / (b.travel - a.travel), b.travel > a.travel);
     }
-    range = box_range(a.position, b.position, range);
+    range = select(box_range(a.position, b.position, range), range, whole);
     let ca = lf.to_clip * vec4<f32>(a.position, 1.0);
     let cb = lf.to_clip * vec4<f32>(b.position, 1.0);
     let near = near_range(ca, cb);

@@ -18,7 +18,7 @@ use crate::gpu_scene::buffer_limit;
 use crate::layout::{
     Binding, FrameUniform, GpuStruct, LINE_CAP_BUTT, LINE_CAP_ROUND, LINE_CAP_SQUARE,
     LINE_HIDDEN_SHOWN, LINE_HIDDEN_STYLED, LINE_JOIN_BEVEL, LINE_JOIN_MITER, LINE_JOIN_ROUND,
-    LINE_POINT_COLOURS, LINE_WORLD_WIDTH, LineFrame, LinePoint, LineStyleGpu,
+    LINE_POINT_COLOURS, LINE_WHOLE, LINE_WORLD_WIDTH, LineFrame, LinePoint, LineStyleGpu,
 };
 use crate::lines::{Cap, Hidden, Join, LineSet, LineStyle, LineView, LineWidth};
 use glam::{DMat4, DVec3};
@@ -97,7 +97,8 @@ pub(crate) fn style_to_gpu(style: &LineStyle, point_colours: bool) -> LineStyleG
         },
         flags: hidden_flag
             | if world { LINE_WORLD_WIDTH } else { 0 }
-            | if point_colours { LINE_POINT_COLOURS } else { 0 },
+            | if point_colours { LINE_POINT_COLOURS } else { 0 }
+            | if style.follows_view { 0 } else { LINE_WHOLE },
         pad: [0; 3],
     }
 }
@@ -173,11 +174,15 @@ impl GpuLines {
         let mut travel = 0.0f64;
         for (index, polyline) in set.polylines.iter().enumerate() {
             let mut previous: Option<DVec3> = None;
+            // Whole polylines do not count along the travel (nor are cut by it).
+            let counts = set.style_of(polyline).follows_view;
             for (k, p) in polyline.points.iter().enumerate() {
                 if !p.is_finite() {
                     continue;
                 }
-                if let Some(q) = previous {
+                if let Some(q) = previous
+                    && counts
+                {
                     travel += q.distance(*p);
                 }
                 let colour = polyline
