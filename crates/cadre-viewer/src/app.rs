@@ -22,6 +22,9 @@ use crate::session::Session;
 use crate::ui::{self, Action, ViewInput};
 use crate::{ViewerError, ViewerOptions};
 
+/// The 3D view's background (sRGB): a light grey.
+const VIEW_BACKGROUND: [f32; 4] = [0.93, 0.94, 0.96, 1.0];
+
 /// Pixels of tolerance around the cursor for edges and vertices.
 const PICK_RADIUS: u32 = 5;
 
@@ -75,6 +78,8 @@ struct App {
     scene_stale: bool,
     /// The toolpath in `prepared`, when one is open.
     drawn_toolpath: Option<crate::toolpath_view::DrawnToolpath>,
+    /// Whether PMI is in `prepared`, and which saved view's.
+    drawn_pmi: (bool, Option<usize>),
     /// Orbit pivot of the drag in progress.
     pivot: Option<DVec3>,
     /// The hover pick asked for and not yet answered, with the cursor it is for: answered
@@ -111,6 +116,7 @@ pub(crate) fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         prepared_exact: false,
         scene_stale: false,
         drawn_toolpath: None,
+        drawn_pmi: (false, None),
         pivot: None,
         hover_pick: None,
         hovered_at: None,
@@ -624,8 +630,11 @@ impl App {
             }
         };
         let view = frame.texture.create_view(&Default::default());
-        // The faces' method changed, or a model or toolpath opened: the scene is prepared
-        // again, with or without trims, with the toolpath.
+        // The faces' method changed, a model or toolpath opened, or the PMI shown changed:
+        // the scene is prepared again, with or without trims, with the toolpath and the PMI.
+        if (self.session.show_pmi, self.session.pmi_view) != self.drawn_pmi {
+            self.scene_stale = true;
+        }
         if self.session.exact_faces != self.prepared_exact || self.scene_stale {
             self.scene_stale = false;
             self.prepared_exact = self.session.exact_faces;
@@ -644,7 +653,7 @@ impl App {
                 Some(doc) => doc.scene.clone(),
                 None => cadre_render::RenderScene::default(),
             };
-            let scene = match &self.session.toolpath {
+            let mut scene = match &self.session.toolpath {
                 Some(toolpath) => {
                     let (scene, drawn) =
                         crate::toolpath_view::add_toolpath(base, toolpath, (view_height, rows));
@@ -656,6 +665,15 @@ impl App {
                     base
                 }
             };
+            // The PMI over it (its lines whole: the toolpath's simulation does not cut them).
+            self.drawn_pmi = (self.session.show_pmi, self.session.pmi_view);
+            if let Some(overlay) = self.session.pmi_overlay(VIEW_BACKGROUND) {
+                if let Some(drawn) = &mut self.drawn_toolpath {
+                    drawn.extra = overlay.lines.clone();
+                }
+                scene.lines.extend(overlay.lines);
+                scene.labels.extend(overlay.labels);
+            }
             self.prepared = Some(gfx.renderer.prepare(&gfx.gpu, &scene));
             if let Some(trim) = &scene.trim {
                 let line = format!(
@@ -704,7 +722,7 @@ impl App {
             height: vh,
             supersample: 1,
             mode: self.session.mode,
-            background: [0.93, 0.94, 0.96, 1.0],
+            background: VIEW_BACKGROUND,
             backdrop: self.session.backdrop().0,
             grid: self.session.backdrop().1,
             cracks: CrackOptions {

@@ -259,6 +259,13 @@ impl Navigator {
         self.animate_to(self.framing(preset.direction(), lo, hi, aspect));
     }
 
+    /// Moves (animated) to look at the whole box from `direction` (unit, target → eye) with
+    /// `up` on screen: a saved view's orientation.
+    pub fn view_along(&mut self, (direction, up): (DVec3, DVec3), aspect: f64) {
+        let (lo, hi) = self.bounds;
+        self.animate_to(self.framing((direction, up), lo, hi, aspect));
+    }
+
     /// Frames the box `lo`..`hi` (animated), keeping the direction of view.
     pub fn fit(&mut self, lo: DVec3, hi: DVec3, aspect: f64) {
         let direction = -self.orbit.forward();

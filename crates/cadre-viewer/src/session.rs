@@ -154,9 +154,35 @@ pub(crate) struct Session {
     pub sections: Vec<Section>,
     /// Text the model tree is filtered by (part names containing it).
     pub tree_filter: String,
+    /// The model's PMI is drawn over it (Display → PMI, or the PMI window).
+    pub show_pmi: bool,
+    /// The PMI window is shown.
+    pub show_pmi_window: bool,
+    /// The saved view chosen in the PMI window: only its annotations are drawn.
+    pub pmi_view: Option<usize>,
+    /// The annotation chosen in the PMI window (its faces are selected).
+    pub pmi_selected: Option<usize>,
     /// Properties rows of picked items, worked out once per item (exact areas and lengths
     /// are integrals: not every frame).
     pub properties: std::collections::HashMap<Pick, Vec<(String, String)>>,
+}
+
+/// The centre of the box of `faces` (where a generated PMI callout's leader points).
+pub(crate) fn faces_centre(
+    model: &cadre_brep::Model,
+    faces: &[cadre_brep::FaceId],
+) -> Option<glam::DVec3> {
+    let mut total = cadre_geom::BoundingBox::EMPTY;
+    for &f in faces {
+        let face = model.faces.get(f.index())?;
+        let (b, _) = cadre_brep::bounds::face_bounds(model, face, cadre_geom::Accuracy::default());
+        total = total.union(&b);
+    }
+    if total.is_empty() {
+        return None;
+    }
+    let c = 0.5 * (total.min + total.max);
+    Some(glam::DVec3::new(c.x, c.y, c.z))
 }
 
 /// A section plane as the user sets it.
@@ -226,6 +252,10 @@ impl Session {
             view_texture: None,
             sections: Vec::new(),
             tree_filter: String::new(),
+            show_pmi: false,
+            show_pmi_window: false,
+            pmi_view: None,
+            pmi_selected: None,
             properties: std::collections::HashMap::new(),
         }
     }
@@ -256,6 +286,10 @@ impl Session {
         self.measurements.clear();
         self.sections.clear();
         self.properties.clear();
+        // A file with PMI opens with it shown.
+        self.show_pmi = !doc.model.pmi.annotations.is_empty();
+        self.pmi_view = None;
+        self.pmi_selected = None;
         self.status = format!(
             "{}: {} parts, {} faces, loaded in {:.2} s",
             doc.title(),
@@ -264,6 +298,68 @@ impl Session {
             doc.load_seconds
         );
         self.doc = Some(doc);
+    }
+
+    /// The PMI overlay the view draws: the chosen saved view's annotations (all of them
+    /// without one) and the generated callouts of semantic PMI, or nothing when PMI is off.
+    pub fn pmi_overlay(&self, background: [f32; 4]) -> Option<cadre_render::pmi::PmiOverlay> {
+        let doc = self.doc.as_ref()?;
+        if !self.show_pmi || doc.model.pmi.is_empty() {
+            return None;
+        }
+        let pmi = &doc.model.pmi;
+        let view = self.pmi_view.and_then(|k| pmi.views.get(k));
+        let mut overlay = cadre_render::pmi::overlay(pmi, view, background);
+        if view.is_none() {
+            let model = &doc.model;
+            overlay.labels.extend(cadre_render::pmi::semantic_callouts(
+                pmi,
+                |faces| faces_centre(model, faces),
+                11.0,
+            ));
+        }
+        Some(overlay)
+    }
+
+    /// Chooses saved view `k` of the model's PMI: its annotations alone are drawn, and the
+    /// camera turns (animated) to its direction and projection.
+    pub fn choose_saved_view(&mut self, k: usize, aspect: f64) {
+        let (Some(doc), Some(nav)) = (&self.doc, &mut self.nav) else {
+            return;
+        };
+        let Some(view) = doc.model.pmi.views.get(k) else {
+            return;
+        };
+        let v = |p: cadre_geom::Vec3| glam::DVec3::new(p.x, p.y, p.z);
+        nav.orthographic = view.parallel;
+        nav.view_along((-v(view.direction), v(view.up)), aspect);
+        self.pmi_view = Some(k);
+        self.show_pmi = true;
+    }
+
+    /// Chooses annotation `k`: the faces it applies to become the selection (on every
+    /// placement of the part: PMI belongs to the part).
+    pub fn choose_annotation(&mut self, k: usize) {
+        let Some(doc) = &self.doc else { return };
+        let Some(annotation) = doc.model.pmi.annotations.get(k) else {
+            return;
+        };
+        self.pmi_selected = Some(k);
+        self.selection.clear();
+        for instance in 0..doc.instances.len() as u32 {
+            for face in &annotation.faces {
+                let pick = Pick::Face {
+                    instance,
+                    face: cadre_mesh::scene::SceneIds::face_id(*face),
+                };
+                self.selection.push(crate::inspect::Picked {
+                    pick,
+                    point: doc
+                        .bounds
+                        .map_or(glam::DVec3::ZERO, |(lo, hi)| 0.5 * (lo + hi)),
+                });
+            }
+        }
     }
 
     /// The renderer's view state: visibility, colours, hover and selection.
@@ -682,5 +778,36 @@ mod tests {
         s.set_document(document(), 1.0);
         assert!(s.selection.is_empty() && s.sections.is_empty() && s.properties.is_empty());
         assert!(s.status.contains("pin-assembly.step"), "{}", s.status);
+    }
+
+    #[test]
+    fn pmi_shows_its_saved_views_and_an_annotation_selects_its_faces() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pmi/block-pmi.step");
+        let mut s = Session::new();
+        s.set_document(
+            Document::load(&path, &|_| {}).expect("the example loads"),
+            1.5,
+        );
+        assert!(s.show_pmi, "a file with PMI opens with it shown");
+        let white = [1.0, 1.0, 1.0, 1.0];
+        let all = s.pmi_overlay(white).expect("drawn");
+        assert_eq!(all.annotations, 1);
+        // The callout's texts and the two generated callouts (the length, datum A).
+        assert_eq!(all.labels.labels.len(), 4);
+        s.choose_saved_view(0, 1.5);
+        assert_eq!(s.pmi_view, Some(0));
+        assert!(s.nav.as_ref().is_some_and(|n| n.orthographic));
+        // A saved view shows its own annotations, without generated callouts.
+        assert_eq!(s.pmi_overlay(white).expect("drawn").labels.labels.len(), 2);
+        s.choose_annotation(0);
+        assert_eq!(s.selection.len(), 1);
+        assert!(matches!(
+            s.selection[0].pick,
+            Pick::Face { instance: 0, .. }
+        ));
+        s.show_pmi = false;
+        assert!(s.pmi_overlay(white).is_none());
+        // Negative control: the pin assembly has none.
+        assert!(session().pmi_overlay(white).is_none() && !session().show_pmi);
     }
 }

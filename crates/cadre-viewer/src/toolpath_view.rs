@@ -21,6 +21,8 @@ pub(crate) struct DrawnToolpath {
     lines: LineSet,
     /// The tool marker's index among the scene's primitives.
     tool: Option<usize>,
+    /// Other lines of the scene (the PMI's), kept when the toolpath's are sampled again.
+    pub extra: LineSet,
 }
 
 /// Lines for `toolpath` sampled for a view `view_height` model units over `rows` pixels.
@@ -59,6 +61,7 @@ pub(crate) fn add_toolpath(
             diameter,
             lines,
             tool,
+            extra: LineSet::default(),
         },
     )
 }
@@ -76,7 +79,9 @@ impl DrawnToolpath {
         let ratio = view_height / self.view_height.max(1e-300);
         if self.colour_by != toolpath.colour_by || !(0.5..=2.0).contains(&ratio) {
             self.lines = lines_for(toolpath, view_height, rows);
-            renderer.replace_lines(gpu, prepared, &self.lines);
+            let mut all = self.lines.clone();
+            all.extend(self.extra.clone());
+            renderer.replace_lines(gpu, prepared, &all);
             self.colour_by = toolpath.colour_by;
             self.view_height = view_height;
         }

@@ -70,6 +70,16 @@ pub(super) fn menu_bar(
                     ui.checkbox(&mut s.grid, "Ground grid").on_hover_text(
                         "A grid on the plane under the model, its spacing following the zoom",
                     );
+                    ui.separator();
+                    let has_pmi = s.doc.as_ref().is_some_and(|d| !d.model.pmi.is_empty());
+                    ui.add_enabled(has_pmi, egui::Checkbox::new(&mut s.show_pmi, "PMI"))
+                        .on_hover_text("The file's annotations and generated callouts");
+                    if ui
+                        .add_enabled(has_pmi, egui::Button::new("PMI and saved views…"))
+                        .clicked()
+                    {
+                        s.show_pmi_window = true;
+                    }
                 });
                 ui.menu_button("Measure", |ui| {
                     ui.label("Keys: D distance, L edge length, R radius, A angle");

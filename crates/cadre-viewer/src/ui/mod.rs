@@ -7,6 +7,7 @@ mod dialogs;
 mod keys;
 mod menu;
 mod overlay;
+mod pmi;
 mod properties;
 mod sections;
 mod status;
@@ -93,6 +94,7 @@ pub(crate) fn draw(
     }
     dialogs::dialogs(ui, s, &mut actions);
     toolpath::toolpath_window(ui, s);
+    pmi::pmi_window(ui, s, aspect);
     let mut input = ViewInput::default();
     {
         if let (Some(id), Some(_)) = (s.view_texture, &s.nav) {

@@ -1,0 +1,75 @@
+//! The PMI window: the model's annotations and saved views. Choosing a saved view turns the
+//! camera to it and draws its annotations alone; choosing an annotation selects the faces
+//! it applies to.
+
+use crate::session::Session;
+
+/// The window, when the model has PMI and the window is shown.
+pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
+    let ctx = ui.ctx().clone();
+    if !s.show_pmi_window {
+        return;
+    }
+    let Some(doc) = &s.doc else { return };
+    let pmi = &doc.model.pmi;
+    let views: Vec<String> = pmi.views.iter().map(|v| v.name.clone()).collect();
+    let annotations: Vec<(String, usize, usize)> = pmi
+        .annotations
+        .iter()
+        .map(|a| (a.name.clone(), a.faces.len(), a.point_count()))
+        .collect();
+    let semantic = &pmi.semantic;
+    let summary = format!(
+        "{} annotations, {} dimensions, {} tolerances, {} datums, {} datum targets",
+        pmi.annotations.len(),
+        pmi.occt_dimensions(),
+        semantic.tolerances(),
+        semantic.datums(),
+        semantic.datum_targets()
+    );
+    let mut open = true;
+    let mut chosen_view = None;
+    let mut chosen_annotation = None;
+    egui::Window::new("PMI")
+        .open(&mut open)
+        .default_width(320.0)
+        .show(&ctx, |ui| {
+            ui.label(summary);
+            ui.checkbox(&mut s.show_pmi, "Show PMI");
+            ui.separator();
+            ui.label("Saved views");
+            if ui
+                .selectable_label(s.pmi_view.is_none(), "(all annotations)")
+                .clicked()
+            {
+                s.pmi_view = None;
+            }
+            for (k, name) in views.iter().enumerate() {
+                if ui.selectable_label(s.pmi_view == Some(k), name).clicked() {
+                    chosen_view = Some(k);
+                }
+            }
+            ui.separator();
+            ui.label("Annotations (choose one to select its faces)");
+            egui::ScrollArea::vertical()
+                .max_height(300.0)
+                .show(ui, |ui| {
+                    for (k, (name, faces, points)) in annotations.iter().enumerate() {
+                        let text = format!("{name}  ({faces} faces, {points} points)");
+                        if ui
+                            .selectable_label(s.pmi_selected == Some(k), text)
+                            .clicked()
+                        {
+                            chosen_annotation = Some(k);
+                        }
+                    }
+                });
+        });
+    if let Some(k) = chosen_view {
+        s.choose_saved_view(k, aspect);
+    }
+    if let Some(k) = chosen_annotation {
+        s.choose_annotation(k);
+    }
+    s.show_pmi_window &= open;
+}
