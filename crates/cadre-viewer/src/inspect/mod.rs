@@ -3,6 +3,7 @@
 //! in the world by the picked instance.
 
 mod format;
+pub mod min_distance;
 
 use cadre_brep::measure::{angle_between_faces, edge_properties, face_properties};
 use cadre_render::Pick;
@@ -13,7 +14,7 @@ use crate::document::Document;
 /// A measurement tool: what it needs picked and what it reports.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Tool {
-    /// Distance between two picked points (vertices exactly, faces and edges at the pick).
+    /// Minimum distance between two picked entities (faces, edges, vertices).
     Distance,
     /// Length of a picked edge.
     EdgeLength,
@@ -230,18 +231,27 @@ fn scale_of(doc: &Document, instance: usize) -> f64 {
 pub fn measure(doc: &Document, tool: Tool, picks: &[Picked]) -> Result<Measurement, String> {
     match (tool, picks) {
         (Tool::Distance, [a, b]) => {
-            let pa = vertex_position(doc, a.pick).unwrap_or(a.point);
-            let pb = vertex_position(doc, b.pick).unwrap_or(b.point);
+            let picked = (
+                vertex_position(doc, a.pick).unwrap_or(a.point),
+                vertex_position(doc, b.pick).unwrap_or(b.point),
+            );
+            // The entities' minimum distance; the clicked points for what has no geometry.
+            let (length, pa, pb, what) = match min_distance::min_distance(doc, a.pick, b.pick) {
+                Some((d, pa, pb)) => (d, pa, pb, "Minimum distance"),
+                None => (
+                    picked.0.distance(picked.1),
+                    picked.0,
+                    picked.1,
+                    "Distance between the picked points",
+                ),
+            };
             let d = pb - pa;
             Ok(Measurement {
                 tool,
-                value: d.length(),
+                value: length,
                 text: format!(
-                    "Distance {:.4} mm (dx {:.4}, dy {:.4}, dz {:.4})",
-                    d.length(),
-                    d.x,
-                    d.y,
-                    d.z
+                    "{what} {length:.4} mm (dx {:.4}, dy {:.4}, dz {:.4})",
+                    d.x, d.y, d.z
                 ),
                 points: vec![pa, pb],
             })
