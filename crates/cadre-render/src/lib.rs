@@ -47,6 +47,7 @@ mod bounds;
 mod camera;
 pub mod compare;
 mod coverage;
+pub mod dimensions;
 mod edge_faces;
 mod error;
 mod feature_edges;

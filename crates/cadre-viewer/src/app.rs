@@ -80,6 +80,8 @@ struct App {
     drawn_toolpath: Option<crate::toolpath_view::DrawnToolpath>,
     /// Whether PMI is in `prepared`, and which saved view's.
     drawn_pmi: (bool, Option<usize>),
+    /// How many dimensions `prepared` draws.
+    drawn_dimensions: usize,
     /// Orbit pivot of the drag in progress.
     pivot: Option<DVec3>,
     /// The hover pick asked for and not yet answered, with the cursor it is for: answered
@@ -117,6 +119,7 @@ pub(crate) fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         scene_stale: false,
         drawn_toolpath: None,
         drawn_pmi: (false, None),
+        drawn_dimensions: 0,
         pivot: None,
         hover_pick: None,
         hovered_at: None,
@@ -632,7 +635,9 @@ impl App {
         let view = frame.texture.create_view(&Default::default());
         // The faces' method changed, a model or toolpath opened, or the PMI shown changed:
         // the scene is prepared again, with or without trims, with the toolpath and the PMI.
-        if (self.session.show_pmi, self.session.pmi_view) != self.drawn_pmi {
+        if (self.session.show_pmi, self.session.pmi_view) != self.drawn_pmi
+            || self.session.measurements.len() != self.drawn_dimensions
+        {
             self.scene_stale = true;
         }
         if self.session.exact_faces != self.prepared_exact || self.scene_stale {
@@ -665,15 +670,23 @@ impl App {
                     base
                 }
             };
-            // The PMI over it (its lines whole: the toolpath's simulation does not cut them).
+            // The PMI and the dimensions over it (their lines whole: the toolpath's
+            // simulation does not cut them).
             self.drawn_pmi = (self.session.show_pmi, self.session.pmi_view);
+            self.drawn_dimensions = self.session.measurements.len();
+            let mut extra = cadre_render::LineSet::default();
             if let Some(overlay) = self.session.pmi_overlay(VIEW_BACKGROUND) {
-                if let Some(drawn) = &mut self.drawn_toolpath {
-                    drawn.extra = overlay.lines.clone();
-                }
-                scene.lines.extend(overlay.lines);
+                extra.extend(overlay.lines);
                 scene.labels.extend(overlay.labels);
             }
+            let (lines, labels) =
+                cadre_render::dimensions::overlay(&self.session.dimensions(), 12.0);
+            extra.extend(lines);
+            scene.labels.extend(labels);
+            if let Some(drawn) = &mut self.drawn_toolpath {
+                drawn.extra = extra.clone();
+            }
+            scene.lines.extend(extra);
             self.prepared = Some(gfx.renderer.prepare(&gfx.gpu, &scene));
             if let Some(trim) = &scene.trim {
                 let line = format!(

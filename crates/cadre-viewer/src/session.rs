@@ -167,6 +167,38 @@ pub(crate) struct Session {
     pub properties: std::collections::HashMap<Pick, Vec<(String, String)>>,
 }
 
+/// A measurement as a dimension to draw and keep.
+fn dimension_of(m: &Measurement) -> cadre_render::dimensions::Dimension {
+    let kind = match m.tool {
+        Tool::Distance => "distance",
+        Tool::EdgeLength => "length",
+        Tool::Radius => "radius",
+        Tool::Angle => "angle",
+    };
+    cadre_render::dimensions::Dimension {
+        kind: kind.into(),
+        value: m.value,
+        text: cadre_render::dimensions::value_text(kind, m.value),
+        points: m.points.iter().map(|p| p.to_array()).collect(),
+    }
+}
+
+/// A kept dimension as a measurement of the session (an unknown kind reads as a distance).
+fn measurement_of(d: &cadre_render::dimensions::Dimension) -> Measurement {
+    let tool = match d.kind.as_str() {
+        "length" => Tool::EdgeLength,
+        "radius" => Tool::Radius,
+        "angle" => Tool::Angle,
+        _ => Tool::Distance,
+    };
+    Measurement {
+        tool,
+        value: d.value,
+        text: format!("{} {}", tool.name(), d.text),
+        points: d.points.iter().map(|&p| glam::DVec3::from(p)).collect(),
+    }
+}
+
 /// The centre of the box of `faces` (where a generated PMI callout's leader points).
 pub(crate) fn faces_centre(
     model: &cadre_brep::Model,
@@ -286,6 +318,16 @@ impl Session {
         self.measurements.clear();
         self.sections.clear();
         self.properties.clear();
+        // The dimensions kept beside the file come back.
+        match cadre_render::dimensions::DimensionFile::read(
+            &cadre_render::dimensions::sidecar_path(&doc.path),
+        ) {
+            Ok(Some(file)) => {
+                self.measurements = file.dimensions.iter().map(measurement_of).collect();
+            }
+            Ok(None) => {}
+            Err(e) => self.error = Some(e.to_string()),
+        }
         // A file with PMI opens with it shown.
         self.show_pmi = !doc.model.pmi.annotations.is_empty();
         self.pmi_view = None;
@@ -359,6 +401,32 @@ impl Session {
                         .map_or(glam::DVec3::ZERO, |(lo, hi)| 0.5 * (lo + hi)),
                 });
             }
+        }
+    }
+
+    /// The measurements as the renderer draws and the file beside the model keeps them.
+    pub fn dimensions(&self) -> Vec<cadre_render::dimensions::Dimension> {
+        self.measurements.iter().map(dimension_of).collect()
+    }
+
+    /// Writes the measurements beside the model file (`FILE.dimensions.json`); a failure is
+    /// shown, the measurements kept.
+    pub fn save_dimensions(&mut self) {
+        let Some(doc) = &self.doc else { return };
+        let path = cadre_render::dimensions::sidecar_path(&doc.path);
+        let file = cadre_render::dimensions::DimensionFile {
+            dimensions: self.dimensions(),
+        };
+        if let Err(e) = file.write(&path) {
+            self.error = Some(e.to_string());
+        }
+    }
+
+    /// Deletes measurement `k` (and from the file beside the model).
+    pub fn delete_measurement(&mut self, k: usize) {
+        if k < self.measurements.len() {
+            self.measurements.remove(k);
+            self.save_dimensions();
         }
     }
 
@@ -443,6 +511,7 @@ impl Session {
                         Ok(m) => {
                             self.tool_message = Some(m.text.clone());
                             self.measurements.push(m);
+                            self.save_dimensions();
                         }
                         Err(e) => self.tool_message = Some(e),
                     }
@@ -567,9 +636,17 @@ mod tests {
     use super::*;
     use std::path::Path;
 
-    /// The bundled pin assembly.
+    /// A copy of the bundled pin assembly in a folder of the test's own (measurements are
+    /// kept beside the file: not beside the repository's example).
     fn document() -> Document {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pin-assembly.step");
+        static COUNT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let n = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("cadre-session-{}-{n}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a scratch folder");
+        let path = dir.join("pin-assembly.step");
+        let example =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pin-assembly.step");
+        std::fs::copy(example, &path).expect("copied");
         Document::load(&path, &|_| {}).expect("the example loads")
     }
 
@@ -778,6 +855,31 @@ mod tests {
         s.set_document(document(), 1.0);
         assert!(s.selection.is_empty() && s.sections.is_empty() && s.properties.is_empty());
         assert!(s.status.contains("pin-assembly.step"), "{}", s.status);
+    }
+
+    #[test]
+    fn measurements_are_kept_beside_the_file_and_deleted_from_it() {
+        let mut s = session();
+        let path = cadre_render::dimensions::sidecar_path(&s.doc.as_ref().expect("open").path);
+        assert!(!path.exists());
+        s.measurements.push(Measurement {
+            tool: Tool::Distance,
+            value: 5.0,
+            text: "Minimum distance 5 mm".into(),
+            points: vec![glam::DVec3::ZERO, glam::DVec3::new(0.0, 0.0, 5.0)],
+        });
+        s.save_dimensions();
+        assert!(path.exists());
+        // Opened again, the file's dimensions come back.
+        let doc = Document::load(&s.doc.as_ref().expect("open").path, &|_| {}).expect("loads");
+        let mut again = Session::new();
+        again.set_document(doc, 1.5);
+        assert_eq!(again.measurements.len(), 1);
+        assert_eq!(again.measurements[0].points, s.measurements[0].points);
+        assert_eq!(again.dimensions()[0].text, "5.000 mm");
+        again.delete_measurement(0);
+        assert!(again.measurements.is_empty() && !path.exists());
+        let _ = std::fs::remove_dir_all(path.parent().expect("folder"));
     }
 
     #[test]

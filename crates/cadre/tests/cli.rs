@@ -787,3 +787,55 @@ fn pmi_is_listed_drawn_and_its_saved_view_rendered() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn render_draws_the_dimensions_kept_beside_the_file() {
+    let dir = scratch_dir("cadre-dimensions");
+    let model = dir.join("block.step");
+    std::fs::copy(PMI_BLOCK, &model).unwrap();
+    let out_png = dir.join("d.png");
+    let run = || {
+        cadre()
+            .args([
+                "render",
+                "--dimensions",
+                "--size",
+                "320x240",
+                "--antialias",
+                "none",
+            ])
+            .arg(&model)
+            .arg("-o")
+            .arg(&out_png)
+            .output()
+            .unwrap()
+    };
+    // No file beside it: a clear error.
+    let out = run();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no dimensions kept beside it"));
+    // A distance across the block's top, drawn in the dimension colour.
+    std::fs::write(
+        dir.join("block.step.dimensions.json"),
+        r#"{"dimensions": [{"kind": "distance", "value": 60.0, "text": "60.000 mm",
+            "points": [[0, 0, 10], [60, 0, 10]]}]}"#,
+    )
+    .unwrap();
+    let out = run();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let image = image::open(&out_png).unwrap().to_rgba8();
+    let brown = image
+        .pixels()
+        .filter(|p| p[0] > 120 && p[0] > p[1].saturating_add(40) && p[1] > p[2].saturating_add(20))
+        .count();
+    assert!(brown > 40, "{brown}");
+    // A file that is not one: the error names it.
+    std::fs::write(dir.join("block.step.dimensions.json"), "[1, 2]").unwrap();
+    let out = run();
+    assert!(String::from_utf8_lossy(&out.stderr).contains("not a dimension file"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -156,8 +156,22 @@ impl Viewer {
     }
 }
 
+/// A copy of the bundled pin assembly in a scratch folder: the viewer keeps measurements
+/// beside the file it opened, and must not write beside the repository's example.
 fn example() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pin-assembly.step")
+    static COPY: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    COPY.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("cadre-view-e2e-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a scratch folder");
+        let copy = dir.join("pin-assembly.step");
+        std::fs::copy(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pin-assembly.step"),
+            &copy,
+        )
+        .expect("copied");
+        copy
+    })
+    .clone()
 }
 
 /// Pixels that are not the white background.

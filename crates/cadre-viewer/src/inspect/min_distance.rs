@@ -49,7 +49,10 @@ impl<'d> Entity<'d> {
             Pick::Face { face, .. } => {
                 let f = doc.face(face)?;
                 let mesh = doc.mesh.faces.get(f.index())?.as_ref()?;
-                (Kind::Face(f), mesh.points.iter().map(|p| v(p.xyz)).collect())
+                (
+                    Kind::Face(f),
+                    mesh.points.iter().map(|p| v(p.xyz)).collect(),
+                )
             }
             Pick::Edge { edge, .. } => {
                 let e = doc.edge(edge)?;
@@ -59,7 +62,10 @@ impl<'d> Entity<'d> {
             }
             Pick::Vertex { vertex, .. } => {
                 let id = doc.vertex(vertex)?;
-                (Kind::Vertex, vec![v(doc.model.vertices.get(id.index())?.point)])
+                (
+                    Kind::Vertex,
+                    vec![v(doc.model.vertices.get(id.index())?.point)],
+                )
             }
             Pick::Part { .. } => return None,
         };
@@ -114,9 +120,7 @@ impl<'d> Entity<'d> {
                 let p = mesh.points[i as usize].uv;
                 glam::DVec2::new(p.x, p.y)
             });
-            let side = |p: glam::DVec2, q1: glam::DVec2, r: glam::DVec2| {
-                (q1 - p).perp_dot(r - p)
-            };
+            let side = |p: glam::DVec2, q1: glam::DVec2, r: glam::DVec2| (q1 - p).perp_dot(r - p);
             let (d1, d2, d3) = (side(a, b, q), side(b, c, q), side(c, a, q));
             let neg = d1 < -1e-12 || d2 < -1e-12 || d3 < -1e-12;
             let pos = d1 > 1e-12 || d2 > 1e-12 || d3 > 1e-12;
@@ -274,9 +278,14 @@ mod tests {
         let a = picked(face(&doc, 117), DVec3::new(5.0, 5.0, 10.0));
         let b = picked(face(&doc, 107), DVec3::new(55.0, 35.0, 0.0));
         assert!((a.point.distance(b.point) - 3500f64.sqrt()).abs() < 1e-9);
-        let m = super::super::measure(&doc, super::super::Tool::Distance, &[a, b]).expect("measured");
+        let m =
+            super::super::measure(&doc, super::super::Tool::Distance, &[a, b]).expect("measured");
         assert!((m.value - 10.0).abs() < 1e-9, "{}", m.value);
-        assert!(m.text.starts_with("Minimum distance 10.0000 mm"), "{}", m.text);
+        assert!(
+            m.text.starts_with("Minimum distance 10.0000 mm"),
+            "{}",
+            m.text
+        );
         assert_eq!(m.points.len(), 2);
     }
 }

@@ -93,6 +93,7 @@ pub(super) fn menu_bar(
                     }
                     if ui.button("Clear measurements").clicked() {
                         s.measurements.clear();
+                        s.save_dimensions();
                     }
                 });
             });

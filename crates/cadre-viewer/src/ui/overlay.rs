@@ -4,10 +4,11 @@ use egui::{Color32, Pos2, Sense, Stroke, Vec2};
 
 use super::Action;
 use crate::gizmo;
-use crate::inspect::{self, Tool};
+use crate::inspect;
 use crate::session::Session;
 
-/// The axis gizmo, the measurements' dimension lines and the hovered vertex, over the view.
+/// The axis gizmo and the hovered vertex, over the view (the measurements' dimensions are
+/// drawn by the renderer, `cadre_render::dimensions`).
 pub(super) fn overlay(
     ui: &mut egui::Ui,
     s: &mut Session,
@@ -68,34 +69,6 @@ pub(super) fn overlay(
             )
         })
     };
-    for m in &s.measurements {
-        if let [a, b] = m.points[..]
-            && let (Some(pa), Some(pb)) = (to_screen(a), to_screen(b))
-        {
-            painter.line_segment([pa, pb], Stroke::new(2.0, Color32::from_rgb(230, 120, 20)));
-            painter.circle_filled(pa, 3.5, Color32::from_rgb(230, 120, 20));
-            painter.circle_filled(pb, 3.5, Color32::from_rgb(230, 120, 20));
-            let label = format!(
-                "{:.3}",
-                if m.tool == Tool::Angle {
-                    m.value.to_degrees()
-                } else {
-                    m.value
-                }
-            );
-            painter.text(
-                pa + (pb - pa) * 0.5,
-                egui::Align2::CENTER_BOTTOM,
-                if m.tool == Tool::Angle {
-                    format!("{label}°")
-                } else {
-                    format!("{label} mm")
-                },
-                egui::FontId::proportional(14.0),
-                Color32::from_rgb(160, 70, 0),
-            );
-        }
-    }
     // The hovered vertex as a dot (vertices are not drawn otherwise).
     if let (Some(hover), Some(doc)) = (&s.hover, &s.doc)
         && let Some(p) = inspect::vertex_position(doc, hover.pick).and_then(to_screen)

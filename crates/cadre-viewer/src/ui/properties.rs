@@ -92,8 +92,22 @@ pub(super) fn properties_panel(ui: &mut egui::Ui, s: &mut Session, actions: &mut
     if let Some(m) = &s.tool_message {
         ui.label(m);
     }
-    for m in s.measurements.iter().rev() {
-        ui.label(&m.text);
+    // Newest first, each with its delete button (dimensions are kept beside the file).
+    let mut delete = None;
+    for (k, m) in s.measurements.iter().enumerate().rev() {
+        ui.horizontal(|ui| {
+            if ui
+                .small_button("✕")
+                .on_hover_text("Delete this dimension")
+                .clicked()
+            {
+                delete = Some(k);
+            }
+            ui.label(&m.text);
+        });
+    }
+    if let Some(k) = delete {
+        s.delete_measurement(k);
     }
     ui.separator();
     super::sections::sections_ui(ui, s);

@@ -144,6 +144,10 @@ pub struct RenderArgs {
     /// view's annotations, which are drawn (implies --pmi for that view's annotations).
     #[arg(long, value_name = "NAME", conflicts_with_all = ["camera", "zoom"])]
     saved_view: Option<String>,
+    /// Draw the dimensions the viewer kept beside the file (`FILE.dimensions.json`: each
+    /// measurement's line, arrowheads and value).
+    #[arg(long)]
+    dimensions: bool,
 }
 
 fn parse_gradient(s: &str) -> Result<[[f32; 4]; 2], String> {
@@ -852,6 +856,19 @@ fn draw_file(
         ..ViewState::default()
     };
     let mut scene = scene;
+    if args.dimensions {
+        let path = cadre_render::dimensions::sidecar_path(input);
+        let file = cadre_render::dimensions::DimensionFile::read(&path)?.with_context(|| {
+            format!(
+                "{}: no dimensions kept beside it ({} not found; measure in `cadre view`)",
+                input.display(),
+                path.display()
+            )
+        })?;
+        let (lines, labels) = cadre_render::dimensions::overlay(&file.dimensions, args.label_size);
+        scene.lines.extend(lines);
+        scene.labels.extend(labels);
+    }
     if let Some(overlay) = pmi {
         scene.lines.extend(overlay.lines);
         scene.labels.extend(overlay.labels);
