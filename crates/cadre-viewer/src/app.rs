@@ -82,6 +82,10 @@ struct App {
     drawn_pmi: (bool, Option<usize>),
     /// How many dimensions `prepared` draws.
     drawn_dimensions: usize,
+    /// The labels of `prepared` other than the part callouts (PMI, dimensions).
+    scene_labels: cadre_render::LabelSet,
+    /// The camera and view size the part callouts were laid out for (`None`: none drawn).
+    callouts_for: Option<(cadre_render::Camera, (u32, u32))>,
     /// Orbit pivot of the drag in progress.
     pivot: Option<DVec3>,
     /// The hover pick asked for and not yet answered, with the cursor it is for: answered
@@ -120,6 +124,8 @@ pub(crate) fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         drawn_toolpath: None,
         drawn_pmi: (false, None),
         drawn_dimensions: 0,
+        scene_labels: cadre_render::LabelSet::default(),
+        callouts_for: None,
         pivot: None,
         hover_pick: None,
         hovered_at: None,
@@ -687,6 +693,8 @@ impl App {
                 drawn.extra = extra.clone();
             }
             scene.lines.extend(extra);
+            self.scene_labels = scene.labels.clone();
+            self.callouts_for = None;
             self.prepared = Some(gfx.renderer.prepare(&gfx.gpu, &scene));
             if let Some(trim) = &scene.trim {
                 let line = format!(
@@ -718,6 +726,29 @@ impl App {
                 toolpath,
                 (nav.camera().view_height(), rows),
             );
+        }
+        // The part callouts, laid out again when the view has settled somewhere new (while it
+        // moves they ride on their parts' points).
+        if let (Some(prepared), Some(nav)) = (&mut self.prepared, &self.session.nav) {
+            let size = (
+                (self.view_rect.width().round() as u32).max(1),
+                (self.view_rect.height().round() as u32).max(1),
+            );
+            let camera = nav.camera();
+            let settled = !self.camera_moving && !nav.animating();
+            let wanted = self.session.part_labels.then_some((camera, size));
+            let stale = match (&self.callouts_for, &wanted) {
+                (None, None) => false,
+                (Some(_), None) => true,
+                (None, Some(_)) => settled,
+                (Some(old), Some(new)) => settled && old != new,
+            };
+            if stale {
+                let mut labels = self.scene_labels.clone();
+                labels.extend(self.session.part_callouts(&camera, size));
+                gfx.renderer.replace_labels(&gfx.gpu, prepared, &labels);
+                self.callouts_for = wanted;
+            }
         }
         let (w, h) = (gfx.config.width, gfx.config.height);
         let (vw, vh) = (

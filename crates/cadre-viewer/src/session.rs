@@ -158,6 +158,9 @@ pub(crate) struct Session {
     pub show_pmi: bool,
     /// The PMI window is shown.
     pub show_pmi_window: bool,
+    /// Part names as callouts beside the model (Display → Part labels), laid out again
+    /// whenever the view settles.
+    pub part_labels: bool,
     /// The saved view chosen in the PMI window: only its annotations are drawn.
     pub pmi_view: Option<usize>,
     /// The annotation chosen in the PMI window (its faces are selected).
@@ -286,6 +289,7 @@ impl Session {
             tree_filter: String::new(),
             show_pmi: false,
             show_pmi_window: false,
+            part_labels: false,
             pmi_view: None,
             pmi_selected: None,
             properties: std::collections::HashMap::new(),
@@ -361,6 +365,19 @@ impl Session {
             ));
         }
         Some(overlay)
+    }
+
+    /// The part-name callouts for `camera` on a `size` view (empty when they are off).
+    pub fn part_callouts(
+        &self,
+        camera: &cadre_render::Camera,
+        size: (u32, u32),
+    ) -> cadre_render::LabelSet {
+        let Some(doc) = self.doc.as_ref().filter(|_| self.part_labels) else {
+            return cadre_render::LabelSet::default();
+        };
+        let anchors = cadre_render::text::leaders::part_anchors(&doc.scene.assembly);
+        cadre_render::text::leaders::callout_labels(&anchors, doc.bounds, camera, size, 11.0)
     }
 
     /// Chooses saved view `k` of the model's PMI: its annotations alone are drawn, and the
@@ -855,6 +872,26 @@ mod tests {
         s.set_document(document(), 1.0);
         assert!(s.selection.is_empty() && s.sections.is_empty() && s.properties.is_empty());
         assert!(s.status.contains("pin-assembly.step"), "{}", s.status);
+    }
+
+    #[test]
+    fn part_labels_name_every_placed_part_for_the_view() {
+        let mut s = session();
+        let camera = s.nav.as_ref().expect("a view").camera();
+        assert!(
+            s.part_callouts(&camera, (800, 600)).labels.is_empty(),
+            "off by default"
+        );
+        s.part_labels = true;
+        let labels = s.part_callouts(&camera, (800, 600));
+        let doc = s.doc.as_ref().expect("open");
+        assert_eq!(labels.labels.len(), doc.instances.len());
+        assert!(
+            labels
+                .labels
+                .iter()
+                .all(|l| l.leader.is_some() && !l.text.is_empty())
+        );
     }
 
     #[test]

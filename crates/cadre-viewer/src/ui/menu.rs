@@ -71,6 +71,8 @@ pub(super) fn menu_bar(
                         "A grid on the plane under the model, its spacing following the zoom",
                     );
                     ui.separator();
+                    ui.checkbox(&mut s.part_labels, "Part labels")
+                        .on_hover_text("Part names in boxes beside the model, with leaders");
                     let has_pmi = s.doc.as_ref().is_some_and(|d| !d.model.pmi.is_empty());
                     ui.add_enabled(has_pmi, egui::Checkbox::new(&mut s.show_pmi, "PMI"))
                         .on_hover_text("The file's annotations and generated callouts");
