@@ -72,6 +72,9 @@ pub struct Annotation {
     pub semantic: Option<usize>,
     /// Whether its geometry is tessellated (AP242 tessellated annotation occurrences).
     pub tessellated: bool,
+    /// The part whose coordinates its geometry is in (the part of the faces it applies to);
+    /// `None`: the world's (drawn once, unplaced).
+    pub part: Option<crate::PartId>,
 }
 
 impl Annotation {
@@ -133,6 +136,8 @@ pub struct SavedView {
     pub clip_planes: Vec<(Vec3, Vec3)>,
     /// Indices into [`Pmi::annotations`] of the annotations it shows.
     pub annotations: Vec<usize>,
+    /// The part whose coordinates the camera is in (that of the annotations it shows).
+    pub part: Option<crate::PartId>,
 }
 
 /// Kinds of semantic dimension.
@@ -239,6 +244,41 @@ pub struct Pmi {
     pub views: Vec<SavedView>,
     /// Semantic PMI.
     pub semantic: SemanticPmi,
+}
+
+/// Which part holds each face of `model` (faces of solids, shells and loose faces).
+pub fn face_parts(model: &crate::Model) -> std::collections::HashMap<FaceId, crate::PartId> {
+    use crate::Body;
+    let mut out = std::collections::HashMap::new();
+    for (p, part) in model.parts.iter().enumerate() {
+        let id = crate::PartId(p as u32);
+        let mut shells = Vec::new();
+        for body in &part.bodies {
+            match body {
+                Body::Solid(s) => {
+                    if let Some(solid) = model.solids.get(s.index()) {
+                        shells.push(solid.outer);
+                        shells.extend(solid.voids.iter().copied());
+                    }
+                }
+                Body::Shell(s) => shells.push(*s),
+                Body::Face(f) => {
+                    out.entry(*f).or_insert(id);
+                }
+                _ => {}
+            }
+        }
+        for s in shells {
+            for (f, _) in model
+                .shells
+                .get(s.index())
+                .map_or(&[][..], |s| &s.faces[..])
+            {
+                out.entry(*f).or_insert(id);
+            }
+        }
+    }
+    out
 }
 
 impl Pmi {

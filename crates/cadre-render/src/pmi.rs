@@ -41,9 +41,43 @@ fn too_close(a: [f32; 3], b: [f32; 4]) -> bool {
     (luminance(a) - luminance([b[0], b[1], b[2]])).abs() < 0.15
 }
 
+/// Where each part is placed in the world: an annotation in a part's coordinates is drawn
+/// once per placement of that part (PMI belongs to the part: every bolt of an assembly
+/// shows its tolerances).
+#[derive(Clone, Debug, Default)]
+pub struct Placements {
+    of_part: std::collections::HashMap<cadre_brep::PartId, Vec<glam::DAffine3>>,
+}
+
+impl Placements {
+    /// The placements of every part of `model` (one per path from a root).
+    pub fn of(model: &cadre_brep::Model) -> Placements {
+        let mut of_part: std::collections::HashMap<_, Vec<_>> = Default::default();
+        model.visit_instances(|v| {
+            of_part.entry(v.part).or_default().push(v.transform);
+        });
+        Placements { of_part }
+    }
+
+    /// The placements of `part`: the identity for none (world coordinates) or a part never
+    /// placed (its own coordinates).
+    pub fn get(&self, part: Option<cadre_brep::PartId>) -> Vec<glam::DAffine3> {
+        part.and_then(|p| self.of_part.get(&p))
+            .filter(|v| !v.is_empty())
+            .cloned()
+            .unwrap_or_else(|| vec![glam::DAffine3::IDENTITY])
+    }
+}
+
 /// The overlay of `pmi`'s annotations (those of `view` only, when given) on a `background`
-/// (sRGB): one line style per annotation (its width and colour), its fills and texts.
-pub fn overlay(pmi: &Pmi, view: Option<&SavedView>, background: [f32; 4]) -> PmiOverlay {
+/// (sRGB), each drawn at every placement of its part: one line style per annotation (its
+/// width and colour), its fills and texts.
+pub fn overlay(
+    pmi: &Pmi,
+    view: Option<&SavedView>,
+    background: [f32; 4],
+    placements: &Placements,
+) -> PmiOverlay {
     let shown: Vec<usize> = match view {
         Some(v) => v.annotations.clone(),
         None => (0..pmi.annotations.len()).collect(),
@@ -72,29 +106,33 @@ pub fn overlay(pmi: &Pmi, view: Option<&SavedView>, background: [f32; 4]) -> Pmi
             hidden: Hidden::Show,
             follows_view: false,
         });
-        for line in &a.polylines {
-            out.lines.polylines.push(Polyline {
-                points: line.iter().map(|p| DVec3::new(p.x, p.y, p.z)).collect(),
-                style,
-                colours: Vec::new(),
-            });
-        }
-        let point = |p: cadre_geom::Vec3| DVec3::new(p.x, p.y, p.z);
-        out.labels.fills.extend(a.fills.iter().map(|t| Fill {
-            corners: t.map(point),
-            colour,
-            depth: TextDepth::OnTop,
-        }));
-        for t in &a.texts {
-            let mut label = Label::in_plane(
-                t.text.clone(),
-                point(t.origin),
-                (point(t.x_axis), point(t.y_axis)),
-                t.height,
-            );
-            label.colour = colour;
-            label.depth = TextDepth::OnTop;
-            out.labels.labels.push(label);
+        for placement in placements.get(a.part) {
+            let point = |p: cadre_geom::Vec3| placement.transform_point3(DVec3::new(p.x, p.y, p.z));
+            let vector =
+                |p: cadre_geom::Vec3| placement.transform_vector3(DVec3::new(p.x, p.y, p.z));
+            for line in &a.polylines {
+                out.lines.polylines.push(Polyline {
+                    points: line.iter().map(|p| point(*p)).collect(),
+                    style,
+                    colours: Vec::new(),
+                });
+            }
+            out.labels.fills.extend(a.fills.iter().map(|t| Fill {
+                corners: t.map(point),
+                colour,
+                depth: TextDepth::OnTop,
+            }));
+            for t in &a.texts {
+                let mut label = Label::in_plane(
+                    t.text.clone(),
+                    point(t.origin),
+                    (vector(t.x_axis), vector(t.y_axis)),
+                    t.height,
+                );
+                label.colour = colour;
+                label.depth = TextDepth::OnTop;
+                out.labels.labels.push(label);
+            }
         }
         out.annotations += 1;
     }
@@ -234,8 +272,15 @@ pub fn semantic_callouts(
 /// annotations). The file's view window is not kept: files write a window of their own
 /// page size (1 m for the NIST views of a 300 mm part), which would show the part small and
 /// off centre.
-pub fn saved_view_camera(view: &SavedView, (lo, hi): (DVec3, DVec3), aspect: f64) -> Camera {
-    let v = |p: cadre_geom::Vec3| DVec3::new(p.x, p.y, p.z);
+pub fn saved_view_camera(
+    view: &SavedView,
+    (lo, hi): (DVec3, DVec3),
+    aspect: f64,
+    placements: &Placements,
+) -> Camera {
+    // The camera's directions turn with the first placement of its part.
+    let placement = placements.get(view.part)[0];
+    let v = |p: cadre_geom::Vec3| placement.transform_vector3(DVec3::new(p.x, p.y, p.z));
     // The view looks along its direction: the eye is on the other side.
     let to_eye = -v(view.direction);
     let camera = Camera::fit_along(lo, hi, (to_eye, v(view.up)), view.parallel, aspect);
@@ -275,6 +320,7 @@ mod tests {
             faces: Vec::new(),
             semantic: None,
             tessellated: true,
+            part: None,
         }
     }
 
@@ -289,7 +335,8 @@ mod tests {
             ..Pmi::default()
         };
         let white = [1.0, 1.0, 1.0, 1.0];
-        let out = overlay(&pmi, None, white);
+        let here = Placements::default();
+        let out = overlay(&pmi, None, white, &here);
         assert_eq!(out.annotations, 3);
         assert_eq!(out.lines.polylines.len(), 6);
         assert_eq!(out.lines.styles.len(), 3);
@@ -299,7 +346,7 @@ mod tests {
         assert_eq!(out.lines.styles[1].colour, [1.0, 0.0, 0.0, 1.0]);
         assert_eq!(out.lines.styles[0].width, LineWidth::World(0.13));
         // On black, white is kept.
-        let on_black = overlay(&pmi, None, [0.0, 0.0, 0.0, 1.0]);
+        let on_black = overlay(&pmi, None, [0.0, 0.0, 0.0, 1.0], &here);
         assert_eq!(on_black.recoloured, 0);
         assert_eq!(on_black.lines.styles[0].colour, [1.0, 1.0, 1.0, 1.0]);
         // A saved view shows its own annotations only.
@@ -318,14 +365,56 @@ mod tests {
             back_clip: None,
             clip_planes: Vec::new(),
             annotations: vec![1],
+            part: None,
         };
-        let one = overlay(&pmi, Some(&view), white);
+        let one = overlay(&pmi, Some(&view), white, &here);
         assert_eq!(one.annotations, 1);
         assert_eq!(one.lines.styles[0].colour, [1.0, 0.0, 0.0, 1.0]);
         // Looking along −z: the eye is above, +y up.
-        let camera = saved_view_camera(&view, (DVec3::splat(-1.0), DVec3::splat(1.0)), 1.0);
+        let camera = saved_view_camera(&view, (DVec3::splat(-1.0), DVec3::splat(1.0)), 1.0, &here);
         assert!(camera.eye.z > camera.target.z);
         assert!(camera.is_orthographic());
+    }
+
+    #[test]
+    fn an_annotation_is_drawn_at_every_placement_of_its_part() {
+        use cadre_brep::{Model, Occurrence, Part, PartId};
+        // A root placing part 1 twice, 10 and 20 mm along x.
+        let occ = |x: f64| Occurrence {
+            part: PartId(1),
+            transform: glam::DAffine3::from_translation(DVec3::new(x, 0.0, 0.0)),
+            name: String::new(),
+            step_id: 0,
+        };
+        let model = Model {
+            parts: vec![
+                Part {
+                    children: vec![occ(10.0), occ(20.0)],
+                    ..Part::default()
+                },
+                Part::default(),
+            ],
+            roots: vec![PartId(0)],
+            ..Model::default()
+        };
+        let mut a = annotation(None);
+        a.part = Some(PartId(1));
+        let pmi = Pmi {
+            annotations: vec![a],
+            ..Pmi::default()
+        };
+        let out = overlay(&pmi, None, [1.0; 4], &Placements::of(&model));
+        assert_eq!(out.annotations, 1);
+        assert_eq!(out.lines.polylines.len(), 4, "two polylines, twice");
+        let starts: Vec<f64> = out.lines.polylines.iter().map(|p| p.points[0].x).collect();
+        assert_eq!(starts, [10.0, 10.0, 20.0, 20.0]);
+        assert_eq!(out.labels.fills.len(), 2);
+        // Unplaced (no part): drawn once where it is.
+        let mut loose = pmi.clone();
+        loose.annotations[0].part = None;
+        let once = overlay(&loose, None, [1.0; 4], &Placements::of(&model));
+        assert_eq!(once.lines.polylines.len(), 2);
+        assert_eq!(once.lines.polylines[0].points[0].x, 0.0);
     }
 
     #[test]

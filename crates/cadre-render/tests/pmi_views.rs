@@ -5,7 +5,7 @@
 
 mod common;
 
-use cadre_render::pmi::{overlay, overlay_bounds, saved_view_camera};
+use cadre_render::pmi::{Placements, overlay, overlay_bounds, saved_view_camera};
 use cadre_render::{Camera, FrameOptions, RenderScene, Renderer, ViewState};
 use common::{check_golden, gpu, model_and_scene_of};
 use image::RgbaImage;
@@ -65,7 +65,8 @@ fn every_nist_annotation_is_drawn_and_each_saved_view_matches_its_golden_image()
     let white = [1.0, 1.0, 1.0, 1.0];
     let part = scene.bounds().expect("a part");
     // Each annotation alone, seen from its plane's side (or from above), leaves ink.
-    let all = overlay(pmi, None, white);
+    let placements = Placements::of(&model);
+    let all = overlay(pmi, None, white, &placements);
     let (lo, hi) = overlay_bounds(&all).map_or(part, |(a, b)| (part.0.min(a), part.1.max(b)));
     let mut blank = Vec::new();
     for (k, a) in pmi.annotations.iter().enumerate() {
@@ -73,7 +74,7 @@ fn every_nist_annotation_is_drawn_and_each_saved_view_matches_its_golden_image()
             annotations: vec![a.clone()],
             ..cadre_brep::Pmi::default()
         };
-        let o = overlay(&one, None, white);
+        let o = overlay(&one, None, white, &placements);
         let to_eye = a
             .plane
             .map(|p| {
@@ -108,11 +109,11 @@ fn every_nist_annotation_is_drawn_and_each_saved_view_matches_its_golden_image()
     // The saved views.
     let mut images = Vec::new();
     for view in &pmi.views {
-        let o = overlay(pmi, Some(view), white);
+        let o = overlay(pmi, Some(view), white, &placements);
         assert!(o.annotations > 0, "{} shows annotations", view.name);
         // The part and this view's annotations, as `cadre render --saved-view` fits them.
         let (vlo, vhi) = overlay_bounds(&o).map_or(part, |(a, b)| (part.0.min(a), part.1.max(b)));
-        let camera = saved_view_camera(view, (vlo, vhi), 4.0 / 3.0);
+        let camera = saved_view_camera(view, (vlo, vhi), 4.0 / 3.0, &placements);
         let mut scene: RenderScene = scene.clone();
         scene.lines = o.lines;
         scene.labels = o.labels;

@@ -162,6 +162,38 @@ fn a_bad_annotation_warns_with_its_id_and_the_rest_loads() {
 }
 
 #[test]
+fn annotations_belong_to_the_part_of_their_faces() {
+    // The cube placed 5 mm along x in an assembly: the annotation on its top face is in the
+    // cube part's coordinates, the note without faces in no part's.
+    let assembly = "
+#310=PRODUCT('asm','asm','',());#311=PRODUCT_DEFINITION_FORMATION('','',#310);
+#312=PRODUCT_DEFINITION('','',#311,#300);#313=PRODUCT_DEFINITION_SHAPE('','',#312);
+#341=CARTESIAN_POINT('',(5.,0.,0.));#340=AXIS2_PLACEMENT_3D('',#341,#22,#20);
+#330=SHAPE_REPRESENTATION('asm',(#60,#340),#900);
+#331=SHAPE_DEFINITION_REPRESENTATION(#313,#330);
+#350=NEXT_ASSEMBLY_USAGE_OCCURRENCE('1','','',#312,#322,$);
+#351=PRODUCT_DEFINITION_SHAPE('','',#350);
+#352=(REPRESENTATION_RELATIONSHIP('','',#200,#330) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#353) SHAPE_REPRESENTATION_RELATIONSHIP());
+#353=ITEM_DEFINED_TRANSFORMATION('','',#60,#340);
+#354=CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#352,#351);";
+    let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}{assembly}"));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let cube = m
+        .parts
+        .iter()
+        .position(|p| !p.bodies.is_empty())
+        .map(|k| cadre_brep::PartId(k as u32))
+        .expect("the cube part");
+    assert_eq!(m.pmi.annotations[0].part, Some(cube));
+    assert_eq!(m.pmi.views[0].part, Some(cube));
+    // The note has no faces, and the context is shared by both parts: no part.
+    assert_eq!(m.pmi.annotations[1].part, None);
+    // The single part alone owns its annotation and its note.
+    let alone = model(&format!("{MM_CONTEXT}{CUBE}{PMI}"));
+    assert!(alone.pmi.annotations.iter().all(|a| a.part.is_some()));
+}
+
+#[test]
 fn corpus_pmi_counts_equal_occts() {
     let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/step");
     if !corpus.is_dir() {

@@ -355,14 +355,19 @@ impl Session {
         }
         let pmi = &doc.model.pmi;
         let view = self.pmi_view.and_then(|k| pmi.views.get(k));
-        let mut overlay = cadre_render::pmi::overlay(pmi, view, background);
+        let placements = cadre_render::pmi::Placements::of(&doc.model);
+        let mut overlay = cadre_render::pmi::overlay(pmi, view, background, &placements);
         if view.is_none() {
             let model = &doc.model;
-            overlay.labels.extend(cadre_render::pmi::semantic_callouts(
-                pmi,
-                |faces| faces_centre(model, faces),
-                11.0,
-            ));
+            // Faces are in their part's coordinates: the callout goes to its first placement.
+            let face_part = cadre_brep::pmi::face_parts(model);
+            let anchor = |faces: &[cadre_brep::FaceId]| {
+                let part = faces.first().and_then(|f| face_part.get(f).copied());
+                Some(placements.get(part)[0].transform_point3(faces_centre(model, faces)?))
+            };
+            overlay
+                .labels
+                .extend(cadre_render::pmi::semantic_callouts(pmi, anchor, 11.0));
         }
         Some(overlay)
     }
@@ -389,7 +394,8 @@ impl Session {
         let Some(view) = doc.model.pmi.views.get(k) else {
             return;
         };
-        let v = |p: cadre_geom::Vec3| glam::DVec3::new(p.x, p.y, p.z);
+        let placement = cadre_render::pmi::Placements::of(&doc.model).get(view.part)[0];
+        let v = |p: cadre_geom::Vec3| placement.transform_vector3(glam::DVec3::new(p.x, p.y, p.z));
         nav.orthographic = view.parallel;
         nav.view_along((-v(view.direction), v(view.up)), aspect);
         self.pmi_view = Some(k);

@@ -91,6 +91,56 @@ pub fn map_pmi(m: &mut Mapper<'_>) {
     map_semantic(m);
     link_faces(m);
     map_views(m, &models);
+    assign_parts(m);
+}
+
+/// The part each annotation (and saved view) belongs to: that of the faces it applies to,
+/// else the one part whose representation shares its draughting model's context, else none
+/// (world coordinates).
+fn assign_parts(m: &mut Mapper<'_>) {
+    let face_part = cadre_brep::pmi::face_parts(&m.model);
+    // Contexts used by exactly one part's representations.
+    let mut context_parts: HashMap<u64, HashSet<cadre_brep::PartId>> = HashMap::new();
+    for (&rep, &part) in &m.rep_parts {
+        if let Ok(inst) = m.inst(rep)
+            && let Ok(a) = Attrs::first(&inst)
+            && let Some(ctx) = a.opt_ref(2)
+        {
+            context_parts.entry(ctx).or_default().insert(part);
+        }
+    }
+    let context_of: HashMap<u64, u64> = draughting_models(m)
+        .iter()
+        .flat_map(|d| d.items.iter().map(|&i| (i, d.context)))
+        .collect();
+    let by_context = |id: u64| {
+        let parts = context_parts.get(context_of.get(&id)?)?;
+        (parts.len() == 1)
+            .then(|| parts.iter().next().copied())
+            .flatten()
+    };
+    let parts: Vec<Option<cadre_brep::PartId>> = m
+        .model
+        .pmi
+        .annotations
+        .iter()
+        .map(|a| {
+            a.faces
+                .iter()
+                .find_map(|f| face_part.get(f).copied())
+                .or_else(|| by_context(a.step_id))
+        })
+        .collect();
+    for (a, part) in m.model.pmi.annotations.iter_mut().zip(&parts) {
+        a.part = *part;
+    }
+    for view in &mut m.model.pmi.views {
+        view.part = view
+            .annotations
+            .iter()
+            .find_map(|&k| parts.get(k).copied().flatten())
+            .or_else(|| by_context(view.step_id));
+    }
 }
 
 /// A draughting model: its id, name, items and representation context.
@@ -251,6 +301,7 @@ fn annotation(m: &mut Mapper<'_>, id: u64, kind: AnnotationKind) -> MapResult<An
         faces: Vec::new(),
         semantic: None,
         tessellated: drawing.tessellated,
+        part: None,
     })
 }
 
@@ -1170,5 +1221,6 @@ fn saved_view(m: &Mapper<'_>, id: u64) -> MapResult<SavedView> {
         back_clip: back,
         clip_planes,
         annotations: Vec::new(),
+        part: None,
     })
 }

@@ -784,14 +784,21 @@ fn draw_file(
         })?),
         None => None,
     };
+    let placements = cadre_render::pmi::Placements::of(model);
     let pmi = (args.pmi || saved_view.is_some()).then(|| {
-        let mut overlay = cadre_render::pmi::overlay(&model.pmi, saved_view, args.background);
+        let mut overlay =
+            cadre_render::pmi::overlay(&model.pmi, saved_view, args.background, &placements);
         // Semantic PMI the file does not present: generated callouts (not in saved views,
         // which show what their author placed).
         if saved_view.is_none() {
+            // Faces are in their part's coordinates: the callout goes to its first placement.
+            let face_part = cadre_brep::pmi::face_parts(model);
             let generated = cadre_render::pmi::semantic_callouts(
                 &model.pmi,
-                |faces| faces_centre(model, faces),
+                |faces| {
+                    let part = faces.first().and_then(|f| face_part.get(f).copied());
+                    Some(placements.get(part)[0].transform_point3(faces_centre(model, faces)?))
+                },
                 args.label_size,
             );
             if !generated.labels.is_empty() {
@@ -829,9 +836,12 @@ fn draw_file(
         }
     };
     let fitted = match saved_view {
-        Some(view) => {
-            cadre_render::pmi::saved_view_camera(view, (lo, hi), f64::from(w) / f64::from(h))
-        }
+        Some(view) => cadre_render::pmi::saved_view_camera(
+            view,
+            (lo, hi),
+            f64::from(w) / f64::from(h),
+            &placements,
+        ),
         None => fitted_camera(args, (lo, hi)),
     };
     let camera = if args.zoom == 1.0 {
