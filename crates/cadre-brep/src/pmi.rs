@@ -30,6 +30,43 @@ pub enum AnnotationKind {
     Placeholder,
 }
 
+/// Which point of a text its placement is (a `TEXT_LITERAL`'s alignment, ISO 10303-46:
+/// `baseline left`, `baseline centre`, `top right`, ...).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TextAlignment {
+    /// 0 left, 1 centre, 2 right.
+    pub horizontal: u8,
+    /// 0 baseline, 1 top, 2 middle, 3 bottom.
+    pub vertical: u8,
+}
+
+impl TextAlignment {
+    /// Reads an alignment string; anything unknown is `baseline left`.
+    pub fn parse(s: &str) -> TextAlignment {
+        let s = s.to_ascii_lowercase();
+        let horizontal = if s.contains("centre") || s.contains("center") {
+            1
+        } else if s.contains("right") {
+            2
+        } else {
+            0
+        };
+        let vertical = if s.contains("top") {
+            1
+        } else if s.contains("middle") {
+            2
+        } else if s.contains("bottom") {
+            3
+        } else {
+            0
+        };
+        TextAlignment {
+            horizontal,
+            vertical,
+        }
+    }
+}
+
 /// A text of an annotation: a string lying in a plane of the scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AnnotationText {
@@ -43,6 +80,8 @@ pub struct AnnotationText {
     pub y_axis: Vec3,
     /// Lettering (cap) height, mm.
     pub height: f64,
+    /// Which point of the text `origin` is.
+    pub alignment: TextAlignment,
 }
 
 /// One graphic annotation.
@@ -299,5 +338,25 @@ impl Pmi {
         self.views
             .iter()
             .find(|v| v.name.eq_ignore_ascii_case(name))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_alignments_read_as_iso_10303_46_writes_them() {
+        let a = |s| {
+            let t = TextAlignment::parse(s);
+            (t.horizontal, t.vertical)
+        };
+        assert_eq!(a("baseline left"), (0, 0));
+        assert_eq!(a("baseline centre"), (1, 0));
+        assert_eq!(a("Baseline Right"), (2, 0));
+        assert_eq!(a("top centre"), (1, 1));
+        assert_eq!(a("middle right"), (2, 2));
+        assert_eq!(a("bottom left"), (0, 3));
+        assert_eq!(a("nonsense"), (0, 0));
     }
 }

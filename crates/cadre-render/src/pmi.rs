@@ -131,6 +131,17 @@ pub fn overlay(
                 );
                 label.colour = colour;
                 label.depth = TextDepth::OnTop;
+                label.align = match t.alignment.horizontal {
+                    1 => cadre_text::Align::Centre,
+                    2 => cadre_text::Align::Right,
+                    _ => cadre_text::Align::Left,
+                };
+                label.baseline = match t.alignment.vertical {
+                    1 => cadre_text::Baseline::Top,
+                    2 => cadre_text::Baseline::Middle,
+                    3 => cadre_text::Baseline::Bottom,
+                    _ => cadre_text::Baseline::Alphabetic,
+                };
                 out.labels.labels.push(label);
             }
         }

@@ -90,6 +90,10 @@ fn graphic_pmi_planes_views_and_semantic_pmi_are_read() {
     assert_eq!(note.texts.len(), 1);
     assert_eq!(note.texts[0].text, "2X 6.5");
     assert_eq!(note.texts[0].x_axis, cadre_geom::Vec3::X);
+    assert_eq!(
+        note.texts[0].alignment,
+        cadre_brep::pmi::TextAlignment::default()
+    );
     assert_eq!(pmi.planes.len(), 1);
     assert_eq!(pmi.planes[0].name, "A1");
     assert_eq!(pmi.planes[0].normal, cadre_geom::Vec3::Z);

@@ -508,6 +508,7 @@ fn geometry(
                 x_axis: frame.x,
                 y_axis: frame.y,
                 height: text_height.unwrap_or(DEFAULT_TEXT_HEIGHT),
+                alignment: cadre_brep::pmi::TextAlignment::parse(&a.str_or_empty(3)),
             });
         }
         "PLANAR_BOX" => planar_box(m, id, None, drawing)?,
