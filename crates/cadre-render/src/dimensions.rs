@@ -105,8 +105,73 @@ impl DimensionFile {
     }
 }
 
-/// The lines, arrowheads and labels of `dimensions` (those with two finite points).
-pub fn overlay(dimensions: &[Dimension], text_height: f32) -> (LineSet, LabelSet) {
+/// Colour of the selected dimension (sRGB).
+pub const SELECTED_COLOUR: [f32; 4] = [0.05, 0.45, 0.9, 1.0];
+
+/// Where dimension `d`'s label stands: the middle of its two points (`None` without them).
+fn label_point(d: &Dimension) -> Option<DVec3> {
+    match d.points[..] {
+        [a, b] => {
+            let (a, b) = (DVec3::from(a), DVec3::from(b));
+            (a.is_finite() && b.is_finite()).then(|| 0.5 * (a + b))
+        }
+        _ => None,
+    }
+}
+
+/// The dimension whose label box holds output pixel `at` (x right, y down) of a `size`
+/// view seen by `camera`, labels `text_height` pixels tall; the front-most when several do.
+pub fn hit(
+    dimensions: &[Dimension],
+    camera: &crate::Camera,
+    size: (u32, u32),
+    text_height: f32,
+    at: Vec2,
+) -> Option<usize> {
+    let (w, h) = (f64::from(size.0.max(1)), f64::from(size.1.max(1)));
+    let to_clip = camera.projection_matrix(w / h)
+        * camera.view_rotation()
+        * glam::DMat4::from_translation(-camera.eye);
+    let chain = cadre_text::FontChain::bundled();
+    let per_em = text_height / chain.primary().cap_height;
+    let margin = crate::text::BOX_MARGIN;
+    let mut best: Option<(usize, f64)> = None;
+    for (k, d) in dimensions.iter().enumerate() {
+        let Some(p) = label_point(d) else { continue };
+        let c = to_clip * p.extend(1.0);
+        if c.w <= 0.0 {
+            continue;
+        }
+        let anchor = Vec2::new(
+            ((0.5 * c.x / c.w + 0.5) * w) as f32,
+            ((0.5 - 0.5 * c.y / c.w) * h) as f32 - 1.2 * text_height,
+        );
+        let text = cadre_text::layout(
+            chain,
+            cadre_text::Shaper::bundled(),
+            &d.text,
+            (cadre_text::Align::Centre, cadre_text::Baseline::Middle),
+            1.0,
+        );
+        // The box in pixels (em y up → pixels y down).
+        let lo = anchor + Vec2::new(text.min.x - margin, -(text.max.y + margin)) * per_em;
+        let hi = anchor + Vec2::new(text.max.x + margin, -(text.min.y - margin)) * per_em;
+        let inside = at.x >= lo.x && at.x <= hi.x && at.y >= lo.y && at.y <= hi.y;
+        let depth = c.z / c.w;
+        if inside && best.is_none_or(|(_, z)| depth > z) {
+            best = Some((k, depth));
+        }
+    }
+    best.map(|(k, _)| k)
+}
+
+/// The lines, arrowheads and labels of `dimensions` (those with two finite points), the
+/// `selected` one in [`SELECTED_COLOUR`].
+pub fn overlay(
+    dimensions: &[Dimension],
+    text_height: f32,
+    selected: Option<usize>,
+) -> (LineSet, LabelSet) {
     let mut lines = LineSet {
         polylines: Vec::new(),
         styles: vec![LineStyle {
@@ -119,8 +184,19 @@ pub fn overlay(dimensions: &[Dimension], text_height: f32) -> (LineSet, LabelSet
             follows_view: false,
         }],
     };
+    lines.styles.push(LineStyle {
+        colour: SELECTED_COLOUR,
+        width: LineWidth::Pixels(2.5),
+        ..lines.styles[0]
+    });
     let mut labels = LabelSet::default();
-    for d in dimensions {
+    for (k, d) in dimensions.iter().enumerate() {
+        let chosen = selected == Some(k);
+        let colour = if chosen {
+            SELECTED_COLOUR
+        } else {
+            DIMENSION_COLOUR
+        };
         let [a, b] = match d.points[..] {
             [a, b] => [DVec3::from(a), DVec3::from(b)],
             _ => continue,
@@ -133,7 +209,7 @@ pub fn overlay(dimensions: &[Dimension], text_height: f32) -> (LineSet, LabelSet
         if length > 0.0 {
             lines.polylines.push(Polyline {
                 points: vec![a, b],
-                style: 0,
+                style: u32::from(chosen),
                 colours: Vec::new(),
             });
             // Arrowheads a twelfth of the line long (3 × 1 in shape), in the plane of the
@@ -149,7 +225,7 @@ pub fn overlay(dimensions: &[Dimension], text_height: f32) -> (LineSet, LabelSet
                 let back = tip + dir * size;
                 labels.fills.push(Fill {
                     corners: [tip, back + side * size / 6.0, back - side * size / 6.0],
-                    colour: DIMENSION_COLOUR,
+                    colour,
                     depth: TextDepth::OnTop,
                 });
             }
@@ -160,7 +236,7 @@ pub fn overlay(dimensions: &[Dimension], text_height: f32) -> (LineSet, LabelSet
             offset: Vec2::new(0.0, -1.2 * text_height),
         };
         label.align = cadre_text::Align::Centre;
-        label.colour = DIMENSION_COLOUR;
+        label.colour = colour;
         label.background = Some([1.0, 1.0, 1.0, 0.85]);
         labels.labels.push(label);
     }
@@ -222,8 +298,12 @@ mod tests {
         assert!(!path.exists());
         let _ = std::fs::remove_dir_all(&dir);
 
-        let (lines, labels) = overlay(&file.dimensions, 11.0);
+        let (lines, labels) = overlay(&file.dimensions, 11.0, None);
         assert_eq!(lines.polylines.len(), 1);
+        assert_eq!(lines.polylines[0].style, 0);
+        let (chosen, chosen_labels) = overlay(&file.dimensions, 11.0, Some(0));
+        assert_eq!(chosen.polylines[0].style, 1);
+        assert_eq!(chosen_labels.labels[0].colour, SELECTED_COLOUR);
         assert!(!lines.styles[0].follows_view);
         assert_eq!(labels.fills.len(), 2, "an arrowhead at each end");
         assert_eq!(
@@ -236,5 +316,39 @@ mod tests {
         assert_eq!(labels.fills[0].corners[0], DVec3::ZERO);
         assert_eq!(labels.fills[1].corners[0], DVec3::new(0.0, 0.0, 10.0));
         assert_eq!(value_text("angle", std::f64::consts::FRAC_PI_2), "90.000°");
+    }
+
+    #[test]
+    fn a_click_on_a_dimensions_label_finds_it() {
+        // Looking down at z = 0, 100 units on 200 pixels: the label of the line from
+        // (−20, 0) to (20, 0) stands at pixel (100, 100 − 1.2 × 12).
+        let camera = crate::Camera {
+            eye: DVec3::new(0.0, 0.0, 50.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            projection: crate::Projection::Orthographic { height: 100.0 },
+            near: 1.0,
+            far: 100.0,
+        };
+        let dims = vec![
+            Dimension {
+                kind: "distance".into(),
+                value: 40.0,
+                text: "40.000 mm".into(),
+                points: vec![[-20.0, 0.0, 0.0], [20.0, 0.0, 0.0]],
+            },
+            Dimension {
+                kind: "distance".into(),
+                value: 10.0,
+                text: "10.000 mm".into(),
+                points: vec![[-20.0, -40.0, 0.0], [-10.0, -40.0, 0.0]],
+            },
+        ];
+        let hit_at = |x, y| hit(&dims, &camera, (200, 200), 12.0, Vec2::new(x, y));
+        assert_eq!(hit_at(100.0, 85.6), Some(0));
+        assert_eq!(hit_at(70.0, 165.6), Some(1));
+        // Negative controls: beside the box, and far away.
+        assert_eq!(hit_at(100.0, 110.0), None);
+        assert_eq!(hit_at(190.0, 10.0), None);
     }
 }

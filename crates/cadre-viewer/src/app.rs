@@ -22,6 +22,9 @@ use crate::session::Session;
 use crate::ui::{self, Action, ViewInput};
 use crate::{ViewerError, ViewerOptions};
 
+/// Cap height of the dimensions' text in the view, pixels.
+const DIMENSION_TEXT: f32 = 12.0;
+
 /// The 3D view's background (sRGB): a light grey.
 const VIEW_BACKGROUND: [f32; 4] = [0.93, 0.94, 0.96, 1.0];
 
@@ -80,8 +83,8 @@ struct App {
     drawn_toolpath: Option<crate::toolpath_view::DrawnToolpath>,
     /// Whether PMI is in `prepared`, and which saved view's.
     drawn_pmi: (bool, Option<usize>),
-    /// How many dimensions `prepared` draws.
-    drawn_dimensions: usize,
+    /// How many dimensions `prepared` draws, and which is selected.
+    drawn_dimensions: (usize, Option<usize>),
     /// The labels of `prepared` other than the part callouts (PMI, dimensions).
     scene_labels: cadre_render::LabelSet,
     /// The camera and view size the part callouts were laid out for (`None`: none drawn).
@@ -123,7 +126,7 @@ pub(crate) fn run(options: ViewerOptions) -> Result<(), ViewerError> {
         scene_stale: false,
         drawn_toolpath: None,
         drawn_pmi: (false, None),
-        drawn_dimensions: 0,
+        drawn_dimensions: (0, None),
         scene_labels: cadre_render::LabelSet::default(),
         callouts_for: None,
         pivot: None,
@@ -386,7 +389,29 @@ impl App {
             }
         }
         self.take_hover_answer();
-        if let Some((p, add)) = input.click {
+        // A click on a dimension's label selects the dimension (Delete removes it).
+        let on_dimension = match (input.click, &self.session.nav) {
+            (Some((p, _)), Some(nav)) if self.session.tool.is_none() => {
+                let local = p - self.view_rect.min;
+                cadre_render::dimensions::hit(
+                    &self.session.dimensions(),
+                    &nav.camera(),
+                    (
+                        (self.view_rect.width().round() as u32).max(1),
+                        (self.view_rect.height().round() as u32).max(1),
+                    ),
+                    DIMENSION_TEXT,
+                    glam::Vec2::new(local.x, local.y),
+                )
+            }
+            _ => None,
+        };
+        if let Some(k) = on_dimension {
+            self.session.selected_dimension = Some(k);
+            self.session.selection.clear();
+            self.report(&format!("selected dimension {k}"));
+        } else if let Some((p, add)) = input.click {
+            self.session.selected_dimension = None;
             let mut picked = self.pick_at(p);
             // Alt + click: the part the item belongs to.
             if input.part
@@ -642,7 +667,10 @@ impl App {
         // The faces' method changed, a model or toolpath opened, or the PMI shown changed:
         // the scene is prepared again, with or without trims, with the toolpath and the PMI.
         if (self.session.show_pmi, self.session.pmi_view) != self.drawn_pmi
-            || self.session.measurements.len() != self.drawn_dimensions
+            || (
+                self.session.measurements.len(),
+                self.session.selected_dimension,
+            ) != self.drawn_dimensions
         {
             self.scene_stale = true;
         }
@@ -679,14 +707,20 @@ impl App {
             // The PMI and the dimensions over it (their lines whole: the toolpath's
             // simulation does not cut them).
             self.drawn_pmi = (self.session.show_pmi, self.session.pmi_view);
-            self.drawn_dimensions = self.session.measurements.len();
+            self.drawn_dimensions = (
+                self.session.measurements.len(),
+                self.session.selected_dimension,
+            );
             let mut extra = cadre_render::LineSet::default();
             if let Some(overlay) = self.session.pmi_overlay(VIEW_BACKGROUND) {
                 extra.extend(overlay.lines);
                 scene.labels.extend(overlay.labels);
             }
-            let (lines, labels) =
-                cadre_render::dimensions::overlay(&self.session.dimensions(), 12.0);
+            let (lines, labels) = cadre_render::dimensions::overlay(
+                &self.session.dimensions(),
+                DIMENSION_TEXT,
+                self.session.selected_dimension,
+            );
             extra.extend(lines);
             scene.labels.extend(labels);
             if let Some(drawn) = &mut self.drawn_toolpath {

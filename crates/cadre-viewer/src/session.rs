@@ -161,6 +161,8 @@ pub(crate) struct Session {
     /// Part names as callouts beside the model (Display → Part labels), laid out again
     /// whenever the view settles.
     pub part_labels: bool,
+    /// The dimension chosen by a click on its label (Delete removes it).
+    pub selected_dimension: Option<usize>,
     /// The saved view chosen in the PMI window: only its annotations are drawn.
     pub pmi_view: Option<usize>,
     /// The annotation chosen in the PMI window (its faces are selected).
@@ -290,6 +292,7 @@ impl Session {
             show_pmi: false,
             show_pmi_window: false,
             part_labels: false,
+            selected_dimension: None,
             pmi_view: None,
             pmi_selected: None,
             properties: std::collections::HashMap::new(),
@@ -320,6 +323,7 @@ impl Session {
         self.selection.clear();
         self.tool_picks.clear();
         self.measurements.clear();
+        self.selected_dimension = None;
         self.sections.clear();
         self.properties.clear();
         // The dimensions kept beside the file come back.
@@ -449,6 +453,11 @@ impl Session {
     pub fn delete_measurement(&mut self, k: usize) {
         if k < self.measurements.len() {
             self.measurements.remove(k);
+            self.selected_dimension = match self.selected_dimension {
+                Some(s) if s == k => None,
+                Some(s) if s > k => Some(s - 1),
+                other => other,
+            };
             self.save_dimensions();
         }
     }
@@ -920,8 +929,10 @@ mod tests {
         assert_eq!(again.measurements.len(), 1);
         assert_eq!(again.measurements[0].points, s.measurements[0].points);
         assert_eq!(again.dimensions()[0].text, "5.000 mm");
+        again.selected_dimension = Some(0);
         again.delete_measurement(0);
         assert!(again.measurements.is_empty() && !path.exists());
+        assert_eq!(again.selected_dimension, None);
         let _ = std::fs::remove_dir_all(path.parent().expect("folder"));
     }
 

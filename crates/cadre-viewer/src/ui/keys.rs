@@ -56,6 +56,11 @@ pub(super) fn keyboard(ui: &mut egui::Ui, s: &mut Session, actions: &mut Vec<Act
                 OrbitStyle::Trackball => OrbitStyle::Turntable,
             };
         }
+        if i.key_pressed(Key::Delete)
+            && let Some(k) = s.selected_dimension
+        {
+            s.delete_measurement(k);
+        }
         if i.key_pressed(Key::M) {
             s.next_mode();
         }

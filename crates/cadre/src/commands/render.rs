@@ -875,7 +875,8 @@ fn draw_file(
                 path.display()
             )
         })?;
-        let (lines, labels) = cadre_render::dimensions::overlay(&file.dimensions, args.label_size);
+        let (lines, labels) =
+            cadre_render::dimensions::overlay(&file.dimensions, args.label_size, None);
         scene.lines.extend(lines);
         scene.labels.extend(labels);
     }
