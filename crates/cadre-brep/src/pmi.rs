@@ -177,6 +177,10 @@ pub struct SavedView {
     pub annotations: Vec<usize>,
     /// The part whose coordinates the camera is in (that of the annotations it shows).
     pub part: Option<crate::PartId>,
+    /// A drawing sheet's view of the model (its camera used by a presentation through a
+    /// `CAMERA_USAGE`, held by no draughting model) rather than a model-based saved view.
+    /// OCCT lists only the latter as views.
+    pub drawing: bool,
 }
 
 /// Kinds of semantic dimension.
@@ -239,11 +243,27 @@ pub enum SemanticItem {
     },
 }
 
+impl SemanticItem {
+    /// The STEP id of the item's entity.
+    pub fn step_id(&self) -> u64 {
+        match self {
+            SemanticItem::Dimension { step_id, .. }
+            | SemanticItem::Tolerance { step_id, .. }
+            | SemanticItem::Datum { step_id, .. }
+            | SemanticItem::DatumTarget { step_id, .. } => *step_id,
+        }
+    }
+}
+
 /// The semantic PMI of a model.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SemanticPmi {
     /// Every item, in file order.
     pub items: Vec<SemanticItem>,
+    /// The STEP ids of the dimensions and tolerances OCCT's XCAF reader makes no label for
+    /// (kept to count as OCCT does: it drops an item no `GEOMETRIC_ITEM_SPECIFIC_USAGE` ties
+    /// to the shape, and complex dimension instances). We read and draw them all.
+    pub xcaf_unlabelled: Vec<u64>,
 }
 
 impl SemanticPmi {
@@ -269,6 +289,14 @@ impl SemanticPmi {
 
     fn count(&self, f: impl Fn(&SemanticItem) -> bool) -> usize {
         self.items.iter().filter(|i| f(i)).count()
+    }
+
+    /// How many of the items `f` picks OCCT's XCAF reader makes a label for.
+    fn xcaf_count(&self, f: impl Fn(&SemanticItem) -> bool) -> usize {
+        self.items
+            .iter()
+            .filter(|i| f(i) && !self.xcaf_unlabelled.contains(&i.step_id()))
+            .count()
     }
 }
 
@@ -326,11 +354,26 @@ impl Pmi {
         self.annotations.is_empty() && self.views.is_empty() && self.semantic.items.is_empty()
     }
 
-    /// The dimensions as OCCT's XCAF document counts them: the semantic dimensions, and one
-    /// per tessellated annotation (OCCT's "dimension presentation" or "common label", whether
-    /// or not it presents a semantic item; it reads no other graphic PMI).
+    /// The dimensions as OCCT's XCAF document counts them: the semantic dimensions it makes
+    /// a label for (see [`SemanticPmi::xcaf_unlabelled`]), and one per tessellated annotation
+    /// (OCCT's "dimension presentation" or "common label", whether or not it presents a
+    /// semantic item; it reads no other graphic PMI).
     pub fn occt_dimensions(&self) -> usize {
-        self.semantic.dimensions() + self.annotations.iter().filter(|a| a.tessellated).count()
+        self.semantic
+            .xcaf_count(|i| matches!(i, SemanticItem::Dimension { .. }))
+            + self.annotations.iter().filter(|a| a.tessellated).count()
+    }
+
+    /// The geometric tolerances as OCCT's XCAF document counts them (those it makes a label
+    /// for, see [`SemanticPmi::xcaf_unlabelled`]).
+    pub fn occt_tolerances(&self) -> usize {
+        self.semantic
+            .xcaf_count(|i| matches!(i, SemanticItem::Tolerance { .. }))
+    }
+
+    /// The model-based saved views (those of draughting models), as OCCT lists them.
+    pub fn saved_views(&self) -> impl Iterator<Item = &SavedView> {
+        self.views.iter().filter(|v| !v.drawing)
     }
 
     /// The saved view named `name` (case-insensitive).

@@ -377,6 +377,7 @@ mod tests {
             clip_planes: Vec::new(),
             annotations: vec![1],
             part: None,
+            drawing: false,
         };
         let one = overlay(&pmi, Some(&view), white, &here);
         assert_eq!(one.annotations, 1);

@@ -16,6 +16,7 @@ use super::access::Attrs;
 use super::context::Mapper;
 use super::error::{MapError, MapResult};
 use super::geometry::{S3, curve};
+use aspects::{Aspects, aspects_of};
 use cadre_brep::FaceId;
 use cadre_brep::pmi::{
     Annotation, AnnotationKind, AnnotationPlane, AnnotationText, DimensionKind, SavedView,
@@ -24,6 +25,8 @@ use cadre_brep::pmi::{
 use cadre_brep::style::Rgb;
 use cadre_geom::{Curve, Vec3};
 use std::collections::{HashMap, HashSet};
+
+mod aspects;
 
 /// How deep annotation geometry may nest (callout → occurrence → set → set → curve).
 const MAX_DEPTH: u32 = 12;
@@ -876,122 +879,10 @@ fn dimension_values(m: &Mapper<'_>, items: &mut [(u64, SemanticItem)]) {
     }
 }
 
-/// The faces of a shape aspect (through `GEOMETRIC_ITEM_SPECIFIC_USAGE`s naming it, and
-/// the aspects a `SHAPE_ASPECT_RELATIONSHIP` or composite groups it with).
-struct AspectFaces {
-    faces_of: HashMap<u64, Vec<FaceId>>,
-    related: HashMap<u64, Vec<u64>>,
-}
-
-impl AspectFaces {
-    fn new(m: &Mapper<'_>) -> AspectFaces {
-        let face = |item: u64| -> Option<FaceId> {
-            std::iter::once(0)
-                .chain(m.contexts.values().map(|(_, k)| *k))
-                .find_map(|k| m.faces.get(&(item, k)).copied())
-        };
-        let mut faces_of: HashMap<u64, Vec<FaceId>> = HashMap::new();
-        for id in m.file.ids_with_keyword("GEOMETRIC_ITEM_SPECIFIC_USAGE") {
-            let Ok(inst) = m.inst(id) else { continue };
-            let Ok(a) = Attrs::of(&inst, "ITEM_IDENTIFIED_REPRESENTATION_USAGE")
-                .or_else(|_| Attrs::first(&inst))
-            else {
-                continue;
-            };
-            // (name, description, definition, used_representation, identified_item)
-            let (Some(aspect), Some(item)) = (a.opt_ref(2), a.opt_ref(4)) else {
-                continue;
-            };
-            if let Some(f) = face(item) {
-                faces_of.entry(aspect).or_default().push(f);
-            }
-        }
-        let mut related: HashMap<u64, Vec<u64>> = HashMap::new();
-        for keyword in [
-            "SHAPE_ASPECT_RELATIONSHIP",
-            "SHAPE_ASPECT_DERIVING_RELATIONSHIP",
-        ] {
-            for id in m.file.ids_with_keyword(keyword) {
-                let Ok(inst) = m.inst(id) else { continue };
-                let Ok(a) =
-                    Attrs::of(&inst, "SHAPE_ASPECT_RELATIONSHIP").or_else(|_| Attrs::first(&inst))
-                else {
-                    continue;
-                };
-                if let (Some(relating), Some(other)) = (a.opt_ref(2), a.opt_ref(3)) {
-                    related.entry(relating).or_default().push(other);
-                }
-            }
-        }
-        AspectFaces { faces_of, related }
-    }
-
-    /// The faces of `aspect` and of the aspects grouped under it.
-    fn of(&self, aspect: u64) -> Vec<FaceId> {
-        let mut out = Vec::new();
-        let mut stack = vec![(aspect, 0)];
-        let mut seen = HashSet::new();
-        while let Some((a, depth)) = stack.pop() {
-            if depth > MAX_DEPTH || !seen.insert(a) {
-                continue;
-            }
-            out.extend(self.faces_of.get(&a).into_iter().flatten());
-            stack.extend(
-                self.related
-                    .get(&a)
-                    .into_iter()
-                    .flatten()
-                    .map(|&r| (r, depth + 1)),
-            );
-        }
-        out.sort_unstable();
-        out.dedup();
-        out
-    }
-}
-
-/// The shape aspects a semantic item applies to.
-fn aspects_of(m: &Mapper<'_>, id: u64) -> Vec<u64> {
-    let Ok(inst) = m.inst(id) else {
-        return Vec::new();
-    };
-    let first = inst.records.first().map_or("", |r| r.keyword);
-    if first.starts_with("DIMENSIONAL_SIZE") || first == "ANGULAR_SIZE" {
-        return Attrs::first(&inst)
-            .ok()
-            .and_then(|a| a.opt_ref(0))
-            .into_iter()
-            .collect();
-    }
-    if let Ok(a) = Attrs::of(&inst, "DIMENSIONAL_LOCATION")
-        .or_else(|_| Attrs::of(&inst, "SHAPE_ASPECT_RELATIONSHIP"))
-        .or_else(|_| {
-            Attrs::first(&inst)
-                .map_err(|_| ())
-                .and_then(|a| {
-                    if a.keyword.contains("LOCATION") {
-                        Ok(a)
-                    } else {
-                        Err(())
-                    }
-                })
-                .map_err(|_| MapError::new(id, ""))
-        })
-    {
-        return [a.opt_ref(2), a.opt_ref(3)].into_iter().flatten().collect();
-    }
-    if let Ok(a) = Attrs::of(&inst, "GEOMETRIC_TOLERANCE") {
-        // (name, description, magnitude, toleranced_shape_aspect)
-        return a.opt_ref(3).into_iter().collect();
-    }
-    // A datum feature or target is a shape aspect itself.
-    vec![id]
-}
-
 /// Ties annotations and semantic items to faces, and annotations to semantic items, through
 /// `DRAUGHTING_MODEL_ITEM_ASSOCIATION`s (definition → identified annotation).
 fn link_faces(m: &mut Mapper<'_>) {
-    let aspects = AspectFaces::new(m);
+    let aspects = Aspects::new(m);
     let semantic_index: HashMap<u64, usize> = m
         .model
         .pmi
@@ -999,14 +890,14 @@ fn link_faces(m: &mut Mapper<'_>) {
         .items
         .iter()
         .enumerate()
-        .map(|(k, item)| (semantic_id(item), k))
+        .map(|(k, item)| (item.step_id(), k))
         .collect();
     // The semantic items applying to each shape aspect.
     let mut semantic_of_aspect: HashMap<u64, usize> = HashMap::new();
     let mut item_faces: Vec<Vec<FaceId>> = Vec::new();
     for (k, item) in m.model.pmi.semantic.items.iter().enumerate() {
         let mut faces = Vec::new();
-        for aspect in aspects_of(m, semantic_id(item)) {
+        for aspect in aspects_of(m, item.step_id()) {
             semantic_of_aspect.entry(aspect).or_insert(k);
             faces.extend(aspects.of(aspect));
         }
@@ -1014,6 +905,22 @@ fn link_faces(m: &mut Mapper<'_>) {
         faces.dedup();
         item_faces.push(faces);
     }
+    let unlabelled: Vec<u64> = m
+        .model
+        .pmi
+        .semantic
+        .items
+        .iter()
+        .filter(|i| {
+            matches!(
+                i,
+                SemanticItem::Dimension { .. } | SemanticItem::Tolerance { .. }
+            )
+        })
+        .map(SemanticItem::step_id)
+        .filter(|&id| !aspects.xcaf_labels(m, id))
+        .collect();
+    m.model.pmi.semantic.xcaf_unlabelled = unlabelled;
     for (item, faces) in m.model.pmi.semantic.items.iter_mut().zip(item_faces) {
         match item {
             SemanticItem::Dimension { faces: f, .. }
@@ -1086,15 +993,6 @@ fn link_faces(m: &mut Mapper<'_>) {
     }
 }
 
-fn semantic_id(item: &SemanticItem) -> u64 {
-    match item {
-        SemanticItem::Dimension { step_id, .. }
-        | SemanticItem::Tolerance { step_id, .. }
-        | SemanticItem::Datum { step_id, .. }
-        | SemanticItem::DatumTarget { step_id, .. } => *step_id,
-    }
-}
-
 fn semantic_faces(item: &SemanticItem) -> &[FaceId] {
     match item {
         SemanticItem::Dimension { faces, .. }
@@ -1130,6 +1028,7 @@ fn map_views(m: &mut Mapper<'_>, models: &[DraughtingModel]) {
                 continue;
             }
         };
+        view.drawing = holder.is_none();
         if let Some(d) = holder {
             if view.name.trim().is_empty() {
                 view.name = d.name.clone();
@@ -1223,5 +1122,6 @@ fn saved_view(m: &Mapper<'_>, id: u64) -> MapResult<SavedView> {
         clip_planes,
         annotations: Vec::new(),
         part: None,
+        drawing: false,
     })
 }

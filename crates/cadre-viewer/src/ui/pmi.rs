@@ -12,7 +12,18 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
     }
     let Some(doc) = &s.doc else { return };
     let pmi = &doc.model.pmi;
-    let views: Vec<String> = pmi.views.iter().map(|v| v.name.clone()).collect();
+    // A drawing sheet's views are listed with the saved views, marked as such.
+    let views: Vec<String> = pmi
+        .views
+        .iter()
+        .map(|v| {
+            if v.drawing {
+                format!("{} (drawing view)", v.name)
+            } else {
+                v.name.clone()
+            }
+        })
+        .collect();
     let annotations: Vec<(String, usize, usize)> = pmi
         .annotations
         .iter()
@@ -23,7 +34,7 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
         "{} annotations, {} dimensions, {} tolerances, {} datums, {} datum targets",
         pmi.annotations.len(),
         pmi.occt_dimensions(),
-        semantic.tolerances(),
+        pmi.occt_tolerances(),
         semantic.datums(),
         semantic.datum_targets()
     );

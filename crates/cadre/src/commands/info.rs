@@ -142,20 +142,25 @@ fn print_faces(model: &Model, with_edges: bool) {
     }
 }
 
-/// Runs `cadre info`.
 /// The model's PMI as `cadre info --json` lists it: annotations, dimensions, tolerances,
 /// datums and datum targets counted as OCCT's XCAF document counts them (dimensions include
-/// one per annotation that presents no semantic item), the saved views' names, and what the
-/// annotations hold.
+/// one per tessellated annotation; items no geometric usage ties to the shape are left out),
+/// the saved views' names (drawing sheets' views apart), and what the annotations hold.
 fn pmi_json(pmi: &cadre_brep::Pmi) -> serde_json::Value {
     let s = &pmi.semantic;
     json!({
         "annotations": pmi.annotations.len(),
         "dimensions": pmi.occt_dimensions(),
-        "tolerances": s.tolerances(),
+        "tolerances": pmi.occt_tolerances(),
         "datums": s.datums(),
         "datum_targets": s.datum_targets(),
-        "saved_views": pmi.views.iter().map(|v| v.name.as_str()).collect::<Vec<_>>(),
+        "saved_views": pmi.saved_views().map(|v| v.name.as_str()).collect::<Vec<_>>(),
+        "drawing_views": pmi
+            .views
+            .iter()
+            .filter(|v| v.drawing)
+            .map(|v| v.name.as_str())
+            .collect::<Vec<_>>(),
         "semantic_dimensions": s.dimensions(),
         "annotation_planes": pmi.planes.len(),
         "annotation_points": pmi.annotations.iter().map(|a| a.point_count()).sum::<usize>(),
@@ -163,6 +168,7 @@ fn pmi_json(pmi: &cadre_brep::Pmi) -> serde_json::Value {
     })
 }
 
+/// Runs `cadre info`.
 pub fn run(args: &InfoArgs) -> Result<()> {
     let loaded = load_step(&args.file)?;
     let model = &loaded.model;
