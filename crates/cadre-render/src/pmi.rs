@@ -9,7 +9,7 @@
 
 use crate::lines::{Cap, Hidden, Join, LineSet, LineStyle, LineWidth, Polyline, Stipple};
 use crate::text::{Fill, Label, LabelSet, TextAnchor, TextDepth};
-use crate::{Camera, Projection};
+use crate::{Camera, Projection, SectionPlane};
 use cadre_brep::FaceId;
 use cadre_brep::pmi::{DimensionKind, Pmi, SavedView, SemanticItem};
 use glam::DVec3;
@@ -302,6 +302,25 @@ pub fn saved_view_camera(
     camera
 }
 
+/// The section planes that clip a saved view (`CAMERA_MODEL_D3_MULTI_CLIPPING`'s planes, in
+/// world coordinates through the first placement of the view's part; the first
+/// [`crate::MAX_SECTIONS`] of them are applied). Each cuts away the half-space its
+/// plane's normal points to, as [`SectionPlane`] does: the one file in the corpus with a
+/// clipped view (bug32745_pmi1, view `03`) looks along +y at a plane through the part whose
+/// normal is −y, towards the camera, and only so does the view show the section it was saved
+/// for rather than the outside of the near half.
+pub fn saved_view_sections(view: &SavedView, placements: &Placements) -> Vec<SectionPlane> {
+    let placement = placements.get(view.part)[0];
+    view.clip_planes
+        .iter()
+        .map(|&(point, normal)| {
+            let p = placement.transform_point3(DVec3::new(point.x, point.y, point.z));
+            let n = placement.transform_vector3(DVec3::new(normal.x, normal.y, normal.z));
+            SectionPlane::through(p, n)
+        })
+        .collect()
+}
+
 /// The box of a set of annotations' geometry.
 pub fn overlay_bounds(overlay: &PmiOverlay) -> Option<(DVec3, DVec3)> {
     [overlay.lines.bounds(), overlay.labels.bounds()]
@@ -386,6 +405,59 @@ mod tests {
         let camera = saved_view_camera(&view, (DVec3::splat(-1.0), DVec3::splat(1.0)), 1.0, &here);
         assert!(camera.eye.z > camera.target.z);
         assert!(camera.is_orthographic());
+    }
+
+    #[test]
+    fn a_saved_views_clipping_planes_cut_away_the_side_their_normal_points_to() {
+        let view = SavedView {
+            step_id: 1,
+            name: "03".into(),
+            origin: Vec3::new(0.0, -65.0, 0.0),
+            direction: Vec3::Y,
+            up: Vec3::Z,
+            parallel: true,
+            eye: Vec3::ZERO,
+            window: (22.0, 22.0),
+            window_centre: Vec3::ZERO,
+            view_plane_distance: 65.0,
+            front_clip: None,
+            back_clip: None,
+            clip_planes: vec![(Vec3::ZERO, -Vec3::Y)],
+            annotations: Vec::new(),
+            part: None,
+            drawing: false,
+        };
+        let here = Placements::default();
+        let cut = saved_view_sections(&view, &here);
+        assert_eq!(cut.len(), 1);
+        // The camera is on −y looking along +y: the near half goes, the far half stays.
+        assert!(cut[0].keeps(DVec3::new(0.0, 1.0, 0.0)));
+        assert!(!cut[0].keeps(DVec3::new(0.0, -1.0, 0.0)));
+        // In an assembly the plane moves with the view's part.
+        let part = cadre_brep::PartId(0);
+        let moved = Placements {
+            of_part: [(
+                part,
+                vec![glam::DAffine3::from_translation(DVec3::new(0.0, 10.0, 0.0))],
+            )]
+            .into_iter()
+            .collect(),
+        };
+        let cut = saved_view_sections(
+            &SavedView {
+                part: Some(part),
+                ..view.clone()
+            },
+            &moved,
+        );
+        assert!(cut[0].keeps(DVec3::new(0.0, 11.0, 0.0)));
+        assert!(!cut[0].keeps(DVec3::new(0.0, 9.0, 0.0)));
+        // Negative control: a view without clipping cuts nothing.
+        let open = SavedView {
+            clip_planes: Vec::new(),
+            ..view
+        };
+        assert!(saved_view_sections(&open, &here).is_empty());
     }
 
     #[test]

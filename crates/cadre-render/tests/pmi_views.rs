@@ -1,11 +1,16 @@
 //! PMI drawn (issue 20) on the corpus's NIST test file (`bug33661_nist_ftc_08_asme1_ap242-
 //! e1-tg.stp`, graphic PMI only): every one of its 60 annotations puts ink on the image by
 //! itself, each of its 4 saved views matches its golden image, and one view's image is not
-//! another's (negative control). Skips with a message when `../shared` is absent.
+//! another's (negative control); and `bug32745_pmi1.stp` (semantic PMI presented by
+//! tessellated callouts): its 20 annotations drawn, its two saved views against their golden
+//! images, the second cut by its clipping plane into the section it was saved for. Skips with
+//! a message when `../shared` is absent.
 
 mod common;
 
-use cadre_render::pmi::{Placements, overlay, overlay_bounds, saved_view_camera};
+use cadre_render::pmi::{
+    Placements, overlay, overlay_bounds, saved_view_camera, saved_view_sections,
+};
 use cadre_render::{Camera, FrameOptions, RenderScene, Renderer, ViewState};
 use common::{check_golden, gpu, model_and_scene_of};
 use image::RgbaImage;
@@ -13,10 +18,16 @@ use std::path::Path;
 
 const NIST: &str = "bug33661_nist_ftc_08_asme1_ap242-e1-tg.stp";
 
+const CLIPPED: &str = "bug32745_pmi1.stp";
+
 fn nist() -> Option<Vec<u8>> {
+    corpus_file(NIST)
+}
+
+fn corpus_file(name: &str) -> Option<Vec<u8>> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../../shared/corpus/step")
-        .join(NIST);
+        .join(name);
     match std::fs::read(&path) {
         Ok(bytes) => Some(bytes),
         Err(_) => {
@@ -141,4 +152,60 @@ fn every_nist_annotation_is_drawn_and_each_saved_view_matches_its_golden_image()
         "MBD_A and MBD_B images differ in {}",
         c.differing
     );
+}
+
+#[test]
+fn a_clipped_saved_view_shows_its_section_and_each_view_matches_its_golden_image() {
+    let Some(bytes) = corpus_file(CLIPPED) else {
+        return;
+    };
+    let (model, scene) = model_and_scene_of(bytes, 0.05);
+    let pmi = &model.pmi;
+    assert_eq!(pmi.annotations.len(), 20);
+    let names: Vec<&str> = pmi.views.iter().map(|v| v.name.as_str()).collect();
+    assert_eq!(names, ["02", "03"]);
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let white = [1.0, 1.0, 1.0, 1.0];
+    let part = scene.bounds().expect("a part");
+    let placements = Placements::of(&model);
+    let render = |view: &cadre_brep::pmi::SavedView, state: &ViewState| {
+        let o = overlay(pmi, Some(view), white, &placements);
+        assert!(o.annotations > 0, "{} shows annotations", view.name);
+        let (lo, hi) = overlay_bounds(&o).map_or(part, |(a, b)| (part.0.min(a), part.1.max(b)));
+        let camera = saved_view_camera(view, (lo, hi), 4.0 / 3.0, &placements);
+        let mut scene: RenderScene = scene.clone();
+        scene.lines = o.lines;
+        scene.labels = o.labels;
+        let prepared = renderer.prepare(&gpu, &scene);
+        renderer
+            .render(&gpu, &prepared, &camera, &options(320, 240), state)
+            .expect("image")
+    };
+    let mut clipped = None;
+    for view in &pmi.views {
+        let sections = saved_view_sections(view, &placements);
+        assert_eq!(
+            sections.len(),
+            usize::from(view.name == "03"),
+            "{}",
+            view.name
+        );
+        let state = ViewState {
+            sections,
+            ..ViewState::default()
+        };
+        let image = render(view, &state);
+        assert!(pmi_ink(&image) > 100, "{}: {}", view.name, pmi_ink(&image));
+        check_golden(&format!("pmi-bug32745-{}.png", view.name), &image);
+        if !state.sections.is_empty() {
+            clipped = Some((view, image));
+        }
+    }
+    // Negative control: the clipped view without its section is another image (the near
+    // half's outside instead of the cut through the counterbored holes).
+    let (view, image) = clipped.expect("view 03 is clipped");
+    let uncut = render(view, &ViewState::default());
+    let c = cadre_render::compare::compare(&image, &uncut, 8);
+    assert!(c.differing > 0.01, "the section changes {}", c.differing);
 }

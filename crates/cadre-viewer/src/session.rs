@@ -233,19 +233,47 @@ pub(crate) struct Section {
     pub position: f64,
 }
 
-impl Section {
-    /// The plane across the model's box `lo`..`hi`.
-    pub fn plane(&self, lo: glam::DVec3, hi: glam::DVec3) -> cadre_render::SectionPlane {
-        // The box's extent along the normal.
-        let corners = (0..8).map(|i| {
+/// The extent of the box `lo`..`hi` along `normal`: the least and greatest `normal · p` of
+/// its corners.
+fn box_extent(normal: glam::DVec3, lo: glam::DVec3, hi: glam::DVec3) -> (f64, f64) {
+    (0..8)
+        .map(|i| {
             glam::DVec3::new(
                 if i & 1 == 0 { lo.x } else { hi.x },
                 if i & 2 == 0 { lo.y } else { hi.y },
                 if i & 4 == 0 { lo.z } else { hi.z },
             )
-            .dot(self.normal)
-        });
-        let (min, max) = corners.fold((f64::MAX, f64::MIN), |(a, b), d| (a.min(d), b.max(d)));
+            .dot(normal)
+        })
+        .fold((f64::MAX, f64::MIN), |(a, b), d| (a.min(d), b.max(d)))
+}
+
+impl Section {
+    /// The section that cuts as `plane` does, its position taken across the model's box
+    /// `lo`..`hi` (clamped to it); `None` for a plane without a usable normal.
+    pub fn of_plane(
+        plane: cadre_render::SectionPlane,
+        lo: glam::DVec3,
+        hi: glam::DVec3,
+    ) -> Option<Section> {
+        let normal = plane.normal.try_normalize()?;
+        let offset = plane.offset / plane.normal.length();
+        let (min, max) = box_extent(normal, lo, hi);
+        let position = if max > min {
+            (offset - min) / (max - min)
+        } else {
+            0.5
+        };
+        Some(Section {
+            enabled: true,
+            normal,
+            position: position.clamp(0.0, 1.0),
+        })
+    }
+
+    /// The plane across the model's box `lo`..`hi`.
+    pub fn plane(&self, lo: glam::DVec3, hi: glam::DVec3) -> cadre_render::SectionPlane {
+        let (min, max) = box_extent(self.normal, lo, hi);
         cadre_render::SectionPlane {
             normal: self.normal,
             offset: min + (max - min) * self.position.clamp(0.0, 1.0),
@@ -398,10 +426,19 @@ impl Session {
         let Some(view) = doc.model.pmi.views.get(k) else {
             return;
         };
-        let placement = cadre_render::pmi::Placements::of(&doc.model).get(view.part)[0];
+        let placements = cadre_render::pmi::Placements::of(&doc.model);
+        let placement = placements.get(view.part)[0];
         let v = |p: cadre_geom::Vec3| placement.transform_vector3(glam::DVec3::new(p.x, p.y, p.z));
         nav.orthographic = view.parallel;
         nav.view_along((-v(view.direction), v(view.up)), aspect);
+        // The view's clipping planes become its sections (a saved view is a whole display
+        // state: the sections set before give way to it).
+        if let Some((lo, hi)) = doc.bounds {
+            self.sections = cadre_render::pmi::saved_view_sections(view, &placements)
+                .into_iter()
+                .filter_map(|p| Section::of_plane(p, lo, hi))
+                .collect();
+        }
         self.pmi_view = Some(k);
         self.show_pmi = true;
     }
@@ -934,6 +971,43 @@ mod tests {
         assert!(again.measurements.is_empty() && !path.exists());
         assert_eq!(again.selected_dimension, None);
         let _ = std::fs::remove_dir_all(path.parent().expect("folder"));
+    }
+
+    #[test]
+    fn a_clipped_saved_view_becomes_sections_across_the_model() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pmi/block-pmi.step");
+        let mut doc = Document::load(&path, &|_| {}).expect("the example loads");
+        let (lo, hi) = doc.bounds.expect("a box");
+        let centre = (lo + hi) / 2.0;
+        let c = cadre_geom::Vec3::new(centre.x, centre.y, centre.z);
+        doc.model.pmi.views[0].clip_planes = vec![(c, cadre_geom::Vec3::X)];
+        let mut s = Session::new();
+        s.set_document(doc, 1.5);
+        // A section set before gives way to the view's.
+        s.sections.push(Section {
+            enabled: true,
+            normal: glam::DVec3::Z,
+            position: 0.2,
+        });
+        s.choose_saved_view(0, 1.5);
+        assert_eq!(s.sections.len(), 1);
+        let section = &s.sections[0];
+        assert!(section.enabled);
+        assert_eq!(section.normal, glam::DVec3::X);
+        assert!(
+            (section.position - 0.5).abs() < 1e-9,
+            "{}",
+            section.position
+        );
+        // The plane it draws is the view's: through the centre, cutting away +x.
+        let plane = section.plane(lo, hi);
+        assert!(plane.keeps(centre - glam::DVec3::X) && !plane.keeps(centre + glam::DVec3::X));
+        // Negative control: a view without clipping leaves no section.
+        if let Some(doc) = s.doc.as_mut() {
+            doc.model.pmi.views[0].clip_planes.clear();
+        }
+        s.choose_saved_view(0, 1.5);
+        assert!(s.sections.is_empty());
     }
 
     #[test]

@@ -861,8 +861,31 @@ fn draw_file(
         Some(program) => with_toolpath(scene, program, &args.toolpath, (&camera, h))?,
         None => (scene, cadre_render::LineView::default()),
     };
+    // A saved view's clipping planes cut the model as section planes.
+    let sections = match saved_view {
+        Some(view) => {
+            if view.front_clip.is_some() || view.back_clip.is_some() {
+                eprintln!(
+                    "{}: saved view {:?}: its front and back clipping distances are not applied",
+                    input.display(),
+                    view.name
+                );
+            }
+            cadre_render::pmi::saved_view_sections(view, &placements)
+        }
+        None => Vec::new(),
+    };
+    if sections.len() > cadre_render::MAX_SECTIONS {
+        eprintln!(
+            "{}: the saved view has {} clipping planes; the first {} are applied",
+            input.display(),
+            sections.len(),
+            cadre_render::MAX_SECTIONS
+        );
+    }
     let state = ViewState {
         lines,
+        sections,
         ..ViewState::default()
     };
     let mut scene = scene;
