@@ -188,6 +188,124 @@ fn item_sets_reach_faces_and_dimensions_are_counted_as_occt_labels_them() {
     assert_eq!(m3.pmi.semantic.xcaf_unlabelled, vec![1110, 1120]);
 }
 
+/// A dimension curve along +x from the origin with a filled arrow at its start (pointing
+/// back along −x: its target's x axis), an open arrow at its end, a diameter sign there, and
+/// a symbol of a name no shape is known for.
+const TERMINATORS: &str = "
+#1200=DRAUGHTING_CALLOUT('Dim.1',(#1201,#1210,#1220,#1230,#1240));
+#1201=ANNOTATION_CURVE_OCCURRENCE('',(#1002),#1202);
+#1202=POLYLINE('',(#1043,#1203));
+#1203=CARTESIAN_POINT('',(20.,0.,0.));
+#1205=PRE_DEFINED_TERMINATOR_SYMBOL('filled arrow');
+#1206=PRE_DEFINED_TERMINATOR_SYMBOL('open arrow');
+#1207=PRE_DEFINED_TERMINATOR_SYMBOL('integral symbol');
+#1210=ANNOTATION_SYMBOL_OCCURRENCE('',(#1002),#1211);
+#1211=DEFINED_SYMBOL('',#1205,#1212);
+#1212=SYMBOL_TARGET('',#1213,3.,1.);
+#1213=AXIS2_PLACEMENT_3D('',#1043,#1030,#1214);
+#1214=DIRECTION('',(-1.,0.,0.));
+#1220=ANNOTATION_SYMBOL_OCCURRENCE('',(#1002),#1221);
+#1221=DEFINED_SYMBOL('',#1206,#1222);
+#1222=SYMBOL_TARGET('',#1223,3.,1.);
+#1223=AXIS2_PLACEMENT_3D('',#1203,#1030,#1031);
+#1230=ANNOTATION_SYMBOL_OCCURRENCE('',(#1002),#1231);
+#1231=DEFINED_SYMBOL('',#1207,#1222);
+#1240=ANNOTATION_SYMBOL_OCCURRENCE('',(#1002),#1241);
+#1241=DEFINED_SYMBOL('',#1242,#1222);
+#1242=PRE_DEFINED_DIMENSION_SYMBOL('diameter');
+";
+
+#[test]
+fn terminator_symbols_are_drawn_at_their_targets() {
+    let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}{TERMINATORS}"));
+    let dim = m
+        .pmi
+        .annotations
+        .iter()
+        .find(|a| a.name == "Dim.1")
+        .expect("the callout");
+    let v = |x: f64, y: f64| cadre_geom::Vec3::new(x, y, 0.0);
+    // The filled arrow: a triangle with its tip at the curve's start, 3 long, 1 wide.
+    assert_eq!(dim.fills, vec![[v(3.0, -0.5), v(0.0, 0.0), v(3.0, 0.5)]]);
+    assert!(
+        dim.polylines
+            .contains(&vec![v(3.0, -0.5), v(0.0, 0.0), v(3.0, 0.5), v(3.0, -0.5)])
+    );
+    // The open arrow at the end, pointing along +x: two strokes, not filled.
+    assert!(
+        dim.polylines
+            .contains(&vec![v(17.0, 0.5), v(20.0, 0.0), v(17.0, -0.5)])
+    );
+    assert_eq!(dim.polylines.len(), 3, "the curve and two arrows");
+    // The diameter sign: a character centred on its target, as high as its y scale.
+    assert_eq!(dim.texts.len(), 1);
+    let sign = &dim.texts[0];
+    assert_eq!((sign.text.as_str(), sign.height), ("⌀", 1.0));
+    assert_eq!(sign.origin, v(20.0, 0.0));
+    assert_eq!(
+        sign.alignment,
+        cadre_brep::pmi::TextAlignment::parse("middle centre")
+    );
+    // A symbol without a known shape is reported with its id, and the rest still loads.
+    let text: Vec<String> = m.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(
+        text.iter()
+            .any(|w| w.contains("#1231") && w.contains("integral symbol")),
+        "{text:?}"
+    );
+    // Negative control: without its symbols the callout is the curve alone.
+    let bare = TERMINATORS.replace("(#1201,#1210,#1220,#1230,#1240)", "(#1201)");
+    let m2 = model(&format!("{MM_CONTEXT}{CUBE}{PMI}{bare}"));
+    let dim2 = m2
+        .pmi
+        .annotations
+        .iter()
+        .find(|a| a.name == "Dim.1")
+        .expect("callout");
+    assert!(dim2.fills.is_empty() && dim2.polylines.len() == 1);
+}
+
+/// A user-defined symbol: a symbol representation of a unit stroke along x and a unit stroke
+/// along y, mapped at (5, 5, 0) with its x axis along +y, scaled 2 along x and 3 along y.
+const MAPPED_SYMBOL: &str = "
+#1300=ANNOTATION_SYMBOL_OCCURRENCE('Symbol.1',(#1002),#1301);
+#1301=(ANNOTATION_SYMBOL()GEOMETRIC_REPRESENTATION_ITEM()MAPPED_ITEM(#1302,#1310)\
+ REPRESENTATION_ITEM(''));
+#1302=SYMBOL_REPRESENTATION_MAP(#1042,#1303);
+#1303=SYMBOL_REPRESENTATION('',(#1304,#1306),#900);
+#1304=POLYLINE('',(#1043,#1305));
+#1305=CARTESIAN_POINT('',(1.,0.,0.));
+#1306=POLYLINE('',(#1043,#1307));
+#1307=CARTESIAN_POINT('',(0.,1.,0.));
+#1310=SYMBOL_TARGET('',#1311,2.,3.);
+#1311=AXIS2_PLACEMENT_3D('',#1312,#1030,#1313);
+#1312=CARTESIAN_POINT('',(5.,5.,0.));
+#1313=DIRECTION('',(0.,1.,0.));
+#1320=DRAUGHTING_MODEL('',(#1300),#900);
+";
+
+#[test]
+fn mapped_symbols_are_drawn_scaled_at_their_targets() {
+    let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}{MAPPED_SYMBOL}"));
+    let text: Vec<String> = m.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(text.is_empty(), "{text:?}");
+    let symbol = m
+        .pmi
+        .annotations
+        .iter()
+        .find(|a| a.name == "Symbol.1")
+        .expect("the symbol");
+    let v = |x: f64, y: f64| cadre_geom::Vec3::new(x, y, 0.0);
+    // x → 2 along the target's x (+y); y → 3 along the target's y (−x).
+    assert_eq!(
+        symbol.polylines,
+        vec![
+            vec![v(5.0, 5.0), v(5.0, 7.0)],
+            vec![v(5.0, 5.0), v(2.0, 5.0)]
+        ]
+    );
+}
+
 #[test]
 fn a_bad_annotation_warns_with_its_id_and_the_rest_loads() {
     // Curve set #12 points past its coordinates; plane #40 has no placement.

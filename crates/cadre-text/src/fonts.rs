@@ -82,7 +82,7 @@ pub const GDT_SYMBOLS: &[char] = &[
 pub const ENGINEERING_SIGNS: &[char] = &[
     'Ø', 'µ', '×', '÷', '≤', '≥', '≈', '≠', '√', '∞', '′', '″', '²', '³', '½', '¼', '¾', '…', '—',
     '–', '→', '←', '↑', '↓', '■', '□', '▽', '▼', '◇', 'Ⓔ', 'Ⓘ', 'Ⓝ', 'Ⓡ', 'Ⓣ', 'ⓟ', 'Ⓐ', 'Ⓑ', 'Ⓒ',
-    'Ⓓ',
+    'Ⓓ', '⌲', '⌳', '•', '⏤', '−',
 ];
 
 /// Where a character's glyph comes from: a font of the chain and a glyph in it.

@@ -27,6 +27,7 @@ use cadre_geom::{Curve, Vec3};
 use std::collections::{HashMap, HashSet};
 
 mod aspects;
+mod symbols;
 
 /// How deep annotation geometry may nest (callout → occurrence → set → set → curve).
 const MAX_DEPTH: u32 = 12;
@@ -46,6 +47,11 @@ const OCCURRENCES: &[(&str, AnnotationKind)] = &[
     ),
     ("ANNOTATION_CURVE_OCCURRENCE", AnnotationKind::Occurrence),
     ("ANNOTATION_TEXT_OCCURRENCE", AnnotationKind::Occurrence),
+    ("ANNOTATION_SYMBOL_OCCURRENCE", AnnotationKind::Occurrence),
+    (
+        "ANNOTATION_FILL_AREA_OCCURRENCE",
+        AnnotationKind::Occurrence,
+    ),
     ("ANNOTATION_OCCURRENCE", AnnotationKind::Occurrence),
     (
         "ANNOTATION_PLACEHOLDER_OCCURRENCE",
@@ -492,7 +498,11 @@ fn geometry(
                 }
             }
         }
-        "COMPOSITE_TEXT" | "COMPOSITE_TEXT_WITH_ASSOCIATED_CURVES" => {
+        "COMPOSITE_TEXT"
+        | "COMPOSITE_TEXT_WITH_ASSOCIATED_CURVES"
+        | "COMPOSITE_TEXT_WITH_BLANKING_BOX"
+        | "COMPOSITE_TEXT_WITH_DELINEATION"
+        | "COMPOSITE_TEXT_WITH_EXTENT" => {
             for t in a.refs(1)? {
                 geometry(m, t, drawing, text_height, depth + 1)?;
             }
@@ -515,11 +525,12 @@ fn geometry(
             });
         }
         "PLANAR_BOX" => planar_box(m, id, None, drawing)?,
-        "MAPPED_ITEM" | "ANNOTATION_SYMBOL" | "ANNOTATION_TEXT" | "DEFINED_SYMBOL" => {
-            m.note(
-                id,
-                format!("{}: annotation symbols are not drawn yet", a.keyword),
-            );
+        "DEFINED_SYMBOL" => {
+            let a = Attrs::of(&inst, "DEFINED_SYMBOL")?;
+            symbols::defined_symbol(m, id, &a, drawing)?;
+        }
+        "MAPPED_ITEM" | "ANNOTATION_SYMBOL" | "ANNOTATION_TEXT" => {
+            symbols::mapped_symbol(m, id, drawing, text_height, depth)?;
         }
         keyword if keyword.ends_with("_OCCURRENCE") || keyword == "DRAUGHTING_CALLOUT" => {
             occurrence(m, id, drawing, depth + 1)?;
