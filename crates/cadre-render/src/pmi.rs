@@ -8,7 +8,8 @@
 //! the replacement counted, so a PMI view on a white page stays readable.
 
 use crate::lines::{Cap, Hidden, Join, LineSet, LineStyle, LineWidth, Polyline, Stipple};
-use crate::text::{Fill, Label, LabelSet, TextAnchor, TextDepth};
+use crate::text::leaders::{CalloutStyle, PartAnchor};
+use crate::text::{Fill, Label, LabelSet, TextDepth};
 use crate::{Camera, Projection, SectionPlane};
 use cadre_brep::FaceId;
 use cadre_brep::pmi::{DimensionKind, Pmi, SavedView, SemanticItem};
@@ -234,50 +235,6 @@ pub fn semantic_text(item: &SemanticItem) -> String {
     }
 }
 
-/// Callouts for the semantic items no annotation presents: [`semantic_text`] in a box,
-/// `height` pixels tall, beside the point `anchor_of` gives for its faces, with a leader
-/// to it. Items on no face (or whose faces give no point) are left out.
-pub fn semantic_callouts(
-    pmi: &Pmi,
-    anchor_of: impl Fn(&[FaceId]) -> Option<DVec3>,
-    height: f32,
-) -> LabelSet {
-    let presented: std::collections::HashSet<usize> =
-        pmi.annotations.iter().filter_map(|a| a.semantic).collect();
-    let mut out = LabelSet::default();
-    for (k, item) in pmi.semantic.items.iter().enumerate() {
-        if presented.contains(&k) {
-            continue;
-        }
-        let faces: &[FaceId] = match item {
-            SemanticItem::Dimension { faces, .. }
-            | SemanticItem::Tolerance { faces, .. }
-            | SemanticItem::Datum { faces, .. } => faces,
-            SemanticItem::DatumTarget { .. } => &[],
-        };
-        let Some(point) = anchor_of(faces) else {
-            continue;
-        };
-        // Alternate sides and heights so neighbours' boxes part.
-        let side = if out.labels.len() % 2 == 0 { 1.0 } else { -1.0 };
-        let rise = -2.5 * height * (1.0 + (out.labels.len() / 2 % 3) as f32);
-        let mut label = Label::billboard(semantic_text(item), point, height).with_leader(point);
-        label.anchor = TextAnchor::Billboard {
-            point,
-            offset: glam::Vec2::new(side * 5.0 * height, rise),
-        };
-        label.align = if side > 0.0 {
-            cadre_text::Align::Left
-        } else {
-            cadre_text::Align::Right
-        };
-        label.colour = PMI_COLOUR;
-        label.background = Some([1.0, 1.0, 1.0, 0.9]);
-        out.labels.push(label);
-    }
-    out
-}
-
 /// The camera of a saved view for an image of `aspect`: the view's direction and up, its
 /// projection (parallel or central), fitted to the box `lo`..`hi` (the part and the view's
 /// annotations). The file's view window is not kept: files write a window of their own
@@ -300,6 +257,75 @@ pub fn saved_view_camera(
         (Projection::Orthographic { .. }, true) | (Projection::Perspective { .. }, false)
     ));
     camera
+}
+
+/// The anchors of the generated callouts of `model`'s semantic PMI without a presentation:
+/// each item's text ([`semantic_text`]) and [`faces_anchor`] of its faces at the first
+/// placement of their part (faces are in their part's coordinates), in the PMI style. Lay
+/// them out for a view with [`crate::text::leaders::callout_labels`] (with the part names,
+/// to keep the two sets of boxes apart).
+pub fn semantic_anchors(model: &cadre_brep::Model, placements: &Placements) -> Vec<PartAnchor> {
+    let face_part = cadre_brep::pmi::face_parts(model);
+    anchors_of(&model.pmi, |faces| {
+        let part = faces.first().and_then(|f| face_part.get(f).copied());
+        Some(placements.get(part)[0].transform_point3(faces_anchor(model, faces)?))
+    })
+}
+
+/// The callout anchors of the semantic items no annotation presents, each at the point
+/// `anchor_of` gives for its faces (items whose faces give none are left out).
+fn anchors_of(pmi: &Pmi, anchor_of: impl Fn(&[FaceId]) -> Option<DVec3>) -> Vec<PartAnchor> {
+    let presented: std::collections::HashSet<usize> =
+        pmi.annotations.iter().filter_map(|a| a.semantic).collect();
+    let mut out = Vec::new();
+    for (k, item) in pmi.semantic.items.iter().enumerate() {
+        if presented.contains(&k) {
+            continue;
+        }
+        let faces: &[FaceId] = match item {
+            SemanticItem::Dimension { faces, .. }
+            | SemanticItem::Tolerance { faces, .. }
+            | SemanticItem::Datum { faces, .. } => faces,
+            SemanticItem::DatumTarget { .. } => &[],
+        };
+        let Some(point) = anchor_of(faces) else {
+            continue;
+        };
+        out.push(PartAnchor {
+            name: semantic_text(item),
+            point,
+            style: CalloutStyle::PMI,
+        });
+    }
+    out
+}
+
+/// Where a callout's leader points for `faces`: the point sampled on them (their edges, and
+/// their surface where it bulges past its edges) nearest the centre of their box — on a face,
+/// where the box's centre of a hole or a boss would be in the air. `None` without a face.
+pub fn faces_anchor(model: &cadre_brep::Model, faces: &[FaceId]) -> Option<DVec3> {
+    let mut total = cadre_geom::BoundingBox::EMPTY;
+    let mut samples = Vec::new();
+    for &f in faces {
+        let face = model.faces.get(f.index())?;
+        let (b, s) = cadre_brep::bounds::face_bounds(model, face, cadre_geom::Accuracy::default());
+        total = total.union(&b);
+        samples.extend(s);
+    }
+    if total.is_empty() {
+        return None;
+    }
+    let c = 0.5 * (total.min + total.max);
+    let nearest = samples
+        .into_iter()
+        .filter(|p| p.is_finite())
+        .min_by(|a, b| {
+            (*a - c)
+                .length_squared()
+                .total_cmp(&(*b - c).length_squared())
+        })
+        .unwrap_or(c);
+    Some(DVec3::new(nearest.x, nearest.y, nearest.z))
 }
 
 /// The section planes that clip a saved view (`CAMERA_MODEL_D3_MULTI_CLIPPING`'s planes, in
@@ -541,11 +567,14 @@ mod tests {
         let mut presenting = annotation(None);
         presenting.semantic = Some(0);
         pmi.annotations.push(presenting);
-        let set = semantic_callouts(&pmi, |_| Some(DVec3::ZERO), 10.0);
-        assert_eq!(set.labels.len(), 1);
-        assert_eq!(set.labels[0].text, "⌖ | 0.1 | A | B");
-        assert_eq!(set.labels[0].leader, Some(DVec3::ZERO));
+        let set = anchors_of(&pmi, |_| Some(DVec3::ZERO));
+        assert_eq!(set.len(), 1);
+        assert_eq!(set[0].name, "⌖ | 0.1 | A | B");
+        assert_eq!(
+            (set[0].point, set[0].style),
+            (DVec3::ZERO, CalloutStyle::PMI)
+        );
         // No point for the faces: no callout.
-        assert!(semantic_callouts(&pmi, |_| None, 10.0).labels.is_empty());
+        assert!(anchors_of(&pmi, |_| None).is_empty());
     }
 }

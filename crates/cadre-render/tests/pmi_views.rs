@@ -209,3 +209,37 @@ fn a_clipped_saved_view_shows_its_section_and_each_view_matches_its_golden_image
     let c = cadre_render::compare::compare(&image, &uncut, 8);
     assert!(c.differing > 0.01, "the section changes {}", c.differing);
 }
+
+#[test]
+fn a_generated_callout_points_at_its_face_not_into_the_hole() {
+    let bytes = std::fs::read(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/toolpath/plate.step"),
+    )
+    .expect("the bundled plate");
+    let (model, _) = model_and_scene_of(bytes, 0.1);
+    let (k, axis, radius) = model
+        .faces
+        .iter()
+        .enumerate()
+        .find_map(|(k, f)| match &model.surfaces[f.surface.index()] {
+            cadre_geom::Surface::Cylinder { frame, radius } => Some((k, *frame, *radius)),
+            _ => None,
+        })
+        .expect("a hole");
+    let face = cadre_brep::FaceId(k as u32);
+    let p = cadre_render::pmi::faces_anchor(&model, &[face]).expect("an anchor");
+    let p = cadre_geom::Vec3::new(p.x, p.y, p.z);
+    // On the hole's wall: at its radius from the axis.
+    let d = p - axis.origin;
+    let off_axis = (d - axis.z * d.dot(axis.z)).length();
+    assert!(
+        (off_axis - radius).abs() < 1e-6,
+        "{off_axis} from the axis, radius {radius}"
+    );
+    // Negative control: the centre of the face's box is on the axis, in the air.
+    let (b, _) =
+        cadre_brep::bounds::face_bounds(&model, &model.faces[k], cadre_geom::Accuracy::default());
+    let c = 0.5 * (b.min + b.max) - axis.origin;
+    assert!((c - axis.z * c.dot(axis.z)).length() < 1e-6);
+    assert!(cadre_render::pmi::faces_anchor(&model, &[]).is_none());
+}

@@ -761,8 +761,8 @@ impl App {
                 (nav.camera().view_height(), rows),
             );
         }
-        // The part callouts, laid out again when the view has settled somewhere new (while it
-        // moves they ride on their parts' points).
+        // The callouts (part names, generated PMI), laid out again when the view has settled
+        // somewhere new (while it moves they ride on their points).
         if let (Some(prepared), Some(nav)) = (&mut self.prepared, &self.session.nav) {
             let size = (
                 (self.view_rect.width().round() as u32).max(1),
@@ -770,7 +770,7 @@ impl App {
             );
             let camera = nav.camera();
             let settled = !self.camera_moving && !nav.animating();
-            let wanted = self.session.part_labels.then_some((camera, size));
+            let wanted = self.session.wants_callouts().then_some((camera, size));
             let stale = match (&self.callouts_for, &wanted) {
                 (None, None) => false,
                 (Some(_), None) => true,
@@ -779,7 +779,7 @@ impl App {
             };
             if stale {
                 let mut labels = self.scene_labels.clone();
-                labels.extend(self.session.part_callouts(&camera, size));
+                labels.extend(self.session.view_callouts(&camera, size));
                 gfx.renderer.replace_labels(&gfx.gpu, prepared, &labels);
                 self.callouts_for = wanted;
             }

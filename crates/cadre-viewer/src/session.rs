@@ -204,24 +204,6 @@ fn measurement_of(d: &cadre_render::dimensions::Dimension) -> Measurement {
     }
 }
 
-/// The centre of the box of `faces` (where a generated PMI callout's leader points).
-pub(crate) fn faces_centre(
-    model: &cadre_brep::Model,
-    faces: &[cadre_brep::FaceId],
-) -> Option<glam::DVec3> {
-    let mut total = cadre_geom::BoundingBox::EMPTY;
-    for &f in faces {
-        let face = model.faces.get(f.index())?;
-        let (b, _) = cadre_brep::bounds::face_bounds(model, face, cadre_geom::Accuracy::default());
-        total = total.union(&b);
-    }
-    if total.is_empty() {
-        return None;
-    }
-    let c = 0.5 * (total.min + total.max);
-    Some(glam::DVec3::new(c.x, c.y, c.z))
-}
-
 /// A section plane as the user sets it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Section {
@@ -379,7 +361,8 @@ impl Session {
     }
 
     /// The PMI overlay the view draws: the chosen saved view's annotations (all of them
-    /// without one) and the generated callouts of semantic PMI, or nothing when PMI is off.
+    /// without one), or nothing when PMI is off. The generated callouts of semantic PMI are
+    /// laid out per view with the part names ([`Session::view_callouts`]).
     pub fn pmi_overlay(&self, background: [f32; 4]) -> Option<cadre_render::pmi::PmiOverlay> {
         let doc = self.doc.as_ref()?;
         if !self.show_pmi || doc.model.pmi.is_empty() {
@@ -388,32 +371,42 @@ impl Session {
         let pmi = &doc.model.pmi;
         let view = self.pmi_view.and_then(|k| pmi.views.get(k));
         let placements = cadre_render::pmi::Placements::of(&doc.model);
-        let mut overlay = cadre_render::pmi::overlay(pmi, view, background, &placements);
-        if view.is_none() {
-            let model = &doc.model;
-            // Faces are in their part's coordinates: the callout goes to its first placement.
-            let face_part = cadre_brep::pmi::face_parts(model);
-            let anchor = |faces: &[cadre_brep::FaceId]| {
-                let part = faces.first().and_then(|f| face_part.get(f).copied());
-                Some(placements.get(part)[0].transform_point3(faces_centre(model, faces)?))
-            };
-            overlay
-                .labels
-                .extend(cadre_render::pmi::semantic_callouts(pmi, anchor, 11.0));
-        }
-        Some(overlay)
+        Some(cadre_render::pmi::overlay(
+            pmi,
+            view,
+            background,
+            &placements,
+        ))
     }
 
-    /// The part-name callouts for `camera` on a `size` view (empty when they are off).
-    pub fn part_callouts(
+    /// Whether the view lays out callouts: the part names, or generated PMI callouts (PMI
+    /// shown without a saved view, which shows only what its author placed).
+    pub fn wants_callouts(&self) -> bool {
+        self.part_labels || (self.show_pmi && self.pmi_view.is_none())
+    }
+
+    /// The callouts for `camera` on a `size` view, laid out together so that no two boxes
+    /// overlap: the part names (when on) and the semantic PMI no annotation presents (when
+    /// PMI is shown without a saved view).
+    pub fn view_callouts(
         &self,
         camera: &cadre_render::Camera,
         size: (u32, u32),
     ) -> cadre_render::LabelSet {
-        let Some(doc) = self.doc.as_ref().filter(|_| self.part_labels) else {
+        let Some(doc) = self.doc.as_ref() else {
             return cadre_render::LabelSet::default();
         };
-        let anchors = cadre_render::text::leaders::part_anchors(&doc.scene.assembly);
+        let mut anchors = Vec::new();
+        if self.part_labels {
+            anchors = cadre_render::text::leaders::part_anchors(&doc.scene.assembly);
+        }
+        if self.show_pmi && self.pmi_view.is_none() {
+            let placements = cadre_render::pmi::Placements::of(&doc.model);
+            anchors.extend(cadre_render::pmi::semantic_anchors(&doc.model, &placements));
+        }
+        if anchors.is_empty() {
+            return cadre_render::LabelSet::default();
+        }
         cadre_render::text::leaders::callout_labels(&anchors, doc.bounds, camera, size, 11.0)
     }
 
@@ -931,11 +924,11 @@ mod tests {
         let mut s = session();
         let camera = s.nav.as_ref().expect("a view").camera();
         assert!(
-            s.part_callouts(&camera, (800, 600)).labels.is_empty(),
+            s.view_callouts(&camera, (800, 600)).labels.is_empty(),
             "off by default"
         );
         s.part_labels = true;
-        let labels = s.part_callouts(&camera, (800, 600));
+        let labels = s.view_callouts(&camera, (800, 600));
         let doc = s.doc.as_ref().expect("open");
         assert_eq!(labels.labels.len(), doc.instances.len());
         assert!(
@@ -1022,13 +1015,26 @@ mod tests {
         let white = [1.0, 1.0, 1.0, 1.0];
         let all = s.pmi_overlay(white).expect("drawn");
         assert_eq!(all.annotations, 1);
-        // The callout's texts and the two generated callouts (the length, datum A).
-        assert_eq!(all.labels.labels.len(), 4);
+        // The callout's two texts; the two generated callouts (the length, datum A) are laid
+        // out for the view, in the PMI colour.
+        assert_eq!(all.labels.labels.len(), 2);
+        let camera = s.nav.as_ref().expect("a view").camera();
+        assert!(s.wants_callouts());
+        let generated = s.view_callouts(&camera, (800, 600));
+        assert_eq!(generated.labels.len(), 2);
+        assert!(
+            generated
+                .labels
+                .iter()
+                .all(|l| l.colour == cadre_render::pmi::PMI_COLOUR && l.leader.is_some())
+        );
         s.choose_saved_view(0, 1.5);
         assert_eq!(s.pmi_view, Some(0));
         assert!(s.nav.as_ref().is_some_and(|n| n.orthographic));
         // A saved view shows its own annotations, without generated callouts.
         assert_eq!(s.pmi_overlay(white).expect("drawn").labels.labels.len(), 2);
+        assert!(!s.wants_callouts());
+        assert!(s.view_callouts(&camera, (800, 600)).labels.is_empty());
         s.choose_annotation(0);
         assert_eq!(s.selection.len(), 1);
         assert!(matches!(

@@ -11,13 +11,38 @@ use cadre_mesh::scene::Scene;
 use cadre_text::{Align, Baseline};
 use glam::{DMat4, DVec3, DVec4, Vec2};
 
-/// A part to label: its name and the point of its surface the leader starts from.
+/// A callout to lay out: its text and the point of a surface its leader starts from (a part's
+/// name, or a generated PMI callout's text at its faces).
 #[derive(Clone, Debug, PartialEq)]
 pub struct PartAnchor {
-    /// The part's name.
+    /// The text (the part's name).
     pub name: String,
     /// A point of its surface (world, model units).
     pub point: DVec3,
+    /// How it is drawn.
+    pub style: CalloutStyle,
+}
+
+/// The colours of a callout.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CalloutStyle {
+    /// Text and leader colour (linear RGBA).
+    pub colour: [f32; 4],
+    /// Its box's colour.
+    pub background: [f32; 4],
+}
+
+impl CalloutStyle {
+    /// A part name: near-black on pale yellow.
+    pub const PART: CalloutStyle = CalloutStyle {
+        colour: [0.1, 0.1, 0.1, 1.0],
+        background: [1.0, 1.0, 0.88, 0.92],
+    };
+    /// Generated PMI: the PMI colour on white.
+    pub const PMI: CalloutStyle = CalloutStyle {
+        colour: crate::pmi::PMI_COLOUR,
+        background: [1.0, 1.0, 1.0, 0.9],
+    };
 }
 
 /// The named parts of `scene`, each named by its node, else its nearest named ancestor
@@ -56,6 +81,7 @@ pub fn part_anchors(scene: &Scene) -> Vec<PartAnchor> {
         out.push(PartAnchor {
             name: name.to_string(),
             point,
+            style: CalloutStyle::PART,
         });
     }
     out
@@ -167,8 +193,8 @@ pub fn callout_labels(
                     offset: Vec2::new((column - ax) as f32, (y - ay) as f32),
                 },
                 height: super::TextHeight::Pixels(height),
-                colour: [0.1, 0.1, 0.1, 1.0],
-                background: Some([1.0, 1.0, 0.88, 0.92]),
+                colour: anchor.style.colour,
+                background: Some(anchor.style.background),
                 align,
                 baseline: Baseline::Middle,
                 depth: TextDepth::OnTop,
@@ -274,6 +300,7 @@ mod tests {
             .map(|i| PartAnchor {
                 name: format!("part {i}"),
                 point: DVec3::new(f64::from(i) * 5.0 - 47.5, 0.0, 0.0),
+                style: CalloutStyle::PART,
             })
             .collect();
         let camera = Camera {

@@ -35,6 +35,9 @@ const MAX_DEPTH: u32 = 12;
 const CURVE_SAMPLES: usize = 48;
 /// Lettering height of a text literal whose style gives none (ISO 3098's usual 3.5 mm).
 const DEFAULT_TEXT_HEIGHT: f64 = 3.5;
+/// The widest line of ISO 128-20's series, mm: a curve style wider than this is not a line
+/// width a drawing uses (one corpus file gives a leader 25.4 mm, which would paint a blob).
+const WIDEST_LINE: f64 = 2.0;
 /// Most points one annotation may hold (a corrupt index list is not followed further).
 const MAX_POINTS: usize = 1 << 24;
 
@@ -296,6 +299,18 @@ fn annotation(m: &mut Mapper<'_>, id: u64, kind: AnnotationKind) -> MapResult<An
         }
     } else {
         (width, colour) = occurrence(m, id, &mut drawing, 0)?;
+    }
+    if let Some(w) = width
+        && w > WIDEST_LINE
+    {
+        m.warn(
+            id,
+            format!(
+                "curve width {w} mm is wider than ISO 128's widest line ({WIDEST_LINE} mm): \
+                 drawn {WIDEST_LINE} mm wide"
+            ),
+        );
+        width = Some(WIDEST_LINE);
     }
     Ok(Annotation {
         step_id: id,

@@ -430,21 +430,6 @@ fn frame_options(args: &RenderArgs, gpu: &Gpu) -> Result<FrameOptions> {
     })
 }
 
-/// The centre of the box of `faces` (a point for a generated PMI callout's leader).
-fn faces_centre(model: &cadre_brep::Model, faces: &[cadre_brep::FaceId]) -> Option<glam::DVec3> {
-    let mut total = cadre_geom::BoundingBox::EMPTY;
-    for &f in faces {
-        let face = model.faces.get(f.index())?;
-        let (b, _) = cadre_brep::bounds::face_bounds(model, face, cadre_geom::Accuracy::default());
-        total = total.union(&b);
-    }
-    if total.is_empty() {
-        return None;
-    }
-    let c = 0.5 * (total.min + total.max);
-    Some(glam::DVec3::new(c.x, c.y, c.z))
-}
-
 /// The camera `--camera` or `--view` asks for, fitted to `lo`–`hi`, before any zoom.
 fn fitted_camera(args: &RenderArgs, (lo, hi): (glam::DVec3, glam::DVec3)) -> Camera {
     let (w, h) = args.size;
@@ -786,31 +771,8 @@ fn draw_file(
     };
     let placements = cadre_render::pmi::Placements::of(model);
     let pmi = (args.pmi || saved_view.is_some()).then(|| {
-        let mut overlay =
+        let overlay =
             cadre_render::pmi::overlay(&model.pmi, saved_view, args.background, &placements);
-        // Semantic PMI the file does not present: generated callouts (not in saved views,
-        // which show what their author placed).
-        if saved_view.is_none() {
-            // Faces are in their part's coordinates: the callout goes to its first placement.
-            let face_part = cadre_brep::pmi::face_parts(model);
-            let generated = cadre_render::pmi::semantic_callouts(
-                &model.pmi,
-                |faces| {
-                    let part = faces.first().and_then(|f| face_part.get(f).copied());
-                    Some(placements.get(part)[0].transform_point3(faces_centre(model, faces)?))
-                },
-                args.label_size,
-            );
-            if !generated.labels.is_empty() {
-                eprintln!(
-                    "{}: {} semantic PMI item(s) without a presentation drawn as generated \
-                     callouts",
-                    input.display(),
-                    generated.labels.len()
-                );
-            }
-            overlay.labels.extend(generated);
-        }
         if overlay.annotations == 0 {
             eprintln!("{}: no PMI annotation to draw", input.display());
         } else if overlay.recoloured > 0 {
@@ -907,8 +869,25 @@ fn draw_file(
         scene.lines.extend(overlay.lines);
         scene.labels.extend(overlay.labels);
     }
+    // Callouts laid out for the view, side by side without overlap: the part names, and the
+    // semantic PMI the file does not present (not in saved views, which show what their
+    // author placed).
+    let mut anchors = Vec::new();
     if args.labels {
-        let anchors = cadre_render::text::leaders::part_anchors(&scene.assembly);
+        anchors = cadre_render::text::leaders::part_anchors(&scene.assembly);
+    }
+    if args.pmi && saved_view.is_none() {
+        let generated = cadre_render::pmi::semantic_anchors(model, &placements);
+        if !generated.is_empty() {
+            eprintln!(
+                "{}: {} semantic PMI item(s) without a presentation drawn as generated callouts",
+                input.display(),
+                generated.len()
+            );
+        }
+        anchors.extend(generated);
+    }
+    if !anchors.is_empty() {
         scene
             .labels
             .extend(cadre_render::text::leaders::callout_labels(
