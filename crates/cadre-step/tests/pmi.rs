@@ -307,6 +307,27 @@ fn mapped_symbols_are_drawn_scaled_at_their_targets() {
 }
 
 #[test]
+fn a_curve_wider_than_any_drawing_line_is_capped_and_reported() {
+    let wide = PMI.replace(
+        "POSITIVE_LENGTH_MEASURE(0.13)",
+        "POSITIVE_LENGTH_MEASURE(25.4)",
+    );
+    let m = model(&format!("{MM_CONTEXT}{CUBE}{wide}"));
+    let flat = &m.pmi.annotations[0];
+    assert_eq!(flat.width, Some(2.0));
+    let text: Vec<String> = m.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(
+        text.iter()
+            .any(|w| w.contains("#1001") && w.contains("25.4 mm")),
+        "{text:?}"
+    );
+    // Negative control: a drawing's 0.13 mm is kept as it is, without a word.
+    let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}"));
+    assert_eq!(m.pmi.annotations[0].width, Some(0.13));
+    assert!(m.warnings.is_empty());
+}
+
+#[test]
 fn a_bad_annotation_warns_with_its_id_and_the_rest_loads() {
     // Curve set #12 points past its coordinates; plane #40 has no placement.
     let bad = PMI
