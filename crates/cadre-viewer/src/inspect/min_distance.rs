@@ -8,7 +8,9 @@
 //! a point onto the other entity's surface or curve, that foot back onto the first, until
 //! the distance stops falling. A foot that leaves a face (outside its trim, tested in the
 //! face mesh's (u, v) triangles) or an edge's range is not taken: the minimum then lies on
-//! the boundary, where the tessellation's samples bound it within the meshing tolerance.
+//! the face's boundary, and each edge of its loops is measured the same way (exactly, by
+//! projection onto the edge's curve) — a plane's mesh has only its corners, so the nearest
+//! samples alone can be far from the nearest point of a long edge.
 
 use super::{DVec3, Pick};
 use crate::document::Document;
@@ -76,6 +78,47 @@ impl<'d> Entity<'d> {
             kind,
             points,
         })
+    }
+
+    /// The edges bounding a face, as entities of their own (none for an edge or a vertex).
+    fn boundary(&self) -> Vec<Entity<'d>> {
+        let Kind::Face(f) = self.kind else {
+            return Vec::new();
+        };
+        let Some(face) = self.doc.model.faces.get(f.index()) else {
+            return Vec::new();
+        };
+        let mut edges: Vec<cadre_brep::EdgeId> = face
+            .loops
+            .iter()
+            .filter_map(|lp| match &lp.kind {
+                cadre_brep::LoopKind::Edges(edges) => Some(edges.iter().map(|oe| oe.edge)),
+                _ => None,
+            })
+            .flatten()
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        edges
+            .into_iter()
+            .filter_map(|e| {
+                use cadre_brep::trim::EdgeSamples;
+                let points: Vec<DVec3> = self
+                    .doc
+                    .mesh
+                    .edges
+                    .samples(e)
+                    .iter()
+                    .map(|s| self.world.transform_point3(v(s.xyz)))
+                    .collect();
+                (!points.is_empty()).then(|| Entity {
+                    doc: self.doc,
+                    world: self.world,
+                    kind: Kind::Edge(e),
+                    points,
+                })
+            })
+            .collect()
     }
 
     /// The entity's point nearest `p` by its exact geometry, if the foot stays on it.
@@ -176,16 +219,44 @@ fn nearest_pair(a: &[DVec3], b: &[DVec3]) -> (usize, usize, f64) {
 pub fn min_distance(doc: &Document, a: Pick, b: Pick) -> Option<(f64, DVec3, DVec3)> {
     let ea = Entity::new(doc, a)?;
     let eb = Entity::new(doc, b)?;
+    let (mut best, left) = refine(&ea, &eb);
+    if left {
+        // The minimum is on a face's boundary: each of its edges against the other entity
+        // (and against the other face's edges, where both are faces).
+        let (ba, bb) = (ea.boundary(), eb.boundary());
+        let mut closer = |found: (f64, DVec3, DVec3)| {
+            if found.0 < best.0 {
+                best = found;
+            }
+        };
+        for edge in &ba {
+            closer(refine(edge, &eb).0);
+            for other in &bb {
+                closer(refine(edge, other).0);
+            }
+        }
+        for edge in &bb {
+            closer(refine(&ea, edge).0);
+        }
+    }
+    Some(best)
+}
+
+/// The nearest pair of `ea` and `eb`'s samples, refined by alternating projections; and
+/// whether a projection left either entity (the minimum may then be on a face's boundary).
+fn refine(ea: &Entity<'_>, eb: &Entity<'_>) -> ((f64, DVec3, DVec3), bool) {
     let (i, j, d) = nearest_pair(&ea.points, &eb.points);
     let (mut pa, mut pb, mut best) = (ea.points[i], eb.points[j], d);
     for _ in 0..ROUNDS {
-        let Some(qb) = eb.foot(pa) else { break };
+        let Some(qb) = eb.foot(pa) else {
+            return ((best, pa, pb), true);
+        };
         let Some(qa) = ea.foot(qb) else {
             if pa.distance(qb) < best {
                 pb = qb;
                 best = pa.distance(qb);
             }
-            break;
+            return ((best, pa, pb), true);
         };
         let d = qa.distance(qb);
         if d >= best - 1e-12 * (1.0 + best) {
@@ -196,7 +267,7 @@ pub fn min_distance(doc: &Document, a: Pick, b: Pick) -> Option<(f64, DVec3, DVe
         }
         (pa, pb, best) = (qa, qb, d);
     }
-    Some((best, pa, pb))
+    ((best, pa, pb), false)
 }
 
 #[cfg(test)]
@@ -268,6 +339,53 @@ mod tests {
         assert!((d(edge, bottom) - 10.0).abs() < 1e-9);
         // A whole part has no entity geometry: no minimum distance.
         assert!(min_distance(&doc, Pick::Part { instance: 0 }, top).is_none());
+    }
+
+    #[test]
+    fn a_minimum_on_a_faces_boundary_is_exact() {
+        // The pins of the bundled assembly: one along z at (20, 0, 0), one along y from
+        // (0, 30, 0). The first pin's top vertex, (25, 0, 10), is nearest the second pin's
+        // end cap (the disc of radius 5 about (0, 40, 0) in y = 40) at the disc's rim.
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/pin-assembly.step");
+        let doc = Document::load(&path, &|_| {}).expect("the example loads");
+        let instance = |along_y: bool| {
+            doc.instances
+                .iter()
+                .position(|i| (i.world.transform_vector3(DVec3::Z).y > 0.5) == along_y)
+                .expect("a pin") as u32
+        };
+        let (first, second) = (instance(false), instance(true));
+        let top = doc
+            .model
+            .faces
+            .iter()
+            .position(|f| f.step_id == 67)
+            .expect("the top face") as u32;
+        let vertex = doc
+            .model
+            .vertices
+            .iter()
+            .position(|v| v.point == Vec3::new(5.0, 0.0, 10.0))
+            .expect("the top vertex") as u32;
+        let p = DVec3::new(25.0, 0.0, 10.0);
+        let centre = DVec3::new(0.0, 40.0, 0.0);
+        let across = DVec3::new(p.x, 0.0, p.z).normalize();
+        let expected = p.distance(centre + 5.0 * across);
+        let (d, a, b) = min_distance(
+            &doc,
+            Pick::Vertex {
+                instance: first,
+                vertex: vertex + 1,
+            },
+            Pick::Face {
+                instance: second,
+                face: top + 1,
+            },
+        )
+        .expect("measurable");
+        assert!(a.distance(p) < 1e-9, "{a}");
+        assert!((d - expected).abs() < 1e-9, "{d} against {expected}");
+        assert!(b.distance(centre + 5.0 * across) < 1e-9, "{b}");
     }
 
     #[test]
