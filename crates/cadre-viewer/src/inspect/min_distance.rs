@@ -111,7 +111,7 @@ impl<'d> Entity<'d> {
                     .iter()
                     .map(|s| self.world.transform_point3(v(s.xyz)))
                     .collect();
-                (!points.is_empty()).then(|| Entity {
+                (!points.is_empty()).then_some(Entity {
                     doc: self.doc,
                     world: self.world,
                     kind: Kind::Edge(e),
