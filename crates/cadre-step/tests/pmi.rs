@@ -8,7 +8,7 @@
 mod common;
 
 use cadre_brep::pmi::{AnnotationKind, DimensionKind, SemanticItem};
-use common::{CUBE, MM_CONTEXT, model};
+use common::{CUBE, INCH_DEGREE_CONTEXT, MM_CONTEXT, model};
 use std::path::Path;
 
 /// The shared part of the texts: a draughting model in mm holding everything.
@@ -325,6 +325,35 @@ fn a_curve_wider_than_any_drawing_line_is_capped_and_reported() {
     let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}"));
     assert_eq!(m.pmi.annotations[0].width, Some(0.13));
     assert!(m.warnings.is_empty());
+}
+
+#[test]
+fn measures_with_their_own_unit_are_read_in_it_not_in_the_files() {
+    // An inch file whose curve style gives its width in mm (#901).
+    let mm_width = PMI.replace(
+        "#1003=CURVE_STYLE('',#1004,POSITIVE_LENGTH_MEASURE(0.13),#1005);",
+        "#1003=CURVE_STYLE('',#1004,#1006,#1005);\
+         #1006=LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(0.5),#901);",
+    );
+    let m = model(&format!("{INCH_DEGREE_CONTEXT}{CUBE}{mm_width}"));
+    let w = m.pmi.annotations[0].width.expect("a width");
+    assert!((w - 0.5).abs() < 1e-12, "{w}");
+    // So are the diameter's nominal value and deviations, given in mm too.
+    let SemanticItem::Dimension {
+        value, tolerance, ..
+    } = &m.pmi.semantic.items[0]
+    else {
+        panic!("a dimension first");
+    };
+    assert_eq!((*value, *tolerance), (Some(6.5), Some((0.2, -0.1))));
+    // Negative control: a bare width is in the file's unit, inches.
+    let inline = PMI.replace(
+        "POSITIVE_LENGTH_MEASURE(0.13)",
+        "POSITIVE_LENGTH_MEASURE(0.02)",
+    );
+    let m = model(&format!("{INCH_DEGREE_CONTEXT}{CUBE}{inline}"));
+    let w = m.pmi.annotations[0].width.expect("a width");
+    assert!((w - 0.508).abs() < 1e-12, "{w}");
 }
 
 #[test]

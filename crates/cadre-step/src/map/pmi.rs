@@ -409,7 +409,12 @@ fn measure(m: &Mapper<'_>, p: &crate::syntax::Param<'_>) -> Option<f64> {
     if let Some(v) = p.as_f64() {
         return Some(v * m.units.length_to_mm);
     }
-    let inst = m.inst(p.as_ref_id()?).ok()?;
+    let id = p.as_ref_id()?;
+    // A measure with its own length unit is in that unit, whatever the context's.
+    if let Some(mm) = super::units::length_mm(m, id) {
+        return Some(mm);
+    }
+    let inst = m.inst(id).ok()?;
     let value = inst
         .records
         .iter()
@@ -867,12 +872,18 @@ fn dimension_values(m: &Mapper<'_>, items: &mut [(u64, SemanticItem)]) {
                     let p = r.params.first()?;
                     let angle = matches!(p, crate::syntax::Param::Typed { keyword, .. }
                         if keyword.contains("ANGLE"));
-                    // Lengths in mm, angles in radians.
-                    let scale = if angle {
-                        m.units.angle_to_rad
-                    } else {
-                        m.units.length_to_mm
-                    };
+                    // Lengths in mm, angles in radians: by the measure's own unit, else
+                    // the context's.
+                    let scale = r
+                        .params
+                        .get(1)
+                        .and_then(|u| u.as_ref_id())
+                        .and_then(|u| super::units::base_size(m, u))
+                        .unwrap_or(if angle {
+                            m.units.angle_to_rad
+                        } else {
+                            m.units.length_to_mm
+                        });
                     Some(p.as_f64()? * scale)
                 })?;
                 (is_nominal || items.len() == 1).then_some(value)

@@ -100,6 +100,25 @@ fn unit(m: &Mapper<'_>, id: u64, depth: u32) -> MapResult<(UnitKind, f64, String
     ))
 }
 
+/// A length given by the `*_MEASURE_WITH_UNIT` `#id`, in mm by its own unit (a width in mm in
+/// an inch file is mm); `None` when it is not a length or its unit cannot be read.
+pub(super) fn length_mm(m: &Mapper<'_>, id: u64) -> Option<f64> {
+    let (value, unit_id) = measure_with_unit(m, id).ok()?;
+    match unit(m, unit_id, 0).ok()? {
+        (UnitKind::Length, size, _) => Some(value * size),
+        _ => None,
+    }
+}
+
+/// The size of unit `#id` in mm (a length unit) or radians (an angle unit); `None` for
+/// another kind of unit or one that cannot be read.
+pub(super) fn base_size(m: &Mapper<'_>, id: u64) -> Option<f64> {
+    match unit(m, id, 0).ok()? {
+        (UnitKind::Length | UnitKind::Angle, size, _) => Some(size),
+        _ => None,
+    }
+}
+
 /// `(value, unit id)` of a `*_MEASURE_WITH_UNIT`.
 fn measure_with_unit(m: &Mapper<'_>, id: u64) -> MapResult<(f64, u64)> {
     let inst = m.inst(id)?;
