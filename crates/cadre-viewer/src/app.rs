@@ -779,7 +779,14 @@ impl App {
             };
             if stale {
                 let mut labels = self.scene_labels.clone();
-                labels.extend(self.session.view_callouts(&camera, size));
+                let callouts = self.session.view_callouts(&camera, size);
+                if callouts.omitted > 0 {
+                    self.session.status = format!(
+                        "{} callout(s) left out: no room beside the model at this size",
+                        callouts.omitted
+                    );
+                }
+                labels.extend(callouts.labels);
                 gfx.renderer.replace_labels(&gfx.gpu, prepared, &labels);
                 self.callouts_for = wanted;
             }

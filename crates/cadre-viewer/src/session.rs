@@ -387,14 +387,14 @@ impl Session {
 
     /// The callouts for `camera` on a `size` view, laid out together so that no two boxes
     /// overlap: the part names (when on) and the semantic PMI no annotation presents (when
-    /// PMI is shown without a saved view).
+    /// PMI is shown without a saved view); how many did not fit.
     pub fn view_callouts(
         &self,
         camera: &cadre_render::Camera,
         size: (u32, u32),
-    ) -> cadre_render::LabelSet {
+    ) -> cadre_render::text::leaders::Callouts {
         let Some(doc) = self.doc.as_ref() else {
-            return cadre_render::LabelSet::default();
+            return Default::default();
         };
         let mut anchors = Vec::new();
         if self.part_labels {
@@ -405,9 +405,9 @@ impl Session {
             anchors.extend(cadre_render::pmi::semantic_anchors(&doc.model, &placements));
         }
         if anchors.is_empty() {
-            return cadre_render::LabelSet::default();
+            return Default::default();
         }
-        cadre_render::text::leaders::callout_labels(&anchors, doc.bounds, camera, size, 11.0)
+        cadre_render::text::leaders::lay_out_callouts(&anchors, doc.bounds, camera, size, 11.0)
     }
 
     /// Chooses saved view `k` of the model's PMI: its annotations alone are drawn, and the
@@ -924,11 +924,14 @@ mod tests {
         let mut s = session();
         let camera = s.nav.as_ref().expect("a view").camera();
         assert!(
-            s.view_callouts(&camera, (800, 600)).labels.is_empty(),
+            s.view_callouts(&camera, (800, 600))
+                .labels
+                .labels
+                .is_empty(),
             "off by default"
         );
         s.part_labels = true;
-        let labels = s.view_callouts(&camera, (800, 600));
+        let labels = s.view_callouts(&camera, (800, 600)).labels;
         let doc = s.doc.as_ref().expect("open");
         assert_eq!(labels.labels.len(), doc.instances.len());
         assert!(
@@ -1020,7 +1023,7 @@ mod tests {
         assert_eq!(all.labels.labels.len(), 2);
         let camera = s.nav.as_ref().expect("a view").camera();
         assert!(s.wants_callouts());
-        let generated = s.view_callouts(&camera, (800, 600));
+        let generated = s.view_callouts(&camera, (800, 600)).labels;
         assert_eq!(generated.labels.len(), 2);
         assert!(
             generated
@@ -1034,7 +1037,12 @@ mod tests {
         // A saved view shows its own annotations, without generated callouts.
         assert_eq!(s.pmi_overlay(white).expect("drawn").labels.labels.len(), 2);
         assert!(!s.wants_callouts());
-        assert!(s.view_callouts(&camera, (800, 600)).labels.is_empty());
+        assert!(
+            s.view_callouts(&camera, (800, 600))
+                .labels
+                .labels
+                .is_empty()
+        );
         s.choose_annotation(0);
         assert_eq!(s.selection.len(), 1);
         assert!(matches!(

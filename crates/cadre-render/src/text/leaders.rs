@@ -142,13 +142,34 @@ pub fn callout_labels(
     size: (u32, u32),
     height: f32,
 ) -> LabelSet {
+    lay_out_callouts(anchors, bounds, camera, size, height).labels
+}
+
+/// Callouts laid out for a view, and how many did not fit.
+#[derive(Clone, Debug, Default)]
+pub struct Callouts {
+    /// The boxes, texts and leaders.
+    pub labels: LabelSet,
+    /// Anchors left out: a column holds as many boxes as the image is tall.
+    pub omitted: usize,
+}
+
+/// [`callout_labels`], telling how many anchors were left out for want of room (a column
+/// keeps an even choice of its anchors, top to bottom).
+pub fn lay_out_callouts(
+    anchors: &[PartAnchor],
+    bounds: Option<(DVec3, DVec3)>,
+    camera: &Camera,
+    size: (u32, u32),
+    height: f32,
+) -> Callouts {
     let projector = Projector::new(camera, size);
     let seen: Vec<(&PartAnchor, (f64, f64))> = anchors
         .iter()
         .filter_map(|a| Some((a, projector.pixel(a.point)?)))
         .collect();
     if seen.is_empty() {
-        return LabelSet::default();
+        return Callouts::default();
     }
     let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
     let corners = bounds.into_iter().flat_map(|(lo, hi)| {
@@ -178,12 +199,21 @@ pub fn callout_labels(
         ((x1 + gap).min(w - 0.3 * (w - x1).max(0.0)), Align::Left),
     ];
     let mut labels = Vec::new();
+    let mut omitted = 0;
     for (side, &(column, align)) in columns.iter().enumerate() {
         let mut group: Vec<&(&PartAnchor, (f64, f64))> = seen
             .iter()
             .filter(|(_, (x, _))| (*x >= middle) == (side == 1))
             .collect();
         group.sort_by(|a, b| a.1.1.total_cmp(&b.1.1));
+        // A column holds as many boxes as the image is tall: past that, an even choice
+        // across the column (top to bottom) is kept and the rest counted as omitted.
+        let capacity = ((h / pitch).floor() as usize).max(1);
+        if group.len() > capacity {
+            let n = group.len();
+            omitted += n - capacity;
+            group = (0..capacity).map(|k| group[k * n / capacity]).collect();
+        }
         let slots = spread(&group.iter().map(|g| g.1.1).collect::<Vec<_>>(), pitch, h);
         for ((anchor, (ax, ay)), y) in group.iter().map(|g| (g.0, g.1)).zip(slots) {
             labels.push(Label {
@@ -202,9 +232,12 @@ pub fn callout_labels(
             });
         }
     }
-    LabelSet {
-        labels,
-        fills: Vec::new(),
+    Callouts {
+        labels: LabelSet {
+            labels,
+            fills: Vec::new(),
+        },
+        omitted,
     }
 }
 
@@ -336,6 +369,50 @@ mod tests {
             // Boxes 10 / 0.714 × (1.069 + 0.293 + 0.4) + 1 ≈ 25.7 px tall.
             assert!(ys.windows(2).all(|w| w[1] - w[0] >= 25.0), "{ys:?}");
         }
+    }
+
+    #[test]
+    fn a_column_keeps_what_fits_and_counts_the_rest() {
+        // Two hundred parts: a 300 px column holds 11 boxes of 25.7 px.
+        let anchors: Vec<PartAnchor> = (0..200)
+            .map(|i| PartAnchor {
+                name: format!("part {i}"),
+                point: DVec3::new(f64::from(i) * 0.5 - 49.75, f64::from(i % 7), 0.0),
+                style: CalloutStyle::PART,
+            })
+            .collect();
+        let camera = Camera {
+            eye: DVec3::new(0.0, 0.0, 100.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            projection: Projection::Orthographic { height: 150.0 },
+            near: 1.0,
+            far: 200.0,
+        };
+        let out = lay_out_callouts(&anchors, None, &camera, (400, 300), 10.0);
+        assert_eq!(out.labels.labels.len(), 22);
+        assert_eq!(out.omitted, 200 - 22);
+        let projector = Projector::new(&camera, (400, 300));
+        for side in [Align::Left, Align::Right] {
+            let mut ys: Vec<f64> = out
+                .labels
+                .labels
+                .iter()
+                .filter(|l| l.align == side)
+                .map(|l| {
+                    let TextAnchor::Billboard { point, offset } = l.anchor else {
+                        panic!("billboard expected");
+                    };
+                    projector.pixel(point).expect("in front").1 + f64::from(offset.y)
+                })
+                .collect();
+            ys.sort_by(f64::total_cmp);
+            assert!(ys.windows(2).all(|w| w[1] - w[0] >= 25.0), "{ys:?}");
+            assert!(ys.iter().all(|&y| (0.0..=300.0).contains(&y)), "{ys:?}");
+        }
+        // Negative control: twenty fit whole.
+        let few = lay_out_callouts(&anchors[..20], None, &camera, (400, 300), 10.0);
+        assert_eq!((few.labels.labels.len(), few.omitted), (20, 0));
     }
 
     #[test]

@@ -888,15 +888,23 @@ fn draw_file(
         anchors.extend(generated);
     }
     if !anchors.is_empty() {
-        scene
-            .labels
-            .extend(cadre_render::text::leaders::callout_labels(
-                &anchors,
-                Some(model_box),
-                &camera,
-                (w, h),
-                args.label_size,
-            ));
+        let callouts = cadre_render::text::leaders::lay_out_callouts(
+            &anchors,
+            Some(model_box),
+            &camera,
+            (w, h),
+            args.label_size,
+        );
+        if callouts.omitted > 0 {
+            eprintln!(
+                "{}: {} of {} callout(s) left out: no room beside the model at {w}×{h} \
+                 (a larger --size or a smaller --label-size shows more)",
+                input.display(),
+                callouts.omitted,
+                anchors.len()
+            );
+        }
+        scene.labels.extend(callouts.labels);
     }
     let prepared = renderer.prepare(gpu, &scene);
     let image = renderer
