@@ -206,6 +206,8 @@ pub enum SemanticItem {
         name: String,
         /// Nominal value.
         value: Option<f64>,
+        /// Lower and upper limits, for a limits dimension (a `VALUE_RANGE`).
+        limits: Option<(f64, f64)>,
         /// Upper and lower deviation (a plus-minus tolerance).
         tolerance: Option<(f64, f64)>,
         /// The faces it applies to.
@@ -220,8 +222,15 @@ pub enum SemanticItem {
         kind: String,
         /// Its magnitude, mm.
         magnitude: Option<f64>,
-        /// The datums it refers to, by their identifications (`A`, `B`, ...).
+        /// The datums it refers to, by their identifications (`A`, `B`, ...), each followed
+        /// by its modifiers' symbols as a feature-control frame writes them (`AⓂ`).
         datums: Vec<String>,
+        /// Its modifiers, ISO 10303-47 names in lower case (`maximum_material_requirement`,
+        /// `free_state`, ...; AP214's material conditions read as the requirements).
+        modifiers: Vec<String>,
+        /// The form of its tolerance zone (`cylindrical or circular`, `spherical`, ...) when
+        /// a `TOLERANCE_ZONE` gives one: the value is then a diameter.
+        zone: Option<String>,
         /// The faces it applies to.
         faces: Vec<FaceId>,
     },
@@ -241,6 +250,37 @@ pub enum SemanticItem {
         /// The target's identification.
         label: String,
     },
+}
+
+/// The symbol a feature-control frame writes for a tolerance or datum reference modifier
+/// (ISO 1101; ISO 10303-47 names, lower case), `None` for one it writes in words or not at
+/// all (all around and all over go on the leader).
+pub fn modifier_symbol(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "maximum_material_requirement" | "maximum_material_condition" => "Ⓜ",
+        "least_material_requirement" | "least_material_condition" => "Ⓛ",
+        "regardless_of_feature_size" => "Ⓢ",
+        "free_state" => "Ⓕ",
+        "tangent_plane" => "Ⓣ",
+        "statistical_tolerance" => "⟨ST⟩",
+        "reciprocity_requirement" => "Ⓡ",
+        "common_zone" => "CZ",
+        "separate_requirement" => "SEP REQT",
+        "united_feature" => "UF",
+        "line_element" => "LE",
+        "not_convex" => "NC",
+        "any_cross_section" => "ACS",
+        "each_radial_element" => "ERE",
+        "major_diameter" => "MD",
+        "minor_diameter" => "LD",
+        "pitch_diameter" => "PD",
+        "point" => "PT",
+        "contacting_feature" => "CF",
+        "distance_variable" => "DV",
+        "translation" => "▷",
+        "projected" => "Ⓟ",
+        _ => return None,
+    })
 }
 
 impl SemanticItem {

@@ -191,18 +191,33 @@ pub fn semantic_text(item: &SemanticItem) -> String {
         SemanticItem::Dimension {
             name,
             value,
+            limits,
             tolerance,
             kind,
             ..
         } => {
             let lower = name.to_lowercase();
             let angular = lower.contains("angle") || lower.contains("angular");
-            let mut text = match value {
-                Some(v) if angular => format!("{}°", number(v.to_degrees())),
-                Some(v) if lower.contains("diameter") => format!("⌀{}", number(*v)),
-                Some(v) if lower.contains("radius") => format!("R{}", number(*v)),
-                Some(v) => number(*v),
-                None => match kind {
+            let show = |v: f64| {
+                if angular {
+                    format!("{}°", number(v.to_degrees()))
+                } else {
+                    number(v)
+                }
+            };
+            // The symbol before the value (ISO 129): diameter, radius.
+            let symbol = if lower.contains("diameter") || lower.contains("diametral") {
+                "⌀"
+            } else if lower.contains("radius") || lower.contains("radial") {
+                "R"
+            } else {
+                ""
+            };
+            let mut text = match (value, limits) {
+                (Some(v), _) => format!("{symbol}{}", show(*v)),
+                // A limits dimension: lower–upper.
+                (None, Some((lo, hi))) => format!("{symbol}{}–{}", show(*lo), show(*hi)),
+                (None, None) => match kind {
                     DimensionKind::Size => format!("size ({name})"),
                     DimensionKind::Location => format!("location ({name})"),
                 },
@@ -222,10 +237,26 @@ pub fn semantic_text(item: &SemanticItem) -> String {
             kind,
             magnitude,
             datums,
+            modifiers,
+            zone,
             ..
         } => {
             let mut cells = vec![tolerance_symbol(kind).to_string()];
-            cells.push(magnitude.map_or_else(|| "?".into(), number));
+            // The value cell: the zone's diameter sign, the value, its modifiers' symbols.
+            let mut value = match zone.as_deref() {
+                Some(z) if z.contains("spherical") => "S⌀".to_string(),
+                Some(z) if z.contains("cylindrical") || z.contains("circular") => "⌀".into(),
+                _ => String::new(),
+            };
+            value += &magnitude.map_or_else(|| "?".into(), number);
+            for symbol in modifiers
+                .iter()
+                .filter_map(|m| cadre_brep::pmi::modifier_symbol(m))
+            {
+                value.push(' ');
+                value += symbol;
+            }
+            cells.push(value);
             cells.extend(datums.iter().filter(|d| !d.is_empty()).cloned());
             cells.join(" | ")
         }
@@ -534,9 +565,20 @@ mod tests {
             kind: DimensionKind::Size,
             name: name.into(),
             value: Some(value),
+            limits: None,
             tolerance,
             faces: vec![FaceId(0)],
         };
+        let limits = SemanticItem::Dimension {
+            step_id: 3,
+            kind: DimensionKind::Size,
+            name: "diametral size dimension".into(),
+            value: None,
+            limits: Some((24.13, 26.67)),
+            tolerance: None,
+            faces: vec![FaceId(0)],
+        };
+        assert_eq!(semantic_text(&limits), "⌀24.13–26.67");
         assert_eq!(
             semantic_text(&dim("diameter", 6.5, Some((0.2, -0.1)))),
             "⌀6.5 +0.2/−0.1"
@@ -558,9 +600,25 @@ mod tests {
             kind: "POSITION_TOLERANCE".into(),
             magnitude: Some(0.1),
             datums: vec!["A".into(), "B".into()],
+            modifiers: Vec::new(),
+            zone: None,
             faces: vec![FaceId(0)],
         };
         assert_eq!(semantic_text(&tol), "⌖ | 0.1 | A | B");
+        // A cylindrical zone, at maximum material, to datum A at maximum material too.
+        let mut modified = tol.clone();
+        if let SemanticItem::Tolerance {
+            modifiers,
+            zone,
+            datums,
+            ..
+        } = &mut modified
+        {
+            *modifiers = vec!["maximum_material_requirement".into(), "all_around".into()];
+            *zone = Some("cylindrical or circular".into());
+            datums[0] = "AⓂ".into();
+        }
+        assert_eq!(semantic_text(&modified), "⌖ | ⌀0.1 Ⓜ | AⓂ | B");
         // Items presented by an annotation get no callout; the others do, with a leader.
         let mut pmi = Pmi::default();
         pmi.semantic.items = vec![dim("diameter", 6.5, None), tol];

@@ -356,6 +356,160 @@ fn measures_with_their_own_unit_are_read_in_it_not_in_the_files() {
     assert!((w - 0.508).abs() < 1e-12, "{w}");
 }
 
+/// Tolerances with modifiers: an AP242 position at maximum material in a cylindrical zone
+/// to datum A at maximum material; an AP214 perpendicularity to datum A at least material;
+/// an AP214 position at maximum material condition to datum A.
+const MODIFIED: &str = "
+#1400=(GEOMETRIC_TOLERANCE('pos','',#1091,#1071)GEOMETRIC_TOLERANCE_WITH_DATUM_REFERENCE((#1401))\
+ GEOMETRIC_TOLERANCE_WITH_MODIFIERS((.MAXIMUM_MATERIAL_REQUIREMENT.))POSITION_TOLERANCE());
+#1401=DATUM_SYSTEM('','',#323,.F.,(#1402));
+#1402=DATUM_REFERENCE_COMPARTMENT('','',#323,.F.,#1403,\
+ (SIMPLE_DATUM_REFERENCE_MODIFIER(.MAXIMUM_MATERIAL_REQUIREMENT.)));
+#1403=DATUM('','',#323,.F.,'A');
+#1404=TOLERANCE_ZONE('','',#323,.F.,(#1400),#1405);
+#1405=TOLERANCE_ZONE_FORM('cylindrical or circular');
+#1410=PERPENDICULARITY_TOLERANCE('perp','',#1091,#1071,(#1411));
+#1411=REFERENCED_MODIFIED_DATUM(1,#1403,.LEAST_MATERIAL_CONDITION.);
+#1420=(GEOMETRIC_TOLERANCE('pos214','',#1091,#1071)GEOMETRIC_TOLERANCE_WITH_DATUM_REFERENCE(\
+ (#1421))MODIFIED_GEOMETRIC_TOLERANCE(.MAXIMUM_MATERIAL_CONDITION.)POSITION_TOLERANCE());
+#1421=DATUM_REFERENCE(1,#1403);
+";
+
+#[test]
+fn tolerance_modifiers_zones_and_datum_modifiers_are_read() {
+    let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}{MODIFIED}"));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let tolerance = |id: u64| {
+        let item = m
+            .pmi
+            .semantic
+            .items
+            .iter()
+            .find(|i| i.step_id() == id)
+            .expect("the tolerance");
+        let SemanticItem::Tolerance {
+            kind,
+            datums,
+            modifiers,
+            zone,
+            ..
+        } = item
+        else {
+            panic!("{item:?}")
+        };
+        (
+            kind.clone(),
+            datums.clone(),
+            modifiers.clone(),
+            zone.clone(),
+        )
+    };
+    let mmr = || vec!["maximum_material_requirement".to_string()];
+    assert_eq!(
+        tolerance(1400),
+        (
+            "POSITION_TOLERANCE".into(),
+            vec!["AⓂ".into()],
+            mmr(),
+            Some("cylindrical or circular".into())
+        )
+    );
+    assert_eq!(
+        tolerance(1410),
+        (
+            "PERPENDICULARITY_TOLERANCE".into(),
+            vec!["AⓁ".into()],
+            Vec::new(),
+            None
+        )
+    );
+    assert_eq!(
+        tolerance(1420),
+        ("POSITION_TOLERANCE".into(), vec!["A".into()], mmr(), None)
+    );
+    // Negative control: the plain flatness of `PMI` has none of them.
+    assert_eq!(
+        tolerance(1090),
+        ("FLATNESS_TOLERANCE".into(), Vec::new(), Vec::new(), None)
+    );
+}
+
+/// AP214 GD&T: a limits dimension (a value range) on an edge and a perpendicularity given as
+/// a simple instance, each aspect tied to the shape by a property definition and its shape
+/// representation.
+const AP214_GDT: &str = "
+#1500=SHAPE_ASPECT('D16',$,#323,.T.);
+#1501=PROPERTY_DEFINITION('D16','',#1500);
+#1502=SHAPE_REPRESENTATION('D16',(#30),#900);
+#1503=SHAPE_DEFINITION_REPRESENTATION(#1501,#1502);
+#1504=DIMENSIONAL_SIZE(#1500,'diametral size dimension');
+#1505=DIMENSIONAL_CHARACTERISTIC_REPRESENTATION(#1504,#1506);
+#1506=SHAPE_DIMENSION_REPRESENTATION('D16',(#1507),#900);
+#1507=VALUE_RANGE('D16',SET_REPRESENTATION_ITEM((#1508,#1509)));
+#1508=(LENGTH_MEASURE_WITH_UNIT()MEASURE_REPRESENTATION_ITEM()\
+ MEASURE_WITH_UNIT(POSITIVE_LENGTH_MEASURE(0.95),#901)REPRESENTATION_ITEM('lower limit'));
+#1509=(LENGTH_MEASURE_WITH_UNIT()MEASURE_REPRESENTATION_ITEM()\
+ MEASURE_WITH_UNIT(POSITIVE_LENGTH_MEASURE(1.05),#901)REPRESENTATION_ITEM('upper limit'));
+#1510=PERPENDICULARITY_TOLERANCE('FC6','',#1091,#1511,(#1512));
+#1511=SHAPE_ASPECT('FC6',$,#323,.T.);
+#1512=DATUM_REFERENCE(1,#1513);
+#1513=DATUM('','',#323,.F.,'B');
+#1514=PROPERTY_DEFINITION('FC6','',#1511);
+#1515=SHAPE_REPRESENTATION('FC6',(#117),#900);
+#1516=SHAPE_DEFINITION_REPRESENTATION(#1514,#1515);
+";
+
+#[test]
+fn ap214_limits_dimensions_and_simple_tolerances_reach_their_faces() {
+    let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}{AP214_GDT}"));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let item = |id: u64| {
+        m.pmi
+            .semantic
+            .items
+            .iter()
+            .find(|i| i.step_id() == id)
+            .expect("the item")
+    };
+    let steps = |faces: &[cadre_brep::FaceId]| -> Vec<u64> {
+        let mut ids: Vec<u64> = faces.iter().map(|f| m.faces[f.index()].step_id).collect();
+        ids.sort_unstable();
+        ids
+    };
+    let SemanticItem::Dimension {
+        value,
+        limits,
+        faces,
+        ..
+    } = item(1504)
+    else {
+        panic!("a dimension");
+    };
+    assert_eq!((*value, *limits), (None, Some((0.95, 1.05))));
+    // On an edge: the two faces it bounds.
+    assert_eq!(steps(faces), vec![107, 127]);
+    let SemanticItem::Tolerance {
+        magnitude,
+        datums,
+        faces,
+        ..
+    } = item(1510)
+    else {
+        panic!("a tolerance");
+    };
+    assert_eq!(
+        (*magnitude, datums.clone()),
+        (Some(0.05), vec!["B".to_string()])
+    );
+    assert_eq!(steps(faces), vec![117]);
+    // OCCT labels neither (no geometric item specific usage): its counts stay.
+    assert!(
+        [1504, 1510]
+            .iter()
+            .all(|id| m.pmi.semantic.xcaf_unlabelled.contains(id))
+    );
+}
+
 #[test]
 fn a_bad_annotation_warns_with_its_id_and_the_rest_loads() {
     // Curve set #12 points past its coordinates; plane #40 has no placement.

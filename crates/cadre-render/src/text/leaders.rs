@@ -214,6 +214,29 @@ pub fn lay_out_callouts(
             omitted += n - capacity;
             group = (0..capacity).map(|k| group[k * n / capacity]).collect();
         }
+        // The column stays where its widest box is whole on the image (a long feature
+        // control frame beside a wide model moves in over the model rather than off the
+        // image).
+        let chain = cadre_text::FontChain::bundled();
+        let shaper = cadre_text::Shaper::bundled();
+        let widest = group
+            .iter()
+            .map(|g| {
+                let l = cadre_text::layout(
+                    chain,
+                    shaper,
+                    &g.0.name,
+                    (Align::Left, Baseline::Middle),
+                    1.0,
+                );
+                f64::from(l.max.x - l.min.x + 2.0 * super::BOX_MARGIN) * em
+            })
+            .fold(0.0, f64::max);
+        let margin = 2.0;
+        let column = match align {
+            Align::Right => column.max(widest + margin),
+            _ => column.min(w - widest - margin),
+        };
         let slots = spread(&group.iter().map(|g| g.1.1).collect::<Vec<_>>(), pitch, h);
         for ((anchor, (ax, ay)), y) in group.iter().map(|g| (g.0, g.1)).zip(slots) {
             labels.push(Label {
@@ -369,6 +392,52 @@ mod tests {
             // Boxes 10 / 0.714 × (1.069 + 0.293 + 0.4) + 1 ≈ 25.7 px tall.
             assert!(ys.windows(2).all(|w| w[1] - w[0] >= 25.0), "{ys:?}");
         }
+    }
+
+    #[test]
+    fn long_callouts_stay_whole_on_the_image() {
+        // Two long frames for parts near the image's sides.
+        let text = "⌖ | ⌀0.1 Ⓜ | A | B | C — a long feature control frame";
+        let anchors: Vec<PartAnchor> = [-90.0, 90.0]
+            .iter()
+            .map(|&x| PartAnchor {
+                name: text.to_string(),
+                point: DVec3::new(x, 0.0, 0.0),
+                style: CalloutStyle::PMI,
+            })
+            .collect();
+        let camera = Camera {
+            eye: DVec3::new(0.0, 0.0, 100.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            projection: Projection::Orthographic { height: 150.0 },
+            near: 1.0,
+            far: 200.0,
+        };
+        let set = callout_labels(&anchors, None, &camera, (400, 300), 10.0);
+        let l = cadre_text::layout(
+            cadre_text::FontChain::bundled(),
+            cadre_text::Shaper::bundled(),
+            text,
+            (Align::Left, Baseline::Middle),
+            1.0,
+        );
+        let em = f64::from(10.0 / cadre_text::FontChain::bundled().primary().cap_height);
+        let width = f64::from(l.max.x - l.min.x + 2.0 * super::super::BOX_MARGIN) * em;
+        assert!(width > 200.0, "{width}: longer than half the image");
+        let projector = Projector::new(&camera, (400, 300));
+        for label in &set.labels {
+            let TextAnchor::Billboard { point, offset } = label.anchor else {
+                panic!("billboard expected");
+            };
+            let x = projector.pixel(point).expect("in front").0 + f64::from(offset.x);
+            let (left, right) = match label.align {
+                Align::Right => (x - width, x),
+                _ => (x, x + width),
+            };
+            assert!(left >= 0.0 && right <= 400.0, "{left}..{right}");
+        }
+        assert_eq!(set.labels.len(), 2);
     }
 
     #[test]

@@ -698,6 +698,7 @@ fn map_semantic(m: &mut Mapper<'_>) {
                     kind,
                     name,
                     value: None,
+                    limits: None,
                     tolerance: None,
                     faces: Vec::new(),
                 },
@@ -712,6 +713,7 @@ fn map_semantic(m: &mut Mapper<'_>) {
     {
         tolerances.extend(m.file.ids_with_keyword(keyword));
     }
+    let zones = tolerance_zones(m);
     for id in tolerances {
         let Ok(inst) = m.inst(id) else { continue };
         let kind = inst
@@ -721,12 +723,23 @@ fn map_semantic(m: &mut Mapper<'_>) {
             .find(|k| TOLERANCE_TYPES.contains(k))
             .unwrap_or("GEOMETRIC_TOLERANCE")
             .to_string();
+        // (name, description, magnitude, toleranced_shape_aspect): a complex instance's
+        // GEOMETRIC_TOLERANCE record, or a simple instance of a subtype.
         let magnitude = Attrs::of(&inst, "GEOMETRIC_TOLERANCE")
+            .or_else(|_| Attrs::first(&inst))
             .ok()
             .and_then(|a| a.params.get(2).and_then(|p| measure(m, p)));
-        let datums = Attrs::of(&inst, "GEOMETRIC_TOLERANCE_WITH_DATUM_REFERENCE")
-            .ok()
-            .and_then(|a| a.refs(0).ok())
+        // A complex instance's own record holds the datum references; a simple instance of
+        // a tolerance with datums lists them after the four inherited attributes.
+        let datum_refs = match Attrs::of(&inst, "GEOMETRIC_TOLERANCE_WITH_DATUM_REFERENCE") {
+            Ok(a) if inst.complex => a.refs(0).ok(),
+            _ if !inst.complex => Attrs::first(&inst)
+                .ok()
+                .filter(|a| a.params.len() >= 5)
+                .and_then(|a| a.refs(4).ok()),
+            _ => None,
+        };
+        let datums = datum_refs
             .map(|refs| refs.iter().flat_map(|&r| datum_letters(m, r, 0)).collect())
             .unwrap_or_default();
         items.push((
@@ -736,6 +749,8 @@ fn map_semantic(m: &mut Mapper<'_>) {
                 kind,
                 magnitude,
                 datums,
+                modifiers: tolerance_modifiers(&inst),
+                zone: zones.get(&id).cloned(),
                 faces: Vec::new(),
             },
         ));
@@ -812,6 +827,16 @@ fn datum_letters(m: &Mapper<'_>, id: u64, depth: u32) -> Vec<String> {
             .opt_ref(1)
             .map(|d| datum_letters(m, d, depth + 1))
             .unwrap_or_default(),
+        // AP214: (precedence, referenced_datum, modifier)
+        "REFERENCED_MODIFIED_DATUM" => {
+            let mut letters = a
+                .opt_ref(1)
+                .map(|d| datum_letters(m, d, depth + 1))
+                .unwrap_or_default();
+            let modifier = a.enumeration(2).map(str::to_ascii_lowercase);
+            append_symbols(&mut letters, modifier.iter().map(String::as_str));
+            letters
+        }
         // (name, description, of_shape, product_definitional, constituents)
         "DATUM_SYSTEM" => a
             .refs(4)
@@ -835,16 +860,165 @@ fn datum_letters(m: &Mapper<'_>, id: u64, depth: u32) -> Vec<String> {
                     .collect(),
                 None => Vec::new(),
             };
-            refs.iter()
+            let mut letters: Vec<String> = refs
+                .iter()
                 .flat_map(|&r| datum_letters(m, r, depth + 1))
-                .collect()
+                .collect();
+            let modifiers = a.params.get(5).map(enum_names).unwrap_or_default();
+            append_symbols(&mut letters, modifiers.iter().map(String::as_str));
+            letters
         }
         _ => Vec::new(),
     }
 }
 
+/// Appends the symbols of `modifiers` (ISO 10303-47 names) to the last of `letters`.
+fn append_symbols<'n>(letters: &mut [String], modifiers: impl Iterator<Item = &'n str>) {
+    if let Some(last) = letters.last_mut() {
+        for symbol in modifiers.filter_map(cadre_brep::pmi::modifier_symbol) {
+            last.push_str(symbol);
+        }
+    }
+}
+
+/// The enumeration values in a parameter (an aggregate of them, typed ones such as
+/// `SIMPLE_DATUM_REFERENCE_MODIFIER(.X.)` included), lower case.
+fn enum_names(p: &crate::syntax::Param<'_>) -> Vec<String> {
+    use crate::syntax::Param;
+    match p {
+        Param::Enum(e) => vec![e.to_ascii_lowercase()],
+        Param::Typed { value, .. } => enum_names(value),
+        Param::List(items) => items.iter().flat_map(enum_names).collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// A geometric tolerance's modifiers (`GEOMETRIC_TOLERANCE_WITH_MODIFIERS`' set, AP214's
+/// `MODIFIED_GEOMETRIC_TOLERANCE`), ISO 10303-47 names in lower case, AP214's material
+/// conditions read as the requirements.
+fn tolerance_modifiers(inst: &crate::syntax::Instance<'_>) -> Vec<String> {
+    let mut out = Vec::new();
+    for keyword in [
+        "GEOMETRIC_TOLERANCE_WITH_MODIFIERS",
+        "MODIFIED_GEOMETRIC_TOLERANCE",
+    ] {
+        if let Some(rec) = inst.record(keyword) {
+            // The type's own attribute is the last (a simple instance lists the inherited
+            // ones before it).
+            out.extend(rec.params.last().map(enum_names).unwrap_or_default());
+        }
+    }
+    out.iter()
+        .map(|n| match n.as_str() {
+            "maximum_material_condition" => "maximum_material_requirement".to_string(),
+            "least_material_condition" => "least_material_requirement".to_string(),
+            _ => n.clone(),
+        })
+        .collect()
+}
+
+/// The tolerance zone form each tolerance's `TOLERANCE_ZONE` gives (tolerance id → form
+/// name, lower case).
+fn tolerance_zones(m: &Mapper<'_>) -> HashMap<u64, String> {
+    let mut out = HashMap::new();
+    for id in m.file.ids_with_keyword("TOLERANCE_ZONE") {
+        let Ok(inst) = m.inst(id) else { continue };
+        let Ok(a) = Attrs::of(&inst, "TOLERANCE_ZONE") else {
+            continue;
+        };
+        // (name, description, of_shape, product_definitional, defining_tolerance, form) in
+        // a simple instance; (defining_tolerance, form) in a complex one's own record.
+        let at = if a.params.len() > 2 { 4 } else { 0 };
+        let form = a
+            .opt_ref(at + 1)
+            .and_then(|f| m.inst(f).ok())
+            .and_then(|f| Attrs::first(&f).ok().map(|f| f.str_or_empty(0)))
+            .unwrap_or_default()
+            .to_lowercase();
+        if form.is_empty() {
+            continue;
+        }
+        let tolerances: Vec<u64> = a
+            .params
+            .get(at)
+            .map(|p| {
+                p.as_list()
+                    .unwrap_or(&[])
+                    .iter()
+                    .filter_map(|q| q.as_ref_id())
+                    .chain(p.as_ref_id())
+                    .collect()
+            })
+            .unwrap_or_default();
+        for t in tolerances {
+            out.entry(t).or_insert_with(|| form.clone());
+        }
+    }
+    out
+}
+
 /// Each dimension's nominal value (its `DIMENSIONAL_CHARACTERISTIC_REPRESENTATION`) and
 /// plus-minus deviations (`PLUS_MINUS_TOLERANCE`).
+/// The instances a parameter names: a reference, or the members of an aggregate or a typed
+/// one such as `SET_REPRESENTATION_ITEM((#1,#2))` (an identified item, a value range).
+fn refs_in(p: &crate::syntax::Param<'_>, out: &mut Vec<u64>, depth: u32) {
+    use crate::syntax::Param;
+    if depth > MAX_DEPTH {
+        return;
+    }
+    match p {
+        Param::Ref(id) => out.push(*id),
+        Param::Typed { value, .. } => refs_in(value, out, depth + 1),
+        Param::List(items) => {
+            for i in items {
+                refs_in(i, out, depth + 1);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// A measure representation item's value — a length in mm, an angle in radians, by its own
+/// unit, else the context's — and its name (`nominal value`, `lower limit`, ...).
+fn measure_item(m: &Mapper<'_>, id: u64) -> Option<(f64, String)> {
+    let v = m.inst(id).ok()?;
+    // The name is the first string of a REPRESENTATION_ITEM record (the complex form) or of
+    // a simple MEASURE_REPRESENTATION_ITEM.
+    let name = v
+        .records
+        .iter()
+        .filter(|r| {
+            r.keyword == "REPRESENTATION_ITEM" || r.keyword == "MEASURE_REPRESENTATION_ITEM"
+        })
+        .find_map(|r| r.params.first().and_then(|p| p.as_str()))
+        .unwrap_or("")
+        .to_string();
+    let value = v.records.iter().find_map(|r| {
+        // MEASURE_WITH_UNIT(value, unit) in a complex instance; a simple
+        // MEASURE_REPRESENTATION_ITEM(name, value, unit).
+        let at = match r.keyword {
+            "MEASURE_WITH_UNIT" => 0,
+            "MEASURE_REPRESENTATION_ITEM" if r.params.len() >= 3 => 1,
+            _ => return None,
+        };
+        let p = r.params.get(at)?;
+        let angle = matches!(p, crate::syntax::Param::Typed { keyword, .. }
+            if keyword.contains("ANGLE"));
+        let scale = r
+            .params
+            .get(at + 1)
+            .and_then(|u| u.as_ref_id())
+            .and_then(|u| super::units::base_size(m, u))
+            .unwrap_or(if angle {
+                m.units.angle_to_rad
+            } else {
+                m.units.length_to_mm
+            });
+        Some(p.as_f64()? * scale)
+    })?;
+    Some((value, name))
+}
+
 fn dimension_values(m: &Mapper<'_>, items: &mut [(u64, SemanticItem)]) {
     let index: HashMap<u64, usize> = items
         .iter()
@@ -855,47 +1029,50 @@ fn dimension_values(m: &Mapper<'_>, items: &mut [(u64, SemanticItem)]) {
         .file
         .ids_with_keyword("DIMENSIONAL_CHARACTERISTIC_REPRESENTATION")
     {
-        let Some((dimension, value)) = m.inst(id).ok().and_then(|inst| {
+        let Some((dimension, value, limits)) = m.inst(id).ok().and_then(|inst| {
             let a = Attrs::first(&inst).ok()?;
             let rep = m.inst(a.r#ref(1).ok()?).ok()?;
-            let items = Attrs::first(&rep).ok()?.refs(1).ok()?;
-            let value = items.iter().find_map(|&i| {
-                let v = m.inst(i).ok()?;
-                let is_nominal = v.records.iter().any(|r| {
-                    r.keyword == "REPRESENTATION_ITEM"
-                        && r.params.first().and_then(|p| p.as_str()) == Some("nominal value")
-                });
-                let value = v.records.iter().find_map(|r| {
-                    if r.keyword != "MEASURE_WITH_UNIT" {
-                        return None;
+            let members = Attrs::first(&rep).ok()?.refs(1).ok()?;
+            let mut value = None;
+            let (mut lower, mut upper) = (None, None);
+            for &i in &members {
+                if m.is(i, "VALUE_RANGE") {
+                    // VALUE_RANGE(name, SET_REPRESENTATION_ITEM((lower, upper))): a limits
+                    // dimension.
+                    let range = m.inst(i).ok()?;
+                    let mut bounds = Vec::new();
+                    if let Some(p) = Attrs::first(&range).ok()?.params.get(1) {
+                        refs_in(p, &mut bounds, 0);
                     }
-                    let p = r.params.first()?;
-                    let angle = matches!(p, crate::syntax::Param::Typed { keyword, .. }
-                        if keyword.contains("ANGLE"));
-                    // Lengths in mm, angles in radians: by the measure's own unit, else
-                    // the context's.
-                    let scale = r
-                        .params
-                        .get(1)
-                        .and_then(|u| u.as_ref_id())
-                        .and_then(|u| super::units::base_size(m, u))
-                        .unwrap_or(if angle {
-                            m.units.angle_to_rad
-                        } else {
-                            m.units.length_to_mm
-                        });
-                    Some(p.as_f64()? * scale)
-                })?;
-                (is_nominal || items.len() == 1).then_some(value)
-            })?;
-            Some((a.r#ref(0).ok()?, value))
+                    for b in bounds {
+                        if let Some((v, name)) = measure_item(m, b) {
+                            if name.contains("upper") {
+                                upper = Some(v);
+                            } else if name.contains("lower") {
+                                lower = Some(v);
+                            }
+                        }
+                    }
+                } else if let Some((v, name)) = measure_item(m, i)
+                    && (name == "nominal value" || members.len() == 1)
+                {
+                    value = Some(v);
+                }
+            }
+            let limits = lower.zip(upper);
+            (value.is_some() || limits.is_some()).then_some((a.r#ref(0).ok()?, value, limits))
         }) else {
             continue;
         };
         if let Some(&k) = index.get(&dimension)
-            && let SemanticItem::Dimension { value: v, .. } = &mut items[k].1
+            && let SemanticItem::Dimension {
+                value: v,
+                limits: l,
+                ..
+            } = &mut items[k].1
         {
-            *v = Some(value);
+            *v = value;
+            *l = limits;
         }
     }
     for id in m.file.ids_with_keyword("PLUS_MINUS_TOLERANCE") {

@@ -4,7 +4,8 @@
 //!
 //! A shape aspect names geometry through an `ITEM_IDENTIFIED_REPRESENTATION_USAGE` (AP242
 //! writes a `GEOMETRIC_ITEM_SPECIFIC_USAGE` per item, or a plain usage whose item is a
-//! `SET_REPRESENTATION_ITEM` of several), or groups other aspects: a composite through
+//! `SET_REPRESENTATION_ITEM` of several), through a property definition of it and that
+//! property's shape representation (AP214), or groups other aspects: a composite through
 //! `SHAPE_ASPECT_RELATIONSHIP`s, a derived aspect (centre of symmetry, ...) through
 //! `SHAPE_ASPECT_DERIVING_RELATIONSHIP`s.
 
@@ -61,10 +62,29 @@ pub(super) struct Aspects {
 impl Aspects {
     /// Reads every usage and relationship of the file.
     pub(super) fn new(m: &Mapper<'_>) -> Aspects {
-        let face = |item: u64| -> Option<FaceId> {
-            std::iter::once(0)
-                .chain(m.contexts.values().map(|(_, k)| *k))
-                .find_map(|k| m.faces.get(&(item, k)).copied())
+        // An edge stands for the faces it bounds (a diameter on a hole's circular edge).
+        let mut faces_of_edge: HashMap<cadre_brep::EdgeId, Vec<FaceId>> = HashMap::new();
+        for (k, f) in m.model.faces.iter().enumerate() {
+            for lp in &f.loops {
+                if let cadre_brep::LoopKind::Edges(edges) = &lp.kind {
+                    for oe in edges {
+                        faces_of_edge
+                            .entry(oe.edge)
+                            .or_default()
+                            .push(FaceId(k as u32));
+                    }
+                }
+            }
+        }
+        let keys = || std::iter::once(0).chain(m.contexts.values().map(|(_, k)| *k));
+        let faces_of_item = |item: u64| -> Vec<FaceId> {
+            if let Some(f) = keys().find_map(|k| m.faces.get(&(item, k)).copied()) {
+                return vec![f];
+            }
+            keys()
+                .find_map(|k| m.edges.get(&(item, k)))
+                .and_then(|e| faces_of_edge.get(e).cloned())
+                .unwrap_or_default()
         };
         let mut faces_of: HashMap<u64, Vec<FaceId>> = HashMap::new();
         let mut specific_usage = HashSet::new();
@@ -79,16 +99,55 @@ impl Aspects {
             let Some(aspect) = a.opt_ref(2) else { continue };
             let mut items = Vec::new();
             if let Some(p) = a.params.get(4) {
-                item_refs(p, &mut items, 0);
+                super::refs_in(p, &mut items, 0);
             }
             let specific = inst.has("GEOMETRIC_ITEM_SPECIFIC_USAGE");
             for item in items {
-                if let Some(f) = face(item) {
-                    faces_of.entry(aspect).or_default().push(f);
-                }
+                faces_of
+                    .entry(aspect)
+                    .or_default()
+                    .extend(faces_of_item(item));
                 if specific && is_shape_item(m, item) {
                     specific_usage.insert(aspect);
                 }
+            }
+        }
+        // AP214 ties an aspect to its faces through a property definition of it and that
+        // property's shape representation.
+        for id in m.file.ids_with_keyword("SHAPE_DEFINITION_REPRESENTATION") {
+            let Ok(inst) = m.inst(id) else { continue };
+            let Ok(a) = Attrs::first(&inst) else { continue };
+            // (definition, used_representation)
+            let (Some(definition), Some(representation)) = (a.opt_ref(0), a.opt_ref(1)) else {
+                continue;
+            };
+            if !m.file.has_keyword(definition, "PROPERTY_DEFINITION") {
+                continue;
+            }
+            // PROPERTY_DEFINITION(name, description, definition)
+            let Some(aspect) = m
+                .inst(definition)
+                .ok()
+                .and_then(|d| Attrs::first(&d).ok().and_then(|d| d.opt_ref(2)))
+            else {
+                continue;
+            };
+            let is_aspect = ["PRODUCT_DEFINITION_SHAPE", "PRODUCT_DEFINITION"]
+                .iter()
+                .all(|k| !m.file.has_keyword(aspect, k));
+            if !is_aspect {
+                continue;
+            }
+            let items = m
+                .inst(representation)
+                .ok()
+                .and_then(|r| Attrs::first(&r).ok().and_then(|r| r.refs(1).ok()))
+                .unwrap_or_default();
+            for item in items {
+                faces_of
+                    .entry(aspect)
+                    .or_default()
+                    .extend(faces_of_item(item));
             }
         }
         let mut related: HashMap<u64, Vec<u64>> = HashMap::new();
@@ -236,24 +295,6 @@ fn is_dimension(inst: &Instance<'_>) -> bool {
     })
 }
 
-/// The instances an identified item names: a reference, or the members of a
-/// `SET_REPRESENTATION_ITEM` / `LIST_REPRESENTATION_ITEM` (typed or plain aggregate).
-fn item_refs(p: &Param<'_>, out: &mut Vec<u64>, depth: u32) {
-    if depth > MAX_DEPTH {
-        return;
-    }
-    match p {
-        Param::Ref(id) => out.push(*id),
-        Param::Typed { value, .. } => item_refs(value, out, depth + 1),
-        Param::List(items) => {
-            for i in items {
-                item_refs(i, out, depth + 1);
-            }
-        }
-        _ => {}
-    }
-}
-
 /// Whether OCCT would find a shape for a usage's item: not a bare placement or direction.
 fn is_shape_item(m: &Mapper<'_>, item: u64) -> bool {
     !["AXIS2_PLACEMENT_3D", "AXIS2_PLACEMENT_2D", "DIRECTION"]
@@ -291,7 +332,13 @@ pub(super) fn aspects_of(m: &Mapper<'_>, id: u64) -> Vec<u64> {
     {
         return [a.opt_ref(2), a.opt_ref(3)].into_iter().flatten().collect();
     }
-    if let Ok(a) = Attrs::of(&inst, "GEOMETRIC_TOLERANCE") {
+    if let Ok(a) = Attrs::of(&inst, "GEOMETRIC_TOLERANCE").or_else(|e| {
+        // A simple instance of a subtype lists the inherited attributes first.
+        Attrs::first(&inst)
+            .ok()
+            .filter(|a| a.keyword.ends_with("_TOLERANCE") && a.params.len() >= 4)
+            .ok_or(e)
+    }) {
         // (name, description, magnitude, toleranced_shape_aspect)
         return a.opt_ref(3).into_iter().collect();
     }
