@@ -167,6 +167,8 @@ pub(crate) struct Session {
     pub pmi_view: Option<usize>,
     /// The annotation chosen in the PMI window (its faces are selected).
     pub pmi_selected: Option<usize>,
+    /// The semantic PMI item chosen in the PMI window (its faces are the selection).
+    pub pmi_semantic_selected: Option<usize>,
     /// Properties rows of picked items, worked out once per item (exact areas and lengths
     /// are integrals: not every frame).
     pub properties: std::collections::HashMap<Pick, Vec<(String, String)>>,
@@ -305,6 +307,7 @@ impl Session {
             selected_dimension: None,
             pmi_view: None,
             pmi_selected: None,
+            pmi_semantic_selected: None,
             properties: std::collections::HashMap::new(),
         }
     }
@@ -347,9 +350,11 @@ impl Session {
             Err(e) => self.error = Some(e.to_string()),
         }
         // A file with PMI opens with it shown.
-        self.show_pmi = !doc.model.pmi.annotations.is_empty();
+        self.show_pmi =
+            !doc.model.pmi.annotations.is_empty() || !doc.model.pmi.semantic.items.is_empty();
         self.pmi_view = None;
         self.pmi_selected = None;
+        self.pmi_semantic_selected = None;
         self.status = format!(
             "{}: {} parts, {} faces, loaded in {:.2} s",
             doc.title(),
@@ -443,10 +448,36 @@ impl Session {
         let Some(annotation) = doc.model.pmi.annotations.get(k) else {
             return;
         };
+        let faces = annotation.faces.clone();
         self.pmi_selected = Some(k);
+        self.pmi_semantic_selected = None;
+        self.select_faces(&faces);
+    }
+
+    /// Chooses semantic PMI item `k` (a dimension, tolerance or datum): the faces it applies
+    /// to become the selection.
+    pub fn choose_semantic(&mut self, k: usize) {
+        let Some(doc) = &self.doc else { return };
+        let Some(item) = doc.model.pmi.semantic.items.get(k) else {
+            return;
+        };
+        let faces = match item {
+            cadre_brep::pmi::SemanticItem::Dimension { faces, .. }
+            | cadre_brep::pmi::SemanticItem::Tolerance { faces, .. }
+            | cadre_brep::pmi::SemanticItem::Datum { faces, .. } => faces.clone(),
+            cadre_brep::pmi::SemanticItem::DatumTarget { .. } => Vec::new(),
+        };
+        self.pmi_semantic_selected = Some(k);
+        self.pmi_selected = None;
+        self.select_faces(&faces);
+    }
+
+    /// Makes `faces` (on every instance) the selection.
+    fn select_faces(&mut self, faces: &[cadre_brep::FaceId]) {
+        let Some(doc) = &self.doc else { return };
         self.selection.clear();
         for instance in 0..doc.instances.len() as u32 {
-            for face in &annotation.faces {
+            for face in faces {
                 let pick = Pick::Face {
                     instance,
                     face: cadre_mesh::scene::SceneIds::face_id(*face),
@@ -1043,7 +1074,23 @@ mod tests {
                 .labels
                 .is_empty()
         );
+        // A semantic item selects its faces too: datum A, on the block's bottom.
+        let datum = s
+            .doc
+            .as_ref()
+            .expect("open")
+            .model
+            .pmi
+            .semantic
+            .items
+            .iter()
+            .position(|i| matches!(i, cadre_brep::pmi::SemanticItem::Datum { .. }))
+            .expect("datum A");
+        s.choose_semantic(datum);
+        assert_eq!(s.pmi_semantic_selected, Some(datum));
+        assert_eq!(s.selection.len(), 1);
         s.choose_annotation(0);
+        assert_eq!(s.pmi_semantic_selected, None);
         assert_eq!(s.selection.len(), 1);
         assert!(matches!(
             s.selection[0].pick,

@@ -30,6 +30,27 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
         .map(|a| (a.name.clone(), a.faces.len(), a.point_count()))
         .collect();
     let semantic = &pmi.semantic;
+    // Each semantic item as a frame writes it, whether an annotation presents it, its faces.
+    let presented: std::collections::HashSet<usize> =
+        pmi.annotations.iter().filter_map(|a| a.semantic).collect();
+    let items: Vec<(String, bool, usize)> = semantic
+        .items
+        .iter()
+        .enumerate()
+        .map(|(k, item)| {
+            let faces = match item {
+                cadre_brep::pmi::SemanticItem::Dimension { faces, .. }
+                | cadre_brep::pmi::SemanticItem::Tolerance { faces, .. }
+                | cadre_brep::pmi::SemanticItem::Datum { faces, .. } => faces.len(),
+                cadre_brep::pmi::SemanticItem::DatumTarget { .. } => 0,
+            };
+            (
+                cadre_render::pmi::semantic_text(item),
+                presented.contains(&k),
+                faces,
+            )
+        })
+        .collect();
     let summary = format!(
         "{} annotations, {} dimensions, {} tolerances, {} datums, {} datum targets",
         pmi.annotations.len(),
@@ -41,6 +62,7 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
     let mut open = true;
     let mut chosen_view = None;
     let mut chosen_annotation = None;
+    let mut chosen_semantic = None;
     egui::Window::new("PMI")
         .open(&mut open)
         .default_width(320.0)
@@ -75,7 +97,32 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
                         }
                     }
                 });
+            if !items.is_empty() {
+                ui.separator();
+                ui.label("Semantic PMI (choose one to select its faces)");
+                egui::ScrollArea::vertical()
+                    .id_salt("semantic")
+                    .max_height(200.0)
+                    .show(ui, |ui| {
+                        for (k, (text, presented, faces)) in items.iter().enumerate() {
+                            let text = if *presented {
+                                format!("{text}  ({faces} faces, presented)")
+                            } else {
+                                format!("{text}  ({faces} faces)")
+                            };
+                            if ui
+                                .selectable_label(s.pmi_semantic_selected == Some(k), text)
+                                .clicked()
+                            {
+                                chosen_semantic = Some(k);
+                            }
+                        }
+                    });
+            }
         });
+    if let Some(k) = chosen_semantic {
+        s.choose_semantic(k);
+    }
     if let Some(k) = chosen_view {
         s.choose_saved_view(k, aspect);
     }
