@@ -324,3 +324,41 @@ fn assembly_usage_naming_a_product_definition_shape_is_followed_to_its_definitio
         "placed: {rb:?}"
     );
 }
+
+#[test]
+fn a_complex_definitional_representation_gives_its_pcurve() {
+    // Edge #30 (0,0,0)–(1,0,0) as a surface curve on the bottom plane #61, its pcurve's
+    // representation written as a complex instance whose REPRESENTATION record holds the
+    // items (its DEFINITIONAL_REPRESENTATION record is empty).
+    let complex = "
+#30=EDGE_CURVE('',#11,#12,#2000,.T.);
+#2000=SURFACE_CURVE('',#31,(#2001),.PCURVE_S1.);
+#2001=PCURVE('',#61,#2002);
+#2002=(DEFINITIONAL_REPRESENTATION()REPRESENTATION('',(#2003),#2010)SHAPE_REPRESENTATION());
+#2003=LINE('',#2004,#2005);
+#2004=CARTESIAN_POINT('',(0.,0.));
+#2005=VECTOR('',#2006,1.);
+#2006=DIRECTION('',(1.,0.));
+#2010=(GEOMETRIC_REPRESENTATION_CONTEXT(2)PARAMETRIC_REPRESENTATION_CONTEXT()\
+REPRESENTATION_CONTEXT('2D','Parametric Space'));
+";
+    let cube = CUBE.replace("#30=EDGE_CURVE('',#11,#12,#31,.T.);", "");
+    let m = model(&format!("{MM_CONTEXT}{cube}{complex}"));
+    let about_pcurve = |m: &cadre_brep::Model| {
+        m.warnings
+            .iter()
+            .map(|w| w.to_string())
+            .filter(|w| w.contains("#200") || w.contains("DEFINITIONAL"))
+            .collect::<Vec<_>>()
+    };
+    assert!(about_pcurve(&m).is_empty(), "{:?}", about_pcurve(&m));
+    assert_eq!(m.pcurves.len(), 1);
+    // Negative control: the simple form reads the same.
+    let simple = complex.replace(
+        "#2002=(DEFINITIONAL_REPRESENTATION()REPRESENTATION('',(#2003),#2010)SHAPE_REPRESENTATION());",
+        "#2002=DEFINITIONAL_REPRESENTATION('',(#2003),#2010);",
+    );
+    let m = model(&format!("{MM_CONTEXT}{cube}{simple}"));
+    assert!(about_pcurve(&m).is_empty(), "{:?}", about_pcurve(&m));
+    assert_eq!(m.pcurves.len(), 1);
+}

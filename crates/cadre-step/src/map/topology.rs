@@ -372,7 +372,9 @@ impl Mapper<'_> {
         let a = Attrs::of(&inst, "PCURVE")?;
         let surface = self.surface_id(a.r#ref(1)?)?;
         let rep = self.inst(a.r#ref(2)?)?;
-        let r = Attrs::first(&rep)?;
+        // A complex definitional representation keeps (name, items, context) in its
+        // REPRESENTATION record (its first record, DEFINITIONAL_REPRESENTATION(), is empty).
+        let r = Attrs::of(&rep, "REPRESENTATION").or_else(|_| Attrs::first(&rep))?;
         let curve_id = r
             .refs(1)?
             .into_iter()
