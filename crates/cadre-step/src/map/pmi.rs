@@ -978,6 +978,16 @@ fn refs_in(p: &crate::syntax::Param<'_>, out: &mut Vec<u64>, depth: u32) {
     }
 }
 
+/// A representation's items: `(name, items, context)` of its REPRESENTATION record in a
+/// complex instance (whose other records may be empty), else of its only record.
+fn representation_items(rep: &crate::syntax::Instance<'_>) -> Option<Vec<u64>> {
+    Attrs::of(rep, "REPRESENTATION")
+        .or_else(|_| Attrs::first(rep))
+        .ok()?
+        .refs(1)
+        .ok()
+}
+
 /// A measure representation item's value — a length in mm, an angle in radians, by its own
 /// unit, else the context's — and its name (`nominal value`, `lower limit`, ...).
 fn measure_item(m: &Mapper<'_>, id: u64) -> Option<(f64, String)> {
@@ -1032,7 +1042,7 @@ fn dimension_values(m: &Mapper<'_>, items: &mut [(u64, SemanticItem)]) {
         let Some((dimension, value, limits)) = m.inst(id).ok().and_then(|inst| {
             let a = Attrs::first(&inst).ok()?;
             let rep = m.inst(a.r#ref(1).ok()?).ok()?;
-            let members = Attrs::first(&rep).ok()?.refs(1).ok()?;
+            let members = representation_items(&rep)?;
             let mut value = None;
             let (mut lower, mut upper) = (None, None);
             for &i in &members {

@@ -141,7 +141,7 @@ impl Aspects {
             let items = m
                 .inst(representation)
                 .ok()
-                .and_then(|r| Attrs::first(&r).ok().and_then(|r| r.refs(1).ok()))
+                .and_then(|r| super::representation_items(&r))
                 .unwrap_or_default();
             for item in items {
                 faces_of
