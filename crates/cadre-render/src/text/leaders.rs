@@ -349,6 +349,18 @@ mod tests {
         assert!(anchors[1].point.distance(DVec3::new(10.4, 0.5, 0.5)) < 1e-6);
     }
 
+    /// Looking down −z at the origin, 150 units of the scene high.
+    fn looking_down() -> Camera {
+        Camera {
+            eye: DVec3::new(0.0, 0.0, 100.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            projection: Projection::Orthographic { height: 150.0 },
+            near: 1.0,
+            far: 200.0,
+        }
+    }
+
     #[test]
     fn callouts_stack_in_two_columns_without_overlap() {
         // Twenty parts in a row along x, seen from above: ten left, ten right of the middle.
@@ -359,14 +371,7 @@ mod tests {
                 style: CalloutStyle::PART,
             })
             .collect();
-        let camera = Camera {
-            eye: DVec3::new(0.0, 0.0, 100.0),
-            target: DVec3::ZERO,
-            up: DVec3::Y,
-            projection: Projection::Orthographic { height: 150.0 },
-            near: 1.0,
-            far: 200.0,
-        };
+        let camera = looking_down();
         let set = callout_labels(&anchors, None, &camera, (400, 300), 10.0);
         assert_eq!(set.labels.len(), 20);
         let projector = Projector::new(&camera, (400, 300));
@@ -406,14 +411,7 @@ mod tests {
                 style: CalloutStyle::PMI,
             })
             .collect();
-        let camera = Camera {
-            eye: DVec3::new(0.0, 0.0, 100.0),
-            target: DVec3::ZERO,
-            up: DVec3::Y,
-            projection: Projection::Orthographic { height: 150.0 },
-            near: 1.0,
-            far: 200.0,
-        };
+        let camera = looking_down();
         let set = callout_labels(&anchors, None, &camera, (400, 300), 10.0);
         let l = cadre_text::layout(
             cadre_text::FontChain::bundled(),
@@ -450,14 +448,7 @@ mod tests {
                 style: CalloutStyle::PART,
             })
             .collect();
-        let camera = Camera {
-            eye: DVec3::new(0.0, 0.0, 100.0),
-            target: DVec3::ZERO,
-            up: DVec3::Y,
-            projection: Projection::Orthographic { height: 150.0 },
-            near: 1.0,
-            far: 200.0,
-        };
+        let camera = looking_down();
         let out = lay_out_callouts(&anchors, None, &camera, (400, 300), 10.0);
         assert_eq!(out.labels.labels.len(), 22);
         assert_eq!(out.omitted, 200 - 22);

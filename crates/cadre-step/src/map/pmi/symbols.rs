@@ -200,9 +200,8 @@ pub(super) fn mapped_symbol(
     let origin = m.placement3(map.r#ref(0)?)?;
     let representation = m.inst(map.r#ref(1)?)?;
     // (name, items, context)
-    let items = super::representation_items(&representation).ok_or_else(|| {
-        MapError::new(representation.id, "symbol representation without items")
-    })?;
+    let items = super::representation_items(&representation)
+        .ok_or_else(|| MapError::new(representation.id, "symbol representation without items"))?;
     let target_id = a.r#ref(at + 1)?;
     let (target, scale) = if m.is(target_id, "SYMBOL_TARGET") {
         let t = m.inst(target_id)?;
