@@ -247,8 +247,10 @@ pub enum SemanticItem {
     DatumTarget {
         /// STEP id.
         step_id: u64,
-        /// The target's identification.
+        /// Its datum's letter and its own number (`A1`), or its number alone.
         label: String,
+        /// The faces it is on.
+        faces: Vec<FaceId>,
     },
 }
 
@@ -284,6 +286,16 @@ pub fn modifier_symbol(name: &str) -> Option<&'static str> {
 }
 
 impl SemanticItem {
+    /// The faces it applies to.
+    pub fn faces(&self) -> &[FaceId] {
+        match self {
+            SemanticItem::Dimension { faces, .. }
+            | SemanticItem::Tolerance { faces, .. }
+            | SemanticItem::Datum { faces, .. }
+            | SemanticItem::DatumTarget { faces, .. } => faces,
+        }
+    }
+
     /// The STEP id of the item's entity.
     pub fn step_id(&self) -> u64 {
         match self {

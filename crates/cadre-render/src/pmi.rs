@@ -313,13 +313,7 @@ fn anchors_of(pmi: &Pmi, anchor_of: impl Fn(&[FaceId]) -> Option<DVec3>) -> Vec<
         if presented.contains(&k) {
             continue;
         }
-        let faces: &[FaceId] = match item {
-            SemanticItem::Dimension { faces, .. }
-            | SemanticItem::Tolerance { faces, .. }
-            | SemanticItem::Datum { faces, .. } => faces,
-            SemanticItem::DatumTarget { .. } => &[],
-        };
-        let Some(point) = anchor_of(faces) else {
+        let Some(point) = anchor_of(item.faces()) else {
             continue;
         };
         out.push(PartAnchor {

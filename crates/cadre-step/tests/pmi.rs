@@ -375,6 +375,41 @@ const MODIFIED: &str = "
 #1421=DATUM_REFERENCE(1,#1403);
 ";
 
+/// Target 1 of datum A (of `MODIFIED`), a point on the top face.
+const TARGET: &str = "
+#1600=PLACED_DATUM_TARGET_FEATURE('','point',#323,.T.,'1');
+#1601=SHAPE_ASPECT_RELATIONSHIP('','',#1600,#1403);
+#1602=GEOMETRIC_ITEM_SPECIFIC_USAGE('','',#1600,#200,#117);
+";
+
+#[test]
+fn a_datum_target_is_named_by_its_datum_and_reaches_its_face() {
+    let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}{MODIFIED}{TARGET}"));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    let target = m
+        .pmi
+        .semantic
+        .items
+        .iter()
+        .find(|i| i.step_id() == 1600)
+        .expect("the target");
+    let SemanticItem::DatumTarget { label, faces, .. } = target else {
+        panic!("{target:?}")
+    };
+    assert_eq!(label, "A1");
+    let steps: Vec<u64> = faces.iter().map(|f| m.faces[f.index()].step_id).collect();
+    assert_eq!(steps, vec![117]);
+    assert_eq!(m.pmi.semantic.datum_targets(), 1);
+    // Negative control: without its relationship to the datum it is its number alone.
+    let alone = TARGET.replace("#1601=SHAPE_ASPECT_RELATIONSHIP('','',#1600,#1403);", "");
+    let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}{MODIFIED}{alone}"));
+    let label = m.pmi.semantic.items.iter().find_map(|i| match i {
+        SemanticItem::DatumTarget { label, .. } => Some(label.clone()),
+        _ => None,
+    });
+    assert_eq!(label.as_deref(), Some("1"));
+}
+
 #[test]
 fn tolerance_modifiers_zones_and_datum_modifiers_are_read() {
     let m = model(&format!("{MM_CONTEXT}{CUBE}{PMI}{MODIFIED}"));

@@ -461,12 +461,7 @@ impl Session {
         let Some(item) = doc.model.pmi.semantic.items.get(k) else {
             return;
         };
-        let faces = match item {
-            cadre_brep::pmi::SemanticItem::Dimension { faces, .. }
-            | cadre_brep::pmi::SemanticItem::Tolerance { faces, .. }
-            | cadre_brep::pmi::SemanticItem::Datum { faces, .. } => faces.clone(),
-            cadre_brep::pmi::SemanticItem::DatumTarget { .. } => Vec::new(),
-        };
+        let faces = item.faces().to_vec();
         self.pmi_semantic_selected = Some(k);
         self.pmi_selected = None;
         self.select_faces(&faces);

@@ -790,16 +790,44 @@ fn map_semantic(m: &mut Mapper<'_>) {
         .into_iter()
         .collect();
     targets.extend(m.file.ids_with_keyword("PLACED_DATUM_TARGET_FEATURE"));
+    // A target's datum: the DATUM a shape aspect relationship relates it to.
+    let mut datum_of_target: HashMap<u64, String> = HashMap::new();
+    for id in m.file.ids_with_keyword("SHAPE_ASPECT_RELATIONSHIP") {
+        let Ok(inst) = m.inst(id) else { continue };
+        let Ok(a) = Attrs::of(&inst, "SHAPE_ASPECT_RELATIONSHIP") else {
+            continue;
+        };
+        // (name, description, relating, related)
+        if let (Some(target), Some(datum)) = (a.opt_ref(2), a.opt_ref(3))
+            && m.is(datum, "DATUM")
+            && let Ok(d) = m.inst(datum)
+            && let Ok(d) = Attrs::of(&d, "DATUM")
+        {
+            datum_of_target.insert(target, d.str_or_empty(4));
+        }
+    }
     for id in targets {
-        let label = m
+        // (name, description, of_shape, product_definitional, target_id) for both the
+        // target and a placed target feature.
+        let number = m
             .inst(id)
             .ok()
             .and_then(|i| {
-                let a = Attrs::of(&i, "DATUM_TARGET").ok()?;
+                let a = Attrs::of(&i, "DATUM_TARGET")
+                    .or_else(|_| Attrs::first(&i))
+                    .ok()?;
                 Some(a.str_or_empty(4))
             })
             .unwrap_or_default();
-        items.push((id, SemanticItem::DatumTarget { step_id: id, label }));
+        let letter = datum_of_target.get(&id).cloned().unwrap_or_default();
+        items.push((
+            id,
+            SemanticItem::DatumTarget {
+                step_id: id,
+                label: format!("{letter}{number}"),
+                faces: Vec::new(),
+            },
+        ));
     }
     items.sort_unstable_by_key(|(id, _)| *id);
     dimension_values(m, &mut items);
@@ -1149,8 +1177,8 @@ fn link_faces(m: &mut Mapper<'_>) {
         match item {
             SemanticItem::Dimension { faces: f, .. }
             | SemanticItem::Tolerance { faces: f, .. }
-            | SemanticItem::Datum { faces: f, .. } => *f = faces,
-            SemanticItem::DatumTarget { .. } => {}
+            | SemanticItem::Datum { faces: f, .. }
+            | SemanticItem::DatumTarget { faces: f, .. } => *f = faces,
         }
     }
     let annotation_index: HashMap<u64, usize> = m
@@ -1196,7 +1224,7 @@ fn link_faces(m: &mut Mapper<'_>) {
             .copied()
             .or_else(|| semantic_of_aspect.get(&definition).copied());
         let faces = match semantic {
-            Some(k) => semantic_faces(&m.model.pmi.semantic.items[k]).to_vec(),
+            Some(k) => m.model.pmi.semantic.items[k].faces().to_vec(),
             None => aspects.of(definition),
         };
         for target in targets.into_iter().flatten() {
@@ -1214,15 +1242,6 @@ fn link_faces(m: &mut Mapper<'_>) {
                 annotation.semantic = semantic;
             }
         }
-    }
-}
-
-fn semantic_faces(item: &SemanticItem) -> &[FaceId] {
-    match item {
-        SemanticItem::Dimension { faces, .. }
-        | SemanticItem::Tolerance { faces, .. }
-        | SemanticItem::Datum { faces, .. } => faces,
-        SemanticItem::DatumTarget { .. } => &[],
     }
 }
 

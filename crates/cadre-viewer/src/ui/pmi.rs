@@ -38,12 +38,7 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
         .iter()
         .enumerate()
         .map(|(k, item)| {
-            let faces = match item {
-                cadre_brep::pmi::SemanticItem::Dimension { faces, .. }
-                | cadre_brep::pmi::SemanticItem::Tolerance { faces, .. }
-                | cadre_brep::pmi::SemanticItem::Datum { faces, .. } => faces.len(),
-                cadre_brep::pmi::SemanticItem::DatumTarget { .. } => 0,
-            };
+            let faces = item.faces().len();
             (
                 cadre_render::pmi::semantic_text(item),
                 presented.contains(&k),
