@@ -231,6 +231,8 @@ pub enum SemanticItem {
         /// The form of its tolerance zone (`cylindrical or circular`, `spherical`, ...) when
         /// a `TOLERANCE_ZONE` gives one: the value is then a diameter.
         zone: Option<String>,
+        /// Zone details a frame writes beside the value, mm.
+        zone_values: ZoneValues,
         /// The faces it applies to.
         faces: Vec<FaceId>,
     },
@@ -252,6 +254,19 @@ pub enum SemanticItem {
         /// The faces it is on.
         faces: Vec<FaceId>,
     },
+}
+
+/// What a feature-control frame writes beside a tolerance's value (mm each, when given).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ZoneValues {
+    /// The length the zone is projected by (`Ⓟ 10`; a projected zone definition).
+    pub projected: Option<f64>,
+    /// The displacement of an unequally disposed zone (`Ⓤ 0.2`).
+    pub unequally_disposed: Option<f64>,
+    /// The length of the unit basis the value holds per (`0.05/25`).
+    pub per_unit: Option<f64>,
+    /// The greatest value the tolerance may take (`0.2 MAX`).
+    pub maximum: Option<f64>,
 }
 
 /// The symbol a feature-control frame writes for a tolerance or datum reference modifier

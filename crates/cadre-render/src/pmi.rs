@@ -239,6 +239,7 @@ pub fn semantic_text(item: &SemanticItem) -> String {
             datums,
             modifiers,
             zone,
+            zone_values,
             ..
         } => {
             let mut cells = vec![tolerance_symbol(kind).to_string()];
@@ -249,12 +250,24 @@ pub fn semantic_text(item: &SemanticItem) -> String {
                 _ => String::new(),
             };
             value += &magnitude.map_or_else(|| "?".into(), number);
+            if let Some(u) = zone_values.per_unit {
+                value += &format!("/{}", number(u));
+            }
+            if let Some(d) = zone_values.unequally_disposed {
+                value += &format!(" Ⓤ{}", number(d));
+            }
             for symbol in modifiers
                 .iter()
                 .filter_map(|m| cadre_brep::pmi::modifier_symbol(m))
             {
                 value.push(' ');
                 value += symbol;
+            }
+            if let Some(l) = zone_values.projected {
+                value += &format!(" Ⓟ{}", number(l));
+            }
+            if let Some(max) = zone_values.maximum {
+                value += &format!(" ({} MAX)", number(max));
             }
             cells.push(value);
             cells.extend(datums.iter().filter(|d| !d.is_empty()).cloned());
@@ -596,6 +609,7 @@ mod tests {
             datums: vec!["A".into(), "B".into()],
             modifiers: Vec::new(),
             zone: None,
+            zone_values: Default::default(),
             faces: vec![FaceId(0)],
         };
         assert_eq!(semantic_text(&tol), "⌖ | 0.1 | A | B");
@@ -613,6 +627,19 @@ mod tests {
             datums[0] = "AⓂ".into();
         }
         assert_eq!(semantic_text(&modified), "⌖ | ⌀0.1 Ⓜ | AⓂ | B");
+        // Projected 10 mm, per 25 mm, unequally disposed by 0.02, at most 0.2.
+        if let SemanticItem::Tolerance { zone_values, .. } = &mut modified {
+            *zone_values = cadre_brep::pmi::ZoneValues {
+                projected: Some(10.0),
+                unequally_disposed: Some(0.02),
+                per_unit: Some(25.0),
+                maximum: Some(0.2),
+            };
+        }
+        assert_eq!(
+            semantic_text(&modified),
+            "⌖ | ⌀0.1/25 Ⓤ0.02 Ⓜ Ⓟ10 (0.2 MAX) | AⓂ | B"
+        );
         // Items presented by an annotation get no callout; the others do, with a leader.
         let mut pmi = Pmi::default();
         pmi.semantic.items = vec![dim("diameter", 6.5, None), tol];

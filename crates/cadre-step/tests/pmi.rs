@@ -357,8 +357,9 @@ fn measures_with_their_own_unit_are_read_in_it_not_in_the_files() {
 }
 
 /// Tolerances with modifiers: an AP242 position at maximum material in a cylindrical zone
-/// to datum A at maximum material; an AP214 perpendicularity to datum A at least material;
-/// an AP214 position at maximum material condition to datum A.
+/// projected 10 mm, to datum A at maximum material; an AP214 perpendicularity to datum A at
+/// least material; an AP214 position at maximum material condition to datum A; a profile
+/// unequally disposed by 0.02.
 const MODIFIED: &str = "
 #1400=(GEOMETRIC_TOLERANCE('pos','',#1091,#1071)GEOMETRIC_TOLERANCE_WITH_DATUM_REFERENCE((#1401))\
  GEOMETRIC_TOLERANCE_WITH_MODIFIERS((.MAXIMUM_MATERIAL_REQUIREMENT.))POSITION_TOLERANCE());
@@ -373,6 +374,12 @@ const MODIFIED: &str = "
 #1420=(GEOMETRIC_TOLERANCE('pos214','',#1091,#1071)GEOMETRIC_TOLERANCE_WITH_DATUM_REFERENCE(\
  (#1421))MODIFIED_GEOMETRIC_TOLERANCE(.MAXIMUM_MATERIAL_CONDITION.)POSITION_TOLERANCE());
 #1421=DATUM_REFERENCE(1,#1403);
+#1406=PROJECTED_ZONE_DEFINITION(#1404,(),#1407,#1408);
+#1407=SHAPE_ASPECT('end','',#323,.T.);
+#1408=LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(10.),#901);
+#1430=(GEOMETRIC_TOLERANCE('prof','',#1091,#1071)SURFACE_PROFILE_TOLERANCE()\
+ UNEQUALLY_DISPOSED_GEOMETRIC_TOLERANCE(#1431));
+#1431=LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(0.02),#901);
 ";
 
 /// Target 1 of datum A (of `MODIFIED`), a point on the top face.
@@ -462,6 +469,14 @@ fn tolerance_modifiers_zones_and_datum_modifiers_are_read() {
         tolerance(1420),
         ("POSITION_TOLERANCE".into(), vec!["A".into()], mmr(), None)
     );
+    // The position's zone is projected 10 mm; the profile's is unequally disposed by 0.02.
+    let values = |id: u64| match m.pmi.semantic.items.iter().find(|i| i.step_id() == id) {
+        Some(SemanticItem::Tolerance { zone_values, .. }) => *zone_values,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(values(1400).projected, Some(10.0));
+    assert_eq!(values(1430).unequally_disposed, Some(0.02));
+    assert_eq!(values(1090), cadre_brep::pmi::ZoneValues::default());
     // Negative control: the plain flatness of `PMI` has none of them.
     assert_eq!(
         tolerance(1090),

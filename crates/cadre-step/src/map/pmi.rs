@@ -714,6 +714,7 @@ fn map_semantic(m: &mut Mapper<'_>) {
         tolerances.extend(m.file.ids_with_keyword(keyword));
     }
     let zones = tolerance_zones(m);
+    let projected = projected_lengths(m);
     for id in tolerances {
         let Ok(inst) = m.inst(id) else { continue };
         let kind = inst
@@ -751,6 +752,10 @@ fn map_semantic(m: &mut Mapper<'_>) {
                 datums,
                 modifiers: tolerance_modifiers(&inst),
                 zone: zones.get(&id).cloned(),
+                zone_values: cadre_brep::pmi::ZoneValues {
+                    projected: projected.get(&id).copied(),
+                    ..zone_values(m, &inst)
+                },
                 faces: Vec::new(),
             },
         ));
@@ -943,6 +948,52 @@ fn tolerance_modifiers(inst: &crate::syntax::Instance<'_>) -> Vec<String> {
             _ => n.clone(),
         })
         .collect()
+}
+
+/// A tolerance's unequally disposed displacement, unit basis and maximum (the last
+/// attribute of their records: a complex instance's own, a simple instance's after the
+/// inherited ones).
+fn zone_values(m: &Mapper<'_>, inst: &crate::syntax::Instance<'_>) -> cadre_brep::pmi::ZoneValues {
+    let last = |keyword: &str| {
+        inst.record(keyword)
+            .and_then(|r| r.params.last())
+            .and_then(|p| measure(m, p))
+    };
+    cadre_brep::pmi::ZoneValues {
+        projected: None,
+        unequally_disposed: last("UNEQUALLY_DISPOSED_GEOMETRIC_TOLERANCE"),
+        per_unit: last("GEOMETRIC_TOLERANCE_WITH_DEFINED_UNIT"),
+        maximum: last("GEOMETRIC_TOLERANCE_WITH_MAXIMUM_TOLERANCE"),
+    }
+}
+
+/// The projected length of each tolerance whose zone a `PROJECTED_ZONE_DEFINITION` projects
+/// (tolerance id → mm).
+fn projected_lengths(m: &Mapper<'_>) -> HashMap<u64, f64> {
+    let mut out = HashMap::new();
+    for id in m.file.ids_with_keyword("PROJECTED_ZONE_DEFINITION") {
+        let Ok(inst) = m.inst(id) else { continue };
+        let Ok(a) = Attrs::first(&inst) else { continue };
+        // (zone, boundaries, projection_end, projected_length)
+        let (Some(zone), Some(length)) =
+            (a.opt_ref(0), a.params.get(3).and_then(|p| measure(m, p)))
+        else {
+            continue;
+        };
+        let Ok(z) = m.inst(zone) else { continue };
+        let Ok(z) = Attrs::of(&z, "TOLERANCE_ZONE") else {
+            continue;
+        };
+        let at = if z.params.len() > 2 { 4 } else { 0 };
+        let mut tolerances = Vec::new();
+        if let Some(p) = z.params.get(at) {
+            refs_in(p, &mut tolerances, 0);
+        }
+        for t in tolerances {
+            out.entry(t).or_insert(length);
+        }
+    }
+    out
 }
 
 /// The tolerance zone form each tolerance's `TOLERANCE_ZONE` gives (tolerance id → form
