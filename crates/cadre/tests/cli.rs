@@ -732,6 +732,19 @@ fn pmi_is_listed_drawn_and_its_saved_view_rendered() {
     assert_eq!(pmi["datums"], 1);
     assert_eq!(pmi["datum_targets"], 0);
     assert_eq!(pmi["saved_views"], serde_json::json!(["Top"]));
+    // The semantic items as their frames write them, with their faces.
+    let items = pmi["semantic"].as_array().expect("semantic items");
+    assert_eq!(items.len(), 3);
+    let text = |t: &str| {
+        items
+            .iter()
+            .find(|i| i["type"] == t)
+            .and_then(|i| i["text"].as_str().map(str::to_string))
+            .unwrap_or_default()
+    };
+    assert!(text("tolerance").contains("0.05"), "{}", text("tolerance"));
+    assert_eq!(text("datum"), "A");
+    assert!(items.iter().all(|i| i["faces"].as_u64() > Some(0)));
     assert_eq!(v["warnings"].as_array().map(Vec::len), Some(0));
     let dir = scratch_dir("cadre-pmi");
     let render = |extra: &[&str], name: &str| {

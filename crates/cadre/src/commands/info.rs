@@ -165,7 +165,38 @@ fn pmi_json(pmi: &cadre_brep::Pmi) -> serde_json::Value {
         "annotation_planes": pmi.planes.len(),
         "annotation_points": pmi.annotations.iter().map(|a| a.point_count()).sum::<usize>(),
         "annotation_texts": pmi.annotations.iter().map(|a| a.texts.len()).sum::<usize>(),
+        "semantic": semantic_json(pmi),
     })
+}
+
+/// Each semantic PMI item: its STEP id, type, text as a feature-control frame writes it, how
+/// many faces it applies to, whether an annotation presents it, and whether OCCT's XCAF
+/// document would count it.
+fn semantic_json(pmi: &cadre_brep::Pmi) -> Vec<serde_json::Value> {
+    use cadre_brep::pmi::SemanticItem;
+    let presented: std::collections::HashSet<usize> =
+        pmi.annotations.iter().filter_map(|a| a.semantic).collect();
+    pmi.semantic
+        .items
+        .iter()
+        .enumerate()
+        .map(|(k, item)| {
+            let kind = match item {
+                SemanticItem::Dimension { .. } => "dimension",
+                SemanticItem::Tolerance { .. } => "tolerance",
+                SemanticItem::Datum { .. } => "datum",
+                SemanticItem::DatumTarget { .. } => "datum_target",
+            };
+            json!({
+                "step_id": item.step_id(),
+                "type": kind,
+                "text": cadre_render::pmi::semantic_text(item),
+                "faces": item.faces().len(),
+                "presented": presented.contains(&k),
+                "occt_label": !pmi.semantic.xcaf_unlabelled.contains(&item.step_id()),
+            })
+        })
+        .collect()
 }
 
 /// Runs `cadre info`.
