@@ -980,15 +980,9 @@ fn projected_lengths(m: &Mapper<'_>) -> HashMap<u64, f64> {
         else {
             continue;
         };
-        let Ok(z) = m.inst(zone) else { continue };
-        let Ok(z) = Attrs::of(&z, "TOLERANCE_ZONE") else {
+        let Some((tolerances, _)) = tolerance_zone(m, zone) else {
             continue;
         };
-        let at = if z.params.len() > 2 { 4 } else { 0 };
-        let mut tolerances = Vec::new();
-        if let Some(p) = z.params.get(at) {
-            refs_in(p, &mut tolerances, 0);
-        }
         for t in tolerances {
             out.entry(t).or_insert(length);
         }
@@ -1001,15 +995,10 @@ fn projected_lengths(m: &Mapper<'_>) -> HashMap<u64, f64> {
 fn tolerance_zones(m: &Mapper<'_>) -> HashMap<u64, String> {
     let mut out = HashMap::new();
     for id in m.file.ids_with_keyword("TOLERANCE_ZONE") {
-        let Ok(inst) = m.inst(id) else { continue };
-        let Ok(a) = Attrs::of(&inst, "TOLERANCE_ZONE") else {
+        let Some((tolerances, form)) = tolerance_zone(m, id) else {
             continue;
         };
-        // (name, description, of_shape, product_definitional, defining_tolerance, form) in
-        // a simple instance; (defining_tolerance, form) in a complex one's own record.
-        let at = if a.params.len() > 2 { 4 } else { 0 };
-        let form = a
-            .opt_ref(at + 1)
+        let form = form
             .and_then(|f| m.inst(f).ok())
             .and_then(|f| Attrs::first(&f).ok().map(|f| f.str_or_empty(0)))
             .unwrap_or_default()
@@ -1017,23 +1006,25 @@ fn tolerance_zones(m: &Mapper<'_>) -> HashMap<u64, String> {
         if form.is_empty() {
             continue;
         }
-        let tolerances: Vec<u64> = a
-            .params
-            .get(at)
-            .map(|p| {
-                p.as_list()
-                    .unwrap_or(&[])
-                    .iter()
-                    .filter_map(|q| q.as_ref_id())
-                    .chain(p.as_ref_id())
-                    .collect()
-            })
-            .unwrap_or_default();
         for t in tolerances {
             out.entry(t).or_insert_with(|| form.clone());
         }
     }
     out
+}
+
+/// A `TOLERANCE_ZONE`'s defining tolerances and its form: (name, description, of_shape,
+/// product_definitional, defining_tolerance, form) in a simple instance, (defining_tolerance,
+/// form) in a complex one's own record.
+fn tolerance_zone(m: &Mapper<'_>, id: u64) -> Option<(Vec<u64>, Option<u64>)> {
+    let inst = m.inst(id).ok()?;
+    let a = Attrs::of(&inst, "TOLERANCE_ZONE").ok()?;
+    let at = if a.params.len() > 2 { 4 } else { 0 };
+    let mut tolerances = Vec::new();
+    if let Some(p) = a.params.get(at) {
+        refs_in(p, &mut tolerances, 0);
+    }
+    Some((tolerances, a.opt_ref(at + 1)))
 }
 
 /// Each dimension's nominal value (its `DIMENSIONAL_CHARACTERISTIC_REPRESENTATION`) and
