@@ -161,6 +161,12 @@ pub(crate) struct Session {
     /// Part names as callouts beside the model (Display → Part labels), laid out again
     /// whenever the view settles.
     pub part_labels: bool,
+    /// The document's callout anchors (part names, generated PMI), found once per document:
+    /// the layout runs again whenever the view settles, the anchors do not move.
+    callout_anchors: std::cell::OnceCell<(
+        Vec<cadre_render::text::leaders::PartAnchor>,
+        Vec<cadre_render::text::leaders::PartAnchor>,
+    )>,
     /// The dimension chosen by a click on its label (Delete removes it).
     pub selected_dimension: Option<usize>,
     /// The saved view chosen in the PMI window: only its annotations are drawn.
@@ -304,6 +310,7 @@ impl Session {
             show_pmi: false,
             show_pmi_window: false,
             part_labels: false,
+            callout_anchors: std::cell::OnceCell::new(),
             selected_dimension: None,
             pmi_view: None,
             pmi_selected: None,
@@ -338,6 +345,7 @@ impl Session {
         self.measurements.clear();
         self.selected_dimension = None;
         self.sections.clear();
+        self.callout_anchors = std::cell::OnceCell::new();
         self.properties.clear();
         // The dimensions kept beside the file come back.
         match cadre_render::dimensions::DimensionFile::read(
@@ -401,13 +409,19 @@ impl Session {
         let Some(doc) = self.doc.as_ref() else {
             return Default::default();
         };
+        let (parts, pmi) = self.callout_anchors.get_or_init(|| {
+            let placements = cadre_render::pmi::Placements::of(&doc.model);
+            (
+                cadre_render::text::leaders::part_anchors(&doc.scene.assembly),
+                cadre_render::pmi::semantic_anchors(&doc.model, &placements),
+            )
+        });
         let mut anchors = Vec::new();
         if self.part_labels {
-            anchors = cadre_render::text::leaders::part_anchors(&doc.scene.assembly);
+            anchors.extend_from_slice(parts);
         }
         if self.show_pmi && self.pmi_view.is_none() {
-            let placements = cadre_render::pmi::Placements::of(&doc.model);
-            anchors.extend(cadre_render::pmi::semantic_anchors(&doc.model, &placements));
+            anchors.extend_from_slice(pmi);
         }
         if anchors.is_empty() {
             return Default::default();
