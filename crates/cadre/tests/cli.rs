@@ -840,12 +840,47 @@ fn render_draws_the_dimensions_kept_beside_the_file() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let image = image::open(&out_png).unwrap().to_rgba8();
-    let brown = image
-        .pixels()
-        .filter(|p| p[0] > 120 && p[0] > p[1].saturating_add(40) && p[1] > p[2].saturating_add(20))
-        .count();
-    assert!(brown > 40, "{brown}");
+    let brown = || {
+        let image = image::open(&out_png).unwrap().to_rgba8();
+        image
+            .pixels()
+            .filter(|p| {
+                p[0] > 120 && p[0] > p[1].saturating_add(40) && p[1] > p[2].saturating_add(20)
+            })
+            .count()
+    };
+    let distance_only = brown();
+    assert!(distance_only > 40, "{distance_only}");
+    // A radius (centre to circle, centre mark), an angle (arc and legs) and a length
+    // (along its edge) draw their own lines: more of the colour. Their points without a
+    // shape (a radius of one point) draw nothing more (the negative control).
+    let write = |more: &str| {
+        std::fs::write(
+            dir.join("block.step.dimensions.json"),
+            format!(
+                r#"{{"dimensions": [{{"kind": "distance", "value": 60.0, "text": "60.000 mm",
+                "points": [[0, 0, 10], [60, 0, 10]]}}{more}]}}"#
+            ),
+        )
+        .unwrap();
+    };
+    write(
+        r#", {"kind": "radius", "value": 10, "text": "R10.000 mm",
+            "points": [[30, 20, 10], [40, 20, 10], [30, 20, 11]]},
+           {"kind": "angle", "value": 1.5708, "text": "90.000°",
+            "points": [[60, 0, 10], [52, 0, 10], [60, 0, 2]]},
+           {"kind": "length", "value": 60, "text": "60.000 mm",
+            "points": [[0, 40, 10], [20, 40, 10], [40, 40, 10], [60, 40, 10]]}"#,
+    );
+    assert!(run().status.success());
+    let all_kinds = brown();
+    write(r#", {"kind": "radius", "value": 10, "text": "", "points": [[30, 20, 10]]}"#);
+    assert!(run().status.success());
+    let shapeless = brown();
+    assert!(
+        all_kinds > distance_only + 200 && shapeless < distance_only + 20,
+        "distance {distance_only}, all kinds {all_kinds}, a shapeless radius {shapeless}"
+    );
     // A file that is not one: the error names it.
     std::fs::write(dir.join("block.step.dimensions.json"), "[1, 2]").unwrap();
     let out = run();

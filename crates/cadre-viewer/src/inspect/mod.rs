@@ -65,7 +65,8 @@ pub struct Measurement {
     pub value: f64,
     /// What it shows, e.g. "Distance 12.500 mm (dx 3.000, dy …)".
     pub text: String,
-    /// World points to draw a dimension line between (may be empty).
+    /// World points its dimension is drawn through, as
+    /// `cadre_render::dimensions::shape` reads them for its kind (may be empty).
     pub points: Vec<DVec3>,
 }
 
@@ -266,6 +267,17 @@ pub fn measure(doc: &Document, tool: Tool, picks: &[Picked]) -> Result<Measureme
             let p = edge_properties(&doc.model, e).ok_or("the edge has no geometry")?;
             let length = p.length.ok_or("the edge's curve does not evaluate")?
                 * scale_of(doc, instance as usize);
+            // The dimension follows the edge: its samples, placed.
+            let points = {
+                use cadre_brep::trim::EdgeSamples;
+                let t = Placement::of(doc, instance as usize);
+                doc.mesh
+                    .edges
+                    .samples(e)
+                    .iter()
+                    .map(|s| t.point(DVec3::new(s.xyz.x, s.xyz.y, s.xyz.z)))
+                    .collect()
+            };
             Ok(Measurement {
                 tool,
                 value: length,
@@ -274,36 +286,36 @@ pub fn measure(doc: &Document, tool: Tool, picks: &[Picked]) -> Result<Measureme
                     doc.step_label(a.pick),
                     p.kind
                 ),
-                points: Vec::new(),
+                points,
             })
         }
         (Tool::Radius, [a]) => {
-            let (radius, what) = match a.pick {
+            let instance = a.pick.instance() as usize;
+            // The radius, its centre and axis in the world, and whether it is a circle's
+            // (the picked point is taken into its plane) or a surface's.
+            let (radius, centre, axis, circle, what) = match a.pick {
                 Pick::Face { face, .. } => {
                     let f = doc.face(face).ok_or("face not in the model")?;
                     let p = face_properties(&doc.model, f).ok_or("the face has no surface")?;
-                    (
-                        p.radius,
-                        format!("Face {} ({})", doc.step_label(a.pick), p.kind),
-                    )
+                    let what = format!("Face {} ({})", doc.step_label(a.pick), p.kind);
+                    let p = face_in_world(p, doc, instance);
+                    (p.radius, p.centre, p.axis, false, what)
                 }
                 Pick::Edge { edge, .. } => {
                     let e = doc.edge(edge).ok_or("edge not in the model")?;
                     let p = edge_properties(&doc.model, e).ok_or("the edge has no geometry")?;
-                    (
-                        p.radius,
-                        format!("Edge {} ({})", doc.step_label(a.pick), p.kind),
-                    )
+                    let what = format!("Edge {} ({})", doc.step_label(a.pick), p.kind);
+                    let p = edge_in_world(p, doc, instance);
+                    (p.radius, p.centre, p.axis, true, what)
                 }
                 _ => return Err("pick a cylinder, sphere, circle or arc".into()),
             };
-            let r = radius.ok_or(format!("{what} has no radius"))?
-                * scale_of(doc, a.pick.instance() as usize);
+            let r = radius.ok_or(format!("{what} has no radius"))?;
             Ok(Measurement {
                 tool,
                 value: r,
                 text: format!("{what}: radius {r:.4} mm, diameter {:.4} mm", 2.0 * r),
-                points: Vec::new(),
+                points: radius_points(centre, axis, circle, r, a.point),
             })
         }
         (Tool::Angle, [a, b]) => {
@@ -339,15 +351,86 @@ pub fn measure(doc: &Document, tool: Tool, picks: &[Picked]) -> Result<Measureme
                     interior.to_degrees()
                 ));
             }
+            let points = match (world_plane(doc, a.pick), world_plane(doc, b.pick)) {
+                (Some(pa), Some(pb)) => angle_points(pa, pb, (a.point, b.point), planes),
+                _ => vec![a.point, b.point],
+            };
             Ok(Measurement {
                 tool,
                 value: planes,
                 text,
-                points: vec![a.point, b.point],
+                points,
             })
         }
         _ => Err(format!("{} takes {} pick(s)", tool.name(), tool.picks())),
     }
+}
+
+/// The points a radius dimension is drawn through (`[centre, at, centre + axis]`, the last
+/// when there is an axis): the centre nearest `picked` (on the axis of a cylinder), and the
+/// point at `r` from it towards `picked` — in the circle's plane for a `circle`. Empty when
+/// neither centre nor axis is known or `picked` is at the centre.
+fn radius_points(
+    centre: Option<DVec3>,
+    axis: Option<cadre_brep::measure::Axis>,
+    circle: bool,
+    r: f64,
+    picked: DVec3,
+) -> Vec<DVec3> {
+    let c = match (centre, axis) {
+        (Some(c), _) => c,
+        (None, Some(ax)) => ax.origin + ax.direction * (picked - ax.origin).dot(ax.direction),
+        (None, None) => return Vec::new(),
+    };
+    let mut radial = picked - c;
+    if let (true, Some(ax)) = (circle, axis) {
+        radial -= ax.direction * radial.dot(ax.direction);
+    }
+    let Some(out) = radial.try_normalize() else {
+        return Vec::new();
+    };
+    let mut points = vec![c, c + out * r];
+    if let Some(ax) = axis {
+        points.push(c + ax.direction);
+    }
+    points
+}
+
+/// The points an angle dimension between two planes (each a point on it and its normal) is
+/// drawn through, `[vertex, a, b]`: the vertex on their line nearest the middle of the picked
+/// points, and the arc's ends at the nearer pick's distance, each in its plane on its pick's
+/// side — the second turned over the line when the half-planes make the supplement of
+/// `angle` (the arc then shows the angle between the first face and the second one's
+/// extension). Parallel planes, or picks on the line, give the picked points.
+fn angle_points(
+    (oa, na): (DVec3, DVec3),
+    (ob, nb): (DVec3, DVec3),
+    (pa, pb): (DVec3, DVec3),
+    angle: f64,
+) -> Vec<DVec3> {
+    let line = na.cross(nb);
+    let Some(along) = line.try_normalize() else {
+        return vec![pa, pb];
+    };
+    // A point of both planes, then the one nearest the picks' middle.
+    let (da, db) = (na.dot(oa), nb.dot(ob));
+    let x0 = (nb.cross(line) * da + line.cross(na) * db) / line.length_squared();
+    let middle = 0.5 * (pa + pb);
+    let vertex = x0 + along * (middle - x0).dot(along);
+    let off_line = |p: DVec3| {
+        let d = p - vertex;
+        d - along * d.dot(along)
+    };
+    let (ra, rb) = (off_line(pa), off_line(pb));
+    let (Some(ua), Some(mut ub)) = (ra.try_normalize(), rb.try_normalize()) else {
+        return vec![pa, pb];
+    };
+    let drawn = ua.dot(ub).clamp(-1.0, 1.0).acos();
+    if (std::f64::consts::PI - drawn - angle).abs() < (drawn - angle).abs() {
+        ub = -ub;
+    }
+    let r = ra.length().min(rb.length());
+    vec![vertex, vertex + ua * r, vertex + ub * r]
 }
 
 #[cfg(test)]
@@ -397,6 +480,13 @@ mod tests {
                 (m.value - r).abs() < 1e-12 && m.text.contains("diameter"),
                 "{m:?}"
             );
+            // Its dimension runs from the axis to the surface, a radius long, square to
+            // the axis (the third point: the centre moved along it).
+            let [c, at, ax] = m.points[..] else {
+                panic!("{m:?}")
+            };
+            assert!((c.distance(at) - r).abs() < 1e-9, "{m:?}");
+            assert!((at - c).dot(ax - c).abs() < 1e-9, "{m:?}");
             let rows = properties(&doc, pick);
             assert!(
                 rows.iter().any(|(k, v)| k == "Area" && v.ends_with("mm²")),
@@ -422,6 +512,102 @@ mod tests {
             (m.value - expected).abs() < 1e-6 * expected,
             "{} vs {expected}",
             m.value
+        );
+        // The length's dimension follows the circle: its samples, a radius from the centre.
+        let centre = doc.instances[0].world.transform_point3(p.centre.unwrap());
+        assert!(m.points.len() > 8, "{}", m.points.len());
+        for q in &m.points {
+            assert!((q.distance(centre) - p.radius.unwrap()).abs() < 1e-6, "{q}");
+        }
+        // A circle's radius dimension stays in its plane whatever point was picked.
+        let m = measure(&doc, Tool::Radius, &[pick_of(&doc, pick)]).expect("radius");
+        let axis = edge_in_world(p.clone(), &doc, 0).axis.unwrap();
+        assert!(((m.points[1] - m.points[0]).dot(axis.direction)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn radius_points_go_from_the_centre_towards_the_pick() {
+        let axis = cadre_brep::measure::Axis {
+            origin: DVec3::new(0.0, 0.0, -5.0),
+            direction: DVec3::Z,
+        };
+        // A cylinder of radius 2 about z, picked at (0, 3, 7): centre (0, 0, 7), at (0, 2, 7).
+        let p = radius_points(None, Some(axis), false, 2.0, DVec3::new(0.0, 3.0, 7.0));
+        assert_eq!(
+            p,
+            vec![
+                DVec3::new(0.0, 0.0, 7.0),
+                DVec3::new(0.0, 2.0, 7.0),
+                DVec3::new(0.0, 0.0, 8.0)
+            ]
+        );
+        // A circle centred at the origin: the pick above its plane is taken into it.
+        let p = radius_points(
+            Some(DVec3::ZERO),
+            Some(axis),
+            true,
+            2.0,
+            DVec3::new(3.0, 0.0, 4.0),
+        );
+        assert_eq!(p[1], DVec3::new(2.0, 0.0, 0.0));
+        // A sphere (a centre, no axis): towards the pick in space.
+        let p = radius_points(
+            Some(DVec3::ZERO),
+            None,
+            false,
+            5.0,
+            DVec3::new(0.0, 6.0, 8.0),
+        );
+        assert_eq!(p.len(), 2);
+        assert!(p[1].distance(DVec3::new(0.0, 3.0, 4.0)) < 1e-12, "{p:?}");
+        // Nothing to go by, or the pick at the centre: no points.
+        assert!(radius_points(None, None, false, 1.0, DVec3::X).is_empty());
+        assert!(radius_points(Some(DVec3::ZERO), None, false, 1.0, DVec3::ZERO).is_empty());
+    }
+
+    #[test]
+    fn an_angles_arc_spans_the_angle_it_reports() {
+        let deg = |p: &[DVec3]| {
+            let (a, b) = (p[1] - p[0], p[2] - p[0]);
+            a.angle_between(b).to_degrees()
+        };
+        // A block's top (z = 0, normal +z) and its side (x = 0, normal +x), picked on each:
+        // the arc spans their 90° about the shared edge, at the nearer pick's distance.
+        let top = (DVec3::ZERO, DVec3::Z);
+        let side = (DVec3::ZERO, DVec3::X);
+        let p = angle_points(
+            top,
+            side,
+            (DVec3::new(-3.0, 1.0, 0.0), DVec3::new(0.0, 1.0, -2.0)),
+            std::f64::consts::FRAC_PI_2,
+        );
+        assert!((deg(&p) - 90.0).abs() < 1e-9);
+        assert!(p[0].distance(DVec3::new(0.0, 1.0, 0.0)) < 1e-12, "{p:?}");
+        assert!(p[1].distance(DVec3::new(-2.0, 1.0, 0.0)) < 1e-12, "{p:?}");
+        assert!(p[2].distance(DVec3::new(0.0, 1.0, -2.0)) < 1e-12, "{p:?}");
+        // A 45° chamfer on the top's edge: the half-planes the picks are on make 135°; the
+        // measured angle is 45°, so the arc runs to the chamfer's extension past the edge.
+        let chamfer = (DVec3::ZERO, DVec3::new(1.0, 0.0, 1.0).normalize());
+        let p = angle_points(
+            top,
+            chamfer,
+            (DVec3::new(-3.0, 0.0, 0.0), DVec3::new(1.0, 0.0, -1.0)),
+            std::f64::consts::FRAC_PI_4,
+        );
+        assert!((deg(&p) - 45.0).abs() < 1e-9, "{p:?}");
+        // Negative control: kept at the half-planes, the same arc would span 135°.
+        let kept = angle_points(
+            top,
+            chamfer,
+            (DVec3::new(-3.0, 0.0, 0.0), DVec3::new(1.0, 0.0, -1.0)),
+            3.0 * std::f64::consts::FRAC_PI_4,
+        );
+        assert!((deg(&kept) - 135.0).abs() < 1e-9, "{kept:?}");
+        // Parallel planes: the picked points.
+        let picks = (DVec3::X, DVec3::Y);
+        assert_eq!(
+            angle_points(top, (DVec3::Z, DVec3::Z), picks, 0.0),
+            vec![DVec3::X, DVec3::Y]
         );
     }
 

@@ -212,6 +212,7 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
                              the ray caster face #{}",
                             ids[i], exact[i]
                         );
+                        print_neighbourhood(i, (&gpu_ids, &exact), (w, h));
                     }
                 }
                 figures.cracks = Some((before.len(), after.len()));
@@ -348,22 +349,29 @@ fn explain(
     (w, h): (u32, u32),
     skipped: &HashSet<u64>,
 ) {
-    let (w, h) = (i64::from(w), i64::from(h));
     for i in 0..gpu.len() {
         let (g, e) = (gpu[i], exact[i]);
         if g == e || near[i] || skipped.contains(&g) || skipped.contains(&e) {
             continue;
         }
-        let (x, y) = (i as i64 % w, i as i64 / w);
+        let (x, y) = (i as u32 % w, i as u32 / w);
         eprintln!("{view} ×{zoom}, pixel ({x}, {y}): GPU face #{g}, ray caster #{e}");
-        for b in (y - 6).max(0)..(y + 7).min(h) {
-            let row = |img: &[u64]| {
-                ((x - 8).max(0)..(x + 9).min(w))
-                    .map(|a| format!("{:>7}", img[(b * w + a) as usize]))
-                    .collect::<String>()
-            };
-            eprintln!("{}   |{}", row(gpu), row(exact));
-        }
+        print_neighbourhood(i, (gpu, exact), (w, h));
+    }
+}
+
+/// Prints the face ids of the GPU (left) and of the ray caster (right) in the 17 × 13
+/// pixels about pixel `i`.
+fn print_neighbourhood(i: usize, (gpu, exact): (&[u64], &[u64]), (w, h): (u32, u32)) {
+    let (w, h) = (i64::from(w), i64::from(h));
+    let (x, y) = (i as i64 % w, i as i64 / w);
+    for b in (y - 6).max(0)..(y + 7).min(h) {
+        let row = |img: &[u64]| {
+            ((x - 8).max(0)..(x + 9).min(w))
+                .map(|a| format!("{:>7}", img[(b * w + a) as usize]))
+                .collect::<String>()
+        };
+        eprintln!("{}   |{}", row(gpu), row(exact));
     }
 }
 

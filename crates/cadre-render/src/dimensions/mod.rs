@@ -1,7 +1,8 @@
 //! Persistent 3D dimensions: the viewer's measurements kept beside the model file and drawn
-//! by the renderer (in the viewer and headless, `cadre render --dimensions`): a dimension
-//! line between its two points with an arrowhead at each end, and its value in a box at the
-//! middle, on top of the model.
+//! by the renderer (in the viewer and headless, `cadre render --dimensions`), on top of the
+//! model, each as its kind is drawn ([`shape`]): a distance as a dimension line with an
+//! arrowhead at each end, an edge's length along the edge, a radius from the centre (with a
+//! centre mark) to the circle, an angle as an arc between its legs; the value in a box.
 //!
 //! They are kept in `FILE.dimensions.json` beside the model (`{"dimensions": [{"kind",
 //! "value", "text", "points"}]}`), written by the viewer when a measurement is added or
@@ -11,6 +12,8 @@ use crate::lines::{Cap, Hidden, Join, LineSet, LineStyle, LineWidth, Polyline, S
 use crate::text::{Fill, Label, LabelSet, TextAnchor, TextDepth};
 use glam::{DVec3, Vec2};
 use std::path::{Path, PathBuf};
+
+pub mod shape;
 
 /// Colour of dimensions (sRGB): the orange-brown of measurement annotations.
 pub const DIMENSION_COLOUR: [f32; 4] = [0.72, 0.33, 0.02, 1.0];
@@ -24,7 +27,8 @@ pub struct Dimension {
     pub value: f64,
     /// The text drawn (e.g. `10.000 mm`).
     pub text: String,
-    /// World points the dimension line joins (none: drawn in the list only).
+    /// World points it is drawn through, as its kind keeps them ([`shape`]); none: listed
+    /// only.
     pub points: Vec<[f64; 3]>,
 }
 
@@ -108,15 +112,9 @@ impl DimensionFile {
 /// Colour of the selected dimension (sRGB).
 pub const SELECTED_COLOUR: [f32; 4] = [0.05, 0.45, 0.9, 1.0];
 
-/// Where dimension `d`'s label stands: the middle of its two points (`None` without them).
+/// Where dimension `d`'s label stands (`None`: it is not drawn).
 fn label_point(d: &Dimension) -> Option<DVec3> {
-    match d.points[..] {
-        [a, b] => {
-            let (a, b) = (DVec3::from(a), DVec3::from(b));
-            (a.is_finite() && b.is_finite()).then(|| 0.5 * (a + b))
-        }
-        _ => None,
-    }
+    shape::shape(&d.kind, &d.points).label_at
 }
 
 /// The dimension whose label box holds output pixel `at` (x right, y down) of a `size`
@@ -165,8 +163,8 @@ pub fn hit(
     best.map(|(k, _)| k)
 }
 
-/// The lines, arrowheads and labels of `dimensions` (those with two finite points), the
-/// `selected` one in [`SELECTED_COLOUR`].
+/// The lines, arrowheads and labels of `dimensions` (those with points to be drawn at,
+/// [`shape`]), the `selected` one in [`SELECTED_COLOUR`].
 pub fn overlay(
     dimensions: &[Dimension],
     text_height: f32,
@@ -197,38 +195,26 @@ pub fn overlay(
         } else {
             DIMENSION_COLOUR
         };
-        let [a, b] = match d.points[..] {
-            [a, b] => [DVec3::from(a), DVec3::from(b)],
-            _ => continue,
-        };
-        if !(a.is_finite() && b.is_finite()) {
+        let drawn = shape::shape(&d.kind, &d.points);
+        let Some(middle) = drawn.label_at else {
             continue;
-        }
-        let length = a.distance(b);
-        let middle = 0.5 * (a + b);
-        if length > 0.0 {
+        };
+        for points in drawn.lines {
             lines.polylines.push(Polyline {
-                points: vec![a, b],
+                points,
                 style: u32::from(chosen),
                 colours: Vec::new(),
             });
-            // Arrowheads a twelfth of the line long (3 × 1 in shape), in the plane of the
-            // line and the world axis least along it.
-            let along = (b - a) / length;
-            let axis = [DVec3::X, DVec3::Y, DVec3::Z]
-                .into_iter()
-                .min_by(|p, q| along.dot(*p).abs().total_cmp(&along.dot(*q).abs()))
-                .unwrap_or(DVec3::Z);
-            let side = along.cross(axis).normalize_or(DVec3::Z);
-            let size = length / 12.0;
-            for (tip, dir) in [(a, along), (b, -along)] {
-                let back = tip + dir * size;
-                labels.fills.push(Fill {
-                    corners: [tip, back + side * size / 6.0, back - side * size / 6.0],
-                    colour,
-                    depth: TextDepth::OnTop,
-                });
-            }
+        }
+        // Arrowheads 3 × 1 in shape.
+        for arrow in drawn.arrows {
+            let back = arrow.tip - arrow.pointing * arrow.length;
+            let half = arrow.side * arrow.length / 6.0;
+            labels.fills.push(Fill {
+                corners: [arrow.tip, back + half, back - half],
+                colour,
+                depth: TextDepth::OnTop,
+            });
         }
         let mut label = Label::billboard(d.text.clone(), middle, text_height);
         label.anchor = TextAnchor::Billboard {
