@@ -167,6 +167,8 @@ pub(crate) struct Session {
         Vec<cadre_render::text::leaders::PartAnchor>,
         Vec<cadre_render::text::leaders::PartAnchor>,
     )>,
+    /// The PMI window's rows, written once per document (not every frame it is open).
+    pmi_rows: std::cell::OnceCell<std::rc::Rc<PmiRows>>,
     /// The dimension chosen by a click on its label (Delete removes it).
     pub selected_dimension: Option<usize>,
     /// The saved view chosen in the PMI window: only its annotations are drawn.
@@ -178,6 +180,76 @@ pub(crate) struct Session {
     /// Properties rows of picked items, worked out once per item (exact areas and lengths
     /// are integrals: not every frame).
     pub properties: std::collections::HashMap<Pick, Vec<(String, String)>>,
+}
+
+/// The PMI window's text: its summary and a row per saved view, annotation and semantic
+/// item, in the model's order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PmiRows {
+    /// The counts, as OCCT's XCAF counts them.
+    pub summary: String,
+    /// Saved views by name (a drawing sheet's marked).
+    pub views: Vec<String>,
+    /// Annotations: name, faces, points.
+    pub annotations: Vec<String>,
+    /// Semantic items as a frame writes them, with their faces and whether presented.
+    pub semantic: Vec<String>,
+}
+
+impl PmiRows {
+    /// The rows of `pmi`.
+    pub fn of(pmi: &cadre_brep::pmi::Pmi) -> PmiRows {
+        let presented: std::collections::HashSet<usize> =
+            pmi.annotations.iter().filter_map(|a| a.semantic).collect();
+        PmiRows {
+            summary: format!(
+                "{} annotations, {} dimensions, {} tolerances, {} datums, {} datum targets",
+                pmi.annotations.len(),
+                pmi.occt_dimensions(),
+                pmi.occt_tolerances(),
+                pmi.semantic.datums(),
+                pmi.semantic.datum_targets()
+            ),
+            views: pmi
+                .views
+                .iter()
+                .map(|v| {
+                    if v.drawing {
+                        format!("{} (drawing view)", v.name)
+                    } else {
+                        v.name.clone()
+                    }
+                })
+                .collect(),
+            annotations: pmi
+                .annotations
+                .iter()
+                .map(|a| {
+                    format!(
+                        "{}  ({} faces, {} points)",
+                        a.name,
+                        a.faces.len(),
+                        a.point_count()
+                    )
+                })
+                .collect(),
+            semantic: pmi
+                .semantic
+                .items
+                .iter()
+                .enumerate()
+                .map(|(k, item)| {
+                    let text = cadre_render::pmi::semantic_text(item);
+                    let faces = item.faces().len();
+                    if presented.contains(&k) {
+                        format!("{text}  ({faces} faces, presented)")
+                    } else {
+                        format!("{text}  ({faces} faces)")
+                    }
+                })
+                .collect(),
+        }
+    }
 }
 
 /// A measurement as a dimension to draw and keep.
@@ -311,12 +383,24 @@ impl Session {
             show_pmi_window: false,
             part_labels: false,
             callout_anchors: std::cell::OnceCell::new(),
+            pmi_rows: std::cell::OnceCell::new(),
             selected_dimension: None,
             pmi_view: None,
             pmi_selected: None,
             pmi_semantic_selected: None,
             properties: std::collections::HashMap::new(),
         }
+    }
+
+    /// The PMI window's rows for the open document (written the first time they are asked
+    /// for), `None` without a document.
+    pub fn pmi_rows(&self) -> Option<std::rc::Rc<PmiRows>> {
+        let doc = self.doc.as_ref()?;
+        Some(
+            self.pmi_rows
+                .get_or_init(|| std::rc::Rc::new(PmiRows::of(&doc.model.pmi)))
+                .clone(),
+        )
     }
 
     /// The background and the ground grid the Display menu asks for.
@@ -346,6 +430,7 @@ impl Session {
         self.selected_dimension = None;
         self.sections.clear();
         self.callout_anchors = std::cell::OnceCell::new();
+        self.pmi_rows = std::cell::OnceCell::new();
         self.properties.clear();
         // The dimensions kept beside the file come back.
         match cadre_render::dimensions::DimensionFile::read(
@@ -1109,5 +1194,22 @@ mod tests {
         assert!(s.pmi_overlay(white).is_none());
         // Negative control: the pin assembly has none.
         assert!(session().pmi_overlay(white).is_none() && !session().show_pmi);
+        // The window's rows, written once per document: a row per saved view, annotation
+        // and semantic item; the next document gets its own.
+        let rows = s.pmi_rows().expect("a document");
+        let pmi = &s.doc.as_ref().expect("open").model.pmi;
+        assert_eq!(rows.views.len(), pmi.views.len());
+        assert_eq!(rows.annotations.len(), 1);
+        assert_eq!(rows.semantic.len(), pmi.semantic.items.len());
+        assert!(
+            rows.summary.starts_with("1 annotations"),
+            "{}",
+            rows.summary
+        );
+        assert!(rows.semantic[datum].starts_with('A'), "{:?}", rows.semantic);
+        assert!(std::rc::Rc::ptr_eq(&rows, &s.pmi_rows().expect("again")));
+        let pins = session();
+        assert!(pins.pmi_rows().expect("a document").annotations.is_empty());
+        assert!(Session::new().pmi_rows().is_none());
     }
 }

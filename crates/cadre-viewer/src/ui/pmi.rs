@@ -10,50 +10,8 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
     if !s.show_pmi_window {
         return;
     }
-    let Some(doc) = &s.doc else { return };
-    let pmi = &doc.model.pmi;
-    // A drawing sheet's views are listed with the saved views, marked as such.
-    let views: Vec<String> = pmi
-        .views
-        .iter()
-        .map(|v| {
-            if v.drawing {
-                format!("{} (drawing view)", v.name)
-            } else {
-                v.name.clone()
-            }
-        })
-        .collect();
-    let annotations: Vec<(String, usize, usize)> = pmi
-        .annotations
-        .iter()
-        .map(|a| (a.name.clone(), a.faces.len(), a.point_count()))
-        .collect();
-    let semantic = &pmi.semantic;
-    // Each semantic item as a frame writes it, whether an annotation presents it, its faces.
-    let presented: std::collections::HashSet<usize> =
-        pmi.annotations.iter().filter_map(|a| a.semantic).collect();
-    let items: Vec<(String, bool, usize)> = semantic
-        .items
-        .iter()
-        .enumerate()
-        .map(|(k, item)| {
-            let faces = item.faces().len();
-            (
-                cadre_render::pmi::semantic_text(item),
-                presented.contains(&k),
-                faces,
-            )
-        })
-        .collect();
-    let summary = format!(
-        "{} annotations, {} dimensions, {} tolerances, {} datums, {} datum targets",
-        pmi.annotations.len(),
-        pmi.occt_dimensions(),
-        pmi.occt_tolerances(),
-        semantic.datums(),
-        semantic.datum_targets()
-    );
+    // Written once per document (the semantic items' texts are formatted, not free).
+    let Some(rows) = s.pmi_rows() else { return };
     let mut open = true;
     let mut chosen_view = None;
     let mut chosen_annotation = None;
@@ -62,7 +20,7 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
         .open(&mut open)
         .default_width(320.0)
         .show(&ctx, |ui| {
-            ui.label(summary);
+            ui.label(&rows.summary);
             ui.checkbox(&mut s.show_pmi, "Show PMI");
             ui.separator();
             ui.label("Saved views");
@@ -72,7 +30,7 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
             {
                 s.pmi_view = None;
             }
-            for (k, name) in views.iter().enumerate() {
+            for (k, name) in rows.views.iter().enumerate() {
                 if ui.selectable_label(s.pmi_view == Some(k), name).clicked() {
                     chosen_view = Some(k);
                 }
@@ -82,8 +40,7 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
             egui::ScrollArea::vertical()
                 .max_height(300.0)
                 .show(ui, |ui| {
-                    for (k, (name, faces, points)) in annotations.iter().enumerate() {
-                        let text = format!("{name}  ({faces} faces, {points} points)");
+                    for (k, text) in rows.annotations.iter().enumerate() {
                         if ui
                             .selectable_label(s.pmi_selected == Some(k), text)
                             .clicked()
@@ -92,19 +49,14 @@ pub(super) fn pmi_window(ui: &mut egui::Ui, s: &mut Session, aspect: f64) {
                         }
                     }
                 });
-            if !items.is_empty() {
+            if !rows.semantic.is_empty() {
                 ui.separator();
                 ui.label("Semantic PMI (choose one to select its faces)");
                 egui::ScrollArea::vertical()
                     .id_salt("semantic")
                     .max_height(200.0)
                     .show(ui, |ui| {
-                        for (k, (text, presented, faces)) in items.iter().enumerate() {
-                            let text = if *presented {
-                                format!("{text}  ({faces} faces, presented)")
-                            } else {
-                                format!("{text}  ({faces} faces)")
-                            };
+                        for (k, text) in rows.semantic.iter().enumerate() {
                             if ui
                                 .selectable_label(s.pmi_semantic_selected == Some(k), text)
                                 .clicked()
