@@ -336,3 +336,74 @@ fn bspline_edge_length_matches_a_fine_polyline() {
     assert!(close(line.length.unwrap(), 10.0, 1e-12));
     assert_eq!(line.direction, Some(-Vec3::X));
 }
+
+/// B-spline faces and edges of the corpus found to be cylinders, spheres and circles: the
+/// I-DEAS file's bore (#435, a rational B-spline of radius 18) among them; every radius
+/// found is positive and finite. Skipped without `../shared`.
+#[test]
+fn corpus_bsplines_that_are_round_get_their_radius() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/step");
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        eprintln!(
+            "skipping: {} not found (clone without the shared data)",
+            dir.display()
+        );
+        return;
+    };
+    let mut files: Vec<_> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    files.sort();
+    let (mut faces, mut round_faces, mut edges, mut circles) = (0, 0, 0, 0);
+    let mut bore = None;
+    for path in files {
+        let Ok(bytes) = std::fs::read(&path) else {
+            continue;
+        };
+        let Ok(file) = StepFile::parse(bytes) else {
+            continue;
+        };
+        let model = cadre_step::map_file(&file);
+        let name = path
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .to_string();
+        for k in 0..model.faces.len() {
+            let Some(p) = face_properties(&model, FaceId(k as u32)) else {
+                continue;
+            };
+            if p.kind != SurfaceKind::BSpline {
+                continue;
+            }
+            faces += 1;
+            if let Some((_, deviation)) = p.recognised {
+                round_faces += 1;
+                let r = p.radius.expect("a radius");
+                assert!(
+                    r > 0.0 && r.is_finite() && deviation.is_finite(),
+                    "{name}: {p:?}"
+                );
+            }
+            if name == "trj9_io1-id-214.stp" && p.step_id == 435 {
+                bore = Some(p);
+            }
+        }
+        for k in 0..model.edges.len() {
+            let Some(p) = edge_properties(&model, EdgeId(k as u32)) else {
+                continue;
+            };
+            if p.kind == CurveKind::BSpline {
+                edges += 1;
+                circles += usize::from(p.recognised.is_some());
+            }
+        }
+    }
+    eprintln!(
+        "B-spline faces found round: {round_faces} of {faces}; B-spline edges found circles: \
+         {circles} of {edges}"
+    );
+    let bore = bore.expect("trj9_io1-id-214.stp's face #435");
+    assert_eq!(bore.recognised.map(|r| r.0), Some("cylinder"));
+    assert!(close(bore.radius.unwrap(), 18.0, 1e-9), "{bore:?}");
+    assert!(bore.axis.unwrap().direction.cross(Vec3::X).length() < 1e-9);
+    assert!(round_faces > 0 && circles > 0);
+}

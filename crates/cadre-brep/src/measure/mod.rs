@@ -9,6 +9,7 @@
 //! Nothing here panics on bad input: ids pointing outside the model's arenas give `None`.
 
 mod properties;
+pub mod recognise;
 #[cfg(test)]
 mod tests;
 
@@ -97,18 +98,13 @@ pub fn angle_between_faces(model: &Model, a: FaceId, b: FaceId) -> Option<FaceAn
     })
 }
 
-/// The radius of a cylindrical or spherical face (or an offset of one) or of a circular edge;
-/// `None` for other entities and ids outside the model.
+/// The radius of a cylindrical or spherical face (or an offset of one) or of a circular edge
+/// — B-splines found to be one included ([`recognise`]); `None` for other entities and ids
+/// outside the model.
 pub fn radius_of(model: &Model, entity: impl Into<Entity>) -> Option<f64> {
     match entity.into() {
         Entity::Face(f) => face_properties(model, f)?.radius,
-        Entity::Edge(e) => {
-            let e = model.edges.get(e.index())?;
-            match untrimmed_curve(model.curves.get(e.curve?.index())?) {
-                Curve::Circle { radius, .. } => Some(*radius),
-                _ => None,
-            }
-        }
+        Entity::Edge(e) => edge_properties(model, e)?.radius,
         Entity::Vertex(_) => None,
     }
 }

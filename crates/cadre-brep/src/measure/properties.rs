@@ -133,6 +133,10 @@ pub struct FaceProperties {
     pub direction: Option<Vec3>,
     /// Signed distance of an offset surface from its basis.
     pub offset: Option<f64>,
+    /// For a B-spline face: the shape its points were found to lie on (`cylinder`,
+    /// `sphere`) and the farthest a sample lies from it ([`super::recognise`]); the radius,
+    /// axis and centre are then that shape's.
+    pub recognised: Option<(&'static str, f64)>,
 }
 
 /// The properties of face `face`; `None` for an id outside the model or a face whose surface
@@ -156,6 +160,7 @@ pub fn face_properties(model: &Model, face: FaceId) -> Option<FaceProperties> {
         plane: None,
         direction: None,
         offset: None,
+        recognised: None,
     };
     let frame_axis = |frame: &cadre_geom::Frame| Axis {
         origin: frame.origin,
@@ -214,7 +219,8 @@ pub fn face_properties(model: &Model, face: FaceId) -> Option<FaceProperties> {
                 p.radius = Some(radius + distance).filter(|r| *r > 0.0);
             }
         }
-        Surface::Plane { .. } | Surface::BSpline(_) | Surface::Trimmed { .. } => {}
+        Surface::BSpline(_) => recognise_face(model, f, surface, &mut p),
+        Surface::Plane { .. } | Surface::Trimmed { .. } => {}
     }
     p.plane = planar(surface).map(|(origin, normal)| Plane {
         origin,
@@ -322,6 +328,10 @@ pub struct EdgeProperties {
     pub semi_axes: Option<(f64, f64)>,
     /// Unit direction of a line, in the edge's orientation.
     pub direction: Option<Vec3>,
+    /// For a B-spline edge: `circle` when its points were found on one, and the farthest a
+    /// sample lies from it ([`super::recognise`]); the radius, centre, axis and arc angle
+    /// are then the circle's.
+    pub recognised: Option<(&'static str, f64)>,
 }
 
 /// The properties of edge `edge`; `None` for an id outside the model or an edge whose curve
@@ -345,6 +355,7 @@ pub fn edge_properties(model: &Model, edge: EdgeId) -> Option<EdgeProperties> {
         arc_angle: None,
         semi_axes: None,
         direction: None,
+        recognised: None,
     };
     let Some(curve) = e.curve.map(|c| &model.curves[c.index()]) else {
         p.length = Some(0.0);
@@ -381,7 +392,104 @@ pub fn edge_properties(model: &Model, edge: EdgeId) -> Option<EdgeProperties> {
             p.axis = plane_axis(frame);
             p.arc_angle = arc;
         }
+        Curve::BSpline(_) => recognise_edge(curve, &mut p),
         _ => {}
     }
     Some(p)
+}
+
+/// Samples a recognised shape is checked at, along an edge.
+const EDGE_RECOGNITION_SAMPLES: usize = 33;
+/// Samples a side, over a face's (u, v) box.
+const FACE_RECOGNITION_SAMPLES: usize = 7;
+/// A recognised shape holds within this share of the samples' extent (a rational
+/// B-spline circle is exact to rounding; a fitted one is not a circle).
+const RECOGNITION_REL: f64 = 1e-6;
+
+/// The tolerance of a shape recognised through `points`: [`RECOGNITION_REL`] of their
+/// extent.
+fn recognition_tolerance(points: impl Iterator<Item = Vec3>) -> f64 {
+    RECOGNITION_REL
+        * cadre_geom::BoundingBox::from_points(points)
+            .diagonal()
+            .max(1e-3)
+}
+
+/// A B-spline edge whose samples lie on a circle gets the circle's radius, centre, axis
+/// and arc angle.
+fn recognise_edge(curve: &cadre_geom::Curve3, p: &mut EdgeProperties) {
+    let Some((t0, t1)) = p.range else { return };
+    let n = EDGE_RECOGNITION_SAMPLES;
+    let points: Vec<Vec3> = (0..n)
+        .map(|k| curve.eval(t0 + (t1 - t0) * k as f64 / (n - 1) as f64))
+        .collect();
+    if points.iter().any(|q| !q.is_finite()) {
+        return;
+    }
+    let tolerance = recognition_tolerance(points.iter().copied());
+    let Some(c) = super::recognise::circle_through(&points, tolerance) else {
+        return;
+    };
+    // The angle swept: the turns between successive samples seen from the centre.
+    let swept: f64 = points
+        .windows(2)
+        .map(|w| (w[0] - c.centre).angle_between(w[1] - c.centre))
+        .sum();
+    p.radius = Some(c.radius);
+    p.centre = Some(c.centre);
+    p.axis = Some(Axis {
+        origin: c.centre,
+        direction: c.normal,
+    });
+    p.arc_angle = Some(swept);
+    p.recognised = Some(("circle", c.deviation));
+}
+
+/// A B-spline face whose samples (over its (u, v) box) lie on a cylinder or a sphere, their
+/// normals radial, gets its radius and axis or centre.
+fn recognise_face(model: &Model, face: &crate::Face, surface: &Surface, p: &mut FaceProperties) {
+    let Some([u0, u1, v0, v1]) =
+        crate::bounds::face_uv_box(model, face, surface, Accuracy::default())
+    else {
+        return;
+    };
+    let n = FACE_RECOGNITION_SAMPLES;
+    let at = |k: usize, a: f64, b: f64| a + (b - a) * k as f64 / (n - 1) as f64;
+    let mut samples = Vec::with_capacity(n * n);
+    for i in 0..n {
+        for j in 0..n {
+            let (u, v) = (at(i, u0, u1), at(j, v0, v1));
+            let Some(normal) = surface.normal(u, v) else {
+                return;
+            };
+            let point = surface.eval(u, v);
+            if !point.is_finite() {
+                return;
+            }
+            samples.push((point, normal));
+        }
+    }
+    let tolerance = recognition_tolerance(samples.iter().map(|s| s.0));
+    use super::recognise::RoundSurface;
+    match super::recognise::round_surface_through(&samples, tolerance) {
+        Some(RoundSurface::Cylinder {
+            axis,
+            radius,
+            deviation,
+        }) => {
+            p.radius = Some(radius);
+            p.axis = Some(axis);
+            p.recognised = Some(("cylinder", deviation));
+        }
+        Some(RoundSurface::Sphere {
+            centre,
+            radius,
+            deviation,
+        }) => {
+            p.radius = Some(radius);
+            p.centre = Some(centre);
+            p.recognised = Some(("sphere", deviation));
+        }
+        None => {}
+    }
 }

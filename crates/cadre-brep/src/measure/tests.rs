@@ -283,3 +283,95 @@ fn distance_is_euclidean() {
     assert_eq!(vertex_distance(&m, a, b), Some(5.0));
     assert_eq!(vertex_distance(&m, a, VertexId(7)), None);
 }
+
+/// A quarter of a cylinder of radius 2 about z, 3 high, written as a rational B-spline
+/// surface bounded by its two arcs (rational B-spline curves, or polynomial ones when not
+/// `rational`: then parabolas, no circle) and two rulings.
+fn bspline_quarter_cylinder(rational: bool) -> (Model, FaceId, EdgeId) {
+    use cadre_geom::bspline::{BSplineCurve, BSplineSurface};
+    let mut m = Model::default();
+    let p = |x: f64, y: f64, z: f64| Vec3::new(x, y, z);
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let weights = rational.then(|| vec![1.0, h, 1.0]);
+    let arc = |z: f64| {
+        Curve::BSpline(
+            BSplineCurve::try_new(
+                2,
+                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                vec![p(2.0, 0.0, z), p(2.0, 2.0, z), p(0.0, 2.0, z)],
+                weights.clone(),
+            )
+            .unwrap(),
+        )
+    };
+    let v0 = vertex(&mut m, p(2.0, 0.0, 0.0), 1);
+    let v1 = vertex(&mut m, p(0.0, 2.0, 0.0), 2);
+    let v2 = vertex(&mut m, p(0.0, 2.0, 3.0), 3);
+    let v3 = vertex(&mut m, p(2.0, 0.0, 3.0), 4);
+    let bottom = edge(&mut m, arc(0.0), v0, v1, 10);
+    let left = edge(&mut m, line(p(0.0, 2.0, 0.0), p(0.0, 2.0, 3.0)), v1, v2, 11);
+    let top = edge(&mut m, arc(3.0), v3, v2, 12);
+    let right = edge(&mut m, line(p(2.0, 0.0, 3.0), p(2.0, 0.0, 0.0)), v3, v0, 13);
+    let net = |z0: f64, z1: f64| {
+        vec![
+            vec![p(2.0, 0.0, z0), p(2.0, 0.0, z1)],
+            vec![p(2.0, 2.0, z0), p(2.0, 2.0, z1)],
+            vec![p(0.0, 2.0, z0), p(0.0, 2.0, z1)],
+        ]
+    };
+    m.surfaces.push(Surface::BSpline(Box::new(
+        BSplineSurface::try_new(
+            2,
+            1,
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            vec![0.0, 0.0, 1.0, 1.0],
+            net(0.0, 3.0),
+            rational.then(|| vec![vec![1.0, 1.0], vec![h, h], vec![1.0, 1.0]]),
+        )
+        .unwrap(),
+    )));
+    let fwd = |edge, forward| OrientedEdge { edge, forward };
+    m.faces.push(Face {
+        surface: SurfaceId(0),
+        same_sense: true,
+        loops: vec![Loop {
+            kind: LoopKind::Edges(vec![
+                fwd(bottom, true),
+                fwd(left, true),
+                fwd(top, false),
+                fwd(right, true),
+            ]),
+            orientation: true,
+            outer: true,
+        }],
+        step_id: 20,
+    });
+    (m, FaceId(0), bottom)
+}
+
+#[test]
+fn a_bspline_cylinder_and_its_bspline_arcs_are_measured_as_such() {
+    let (m, face, arc) = bspline_quarter_cylinder(true);
+    let f = face_properties(&m, face).unwrap();
+    assert_eq!(f.kind, SurfaceKind::BSpline);
+    let (shape, deviation) = f.recognised.expect("recognised");
+    assert_eq!(shape, "cylinder");
+    assert!(deviation < 1e-9, "{deviation}");
+    assert!(close(f.radius.unwrap(), 2.0, 1e-9));
+    let axis = f.axis.unwrap();
+    assert!(axis.direction.cross(Vec3::Z).length() < 1e-9);
+    assert!(axis.origin.truncate().length() < 1e-9, "{axis:?}");
+    assert!(close(radius_of(&m, face).unwrap(), 2.0, 1e-9));
+    let e = edge_properties(&m, arc).unwrap();
+    assert_eq!(e.kind, CurveKind::BSpline);
+    assert_eq!(e.recognised.map(|r| r.0), Some("circle"));
+    assert!(close(e.radius.unwrap(), 2.0, 1e-9));
+    assert!(e.centre.unwrap().length() < 1e-9);
+    assert!(close(e.arc_angle.unwrap(), FRAC_PI_2, 1e-6));
+    // Negative control: the same written polynomial is a parabolic cylinder — no radius.
+    let (m, face, arc) = bspline_quarter_cylinder(false);
+    let f = face_properties(&m, face).unwrap();
+    assert_eq!((f.recognised, f.radius), (None, None));
+    let e = edge_properties(&m, arc).unwrap();
+    assert_eq!((e.recognised, e.radius), (None, None));
+}

@@ -8,6 +8,12 @@ use glam::DVec3 as Vec3;
 pub fn face_rows(p: &FaceProperties) -> Vec<(String, String)> {
     let mut rows = Rows::default();
     rows.push("Type", p.kind.name().to_string());
+    if let Some((shape, deviation)) = p.recognised {
+        rows.push(
+            "Recognised",
+            format!("{shape} (within {} mm)", sci(deviation)),
+        );
+    }
     rows.push("STEP id", format!("#{}", p.step_id));
     if let Some(r) = p.radius {
         rows.push("Radius", mm(r));
@@ -49,6 +55,12 @@ pub fn face_rows(p: &FaceProperties) -> Vec<(String, String)> {
 pub fn edge_rows(p: &EdgeProperties) -> Vec<(String, String)> {
     let mut rows = Rows::default();
     rows.push("Type", p.kind.name().to_string());
+    if let Some((shape, deviation)) = p.recognised {
+        rows.push(
+            "Recognised",
+            format!("{shape} (within {} mm)", sci(deviation)),
+        );
+    }
     rows.push("STEP id", format!("#{}", p.step_id));
     rows.push("Length", p.length.map_or_else(|| "—".to_string(), mm));
     rows.push("Start", point(p.start));
@@ -107,6 +119,15 @@ fn deg(radians: f64) -> String {
 }
 
 /// A point in millimetres.
+/// A small figure in scientific notation (`2.5e-13`), 0 as `0`.
+fn sci(x: f64) -> String {
+    if x == 0.0 {
+        "0".to_string()
+    } else {
+        format!("{x:.1e}")
+    }
+}
+
 fn point(p: Vec3) -> String {
     format!("({}, {}, {}) mm", num(p.x), num(p.y), num(p.z))
 }
@@ -153,6 +174,7 @@ mod tests {
             plane: None,
             direction: None,
             offset: None,
+            recognised: None,
         };
         let rows = face_rows(&p);
         let row = |l: &str, v: &str| (l.to_string(), v.to_string());
@@ -161,7 +183,20 @@ mod tests {
         assert!(rows.contains(&row("Radius", "4 mm")));
         assert!(rows.contains(&row("Diameter", "8 mm")));
         assert!(rows.contains(&row("Axis direction", "(0, 0, 1)")));
-        assert!(!rows.iter().any(|(l, _)| l == "Semi-angle"));
+        assert!(
+            !rows
+                .iter()
+                .any(|(l, _)| l == "Semi-angle" || l == "Recognised")
+        );
+        // A B-spline found to be a cylinder says so, with how closely.
+        let b = FaceProperties {
+            kind: SurfaceKind::BSpline,
+            recognised: Some(("cylinder", 2.5e-13)),
+            ..p
+        };
+        let rows = face_rows(&b);
+        assert_eq!(rows[1], row("Recognised", "cylinder (within 2.5e-13 mm)"));
+        assert!(rows.contains(&row("Radius", "4 mm")));
     }
 
     #[test]
@@ -181,6 +216,7 @@ mod tests {
             arc_angle: Some(std::f64::consts::PI),
             semi_axes: None,
             direction: None,
+            recognised: None,
         };
         let row = |l: &str, v: &str| (l.to_string(), v.to_string());
         let rows = edge_rows(&p);
