@@ -2,7 +2,8 @@
 //! far rim cracks where the bore's grid (held coarse) sags inside the plate's exact hole;
 //! two plates side by side, meeting (no crack: nothing may be flagged, silhouettes over the
 //! plate behind included) or apart by a real gap narrower or wider than the gap tolerance.
-//! Cracks are counted against the CPU ray caster of the exact B-Rep
+//! A boss over a floor: pixels its coarse grid leaves short of its silhouette (the second,
+//! silhouette rule). Cracks are counted against the CPU ray caster of the exact B-Rep
 //! (`RayCaster::crack_pixels`); each claim has its negative control (the crack pass off).
 
 mod common;
@@ -185,6 +186,44 @@ fn plate_with_bore_and_tab(tab: bool) -> Vec<u8> {
         ));
     }
     s.file(&faces)
+}
+
+/// A boss — a cylinder of radius 8 standing 10 high on z = 0, capped — over a floor plate
+/// (z = −12): seen from above at an angle, its sides' silhouettes lie over the floor.
+fn boss_over_floor() -> Vec<u8> {
+    let mut s = Step::default();
+    let (r, height) = (8.0, 10.0);
+    let top_v = s.vertex([r, 0.0, height]);
+    let bottom_v = s.vertex([r, 0.0, 0.0]);
+    let top_axis = s.placement([0.0, 0.0, height], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let bottom_axis = s.placement([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let top_circle = s.add(format!("CIRCLE('',#{top_axis},{r:?})"));
+    let bottom_circle = s.add(format!("CIRCLE('',#{bottom_axis},{r:?})"));
+    let top_edge = s.add(format!(
+        "EDGE_CURVE('',#{top_v},#{top_v},#{top_circle},.T.)"
+    ));
+    let bottom_edge = s.add(format!(
+        "EDGE_CURVE('',#{bottom_v},#{bottom_v},#{bottom_circle},.T.)"
+    ));
+    let seam = s.line((bottom_v, [r, 0.0, 0.0]), (top_v, [r, 0.0, height]));
+    let side = s.edge_loop(&[
+        (bottom_edge, true),
+        (seam, true),
+        (top_edge, false),
+        (seam, false),
+    ]);
+    let side = s.add(format!("FACE_OUTER_BOUND('',#{side},.T.)"));
+    let cylinder = s.add(format!("CYLINDRICAL_SURFACE('',#{bottom_axis},{r:?})"));
+    let boss = s.add(format!("ADVANCED_FACE('boss',(#{side}),#{cylinder},.T.)"));
+    let cap = s.edge_loop(&[(top_edge, true)]);
+    let cap = s.add(format!("FACE_OUTER_BOUND('',#{cap},.T.)"));
+    let cap_plane = s.add(format!("PLANE('',#{top_axis})"));
+    let cap = s.add(format!("ADVANCED_FACE('cap',(#{cap}),#{cap_plane},.T.)"));
+    let floor = s.polygon_face(
+        -12.0,
+        &[[-20.0, -20.0], [20.0, -20.0], [20.0, 20.0], [-20.0, 20.0]],
+    );
+    s.file(&[boss, cap, floor])
 }
 
 /// Two 20 × 30 plates side by side in z = 0 apart by `gap` along a slanted line (so that
@@ -410,6 +449,35 @@ fn plates_that_meet_have_no_crack_and_their_silhouettes_are_left_alone() {
             "{preset:?}: the exact fill changed {changed} pixels"
         );
     }
+}
+
+/// A coarse grid ends short of its cylinder's true silhouette: pixels there show the floor
+/// behind, which the seed's rule cannot flag (one neighbour is the floor). The silhouette
+/// rule flags them, and the exact fill gives them the cylinder where its exact surface
+/// covers them; the others are left as drawn, not counted open. Negative control: the
+/// crack pass off leaves them.
+#[test]
+fn pixels_a_grid_leaves_short_of_a_silhouette_are_filled_exactly() {
+    let gpu = gpu();
+    let Some(renderer) = coarse_renderer(&gpu, 8) else {
+        return;
+    };
+    let fixture = exact_scene(boss_over_floor());
+    let scene = (&fixture.0, &fixture.1);
+    let camera = camera_of(&fixture.1, ViewPreset::Iso);
+    let (_, before, _) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Off));
+    let (_, after, counts) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Exact));
+    eprintln!("silhouette pixels {before} → {after}; {counts:?}");
+    assert!(before >= 2, "the coarse grid shows the floor ({before})");
+    assert_eq!(after, 0, "{before} → {after}");
+    assert!(counts.silhouettes > 0 && counts.exact > 0, "{counts:?}");
+    assert!(
+        counts.open <= counts.detected - counts.silhouettes,
+        "{counts:?}"
+    );
+    // The fast fill leaves pixels beside silhouettes alone (it cannot tell).
+    let (_, _, fast) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Fast));
+    assert!(fast.fast <= fast.detected - fast.silhouettes, "{fast:?}");
 }
 
 /// Pixels whose ids carry `flag` in the material channel.

@@ -4,7 +4,18 @@
 // nearer than p by at least `frame.tolerances.z` (d_min, world units) and neither shows p's
 // face (p's face of the same instance): a gap between two faces tessellated apart, through
 // which the background or a face behind shows. The rule keeps silhouettes out: past a
-// silhouette one neighbour shows p's face, or nothing. Two full-screen passes: the flags
+// silhouette one neighbour shows p's face, or nothing.
+//
+// Beside the seed's rule, a second one for the silhouettes of tessellated faces: a grid held
+// within half a pixel of its curved surface ends short of the surface's true silhouette, so
+// a pixel there shows the face behind. Pixel p is flagged (`CRACK_PAIR_SILHOUETTE`) when it
+// shows a face, one of its four edge neighbours shows another face nearer by d_min, and that
+// face is seen there at a grazing angle (its normal more than 45° from the view ray: near
+// its silhouette). Only the exact fill acts on these: the surface's exact point at p's
+// centre, where the exact surface covers it, is nearer and taken; otherwise p is left as
+// drawn (the true silhouette passes before it) and not counted as open.
+//
+// Two full-screen passes: the flags
 // (`fs_flag`, the crack mask's depth), then at the flagged pixels the entries (`fs_detect`:
 // its pixel, the pair, and the fast fill — the face most of its nearer neighbours show, at
 // their mean depth) and the pixel's entry number in the map; the exact fill and the resolve
@@ -27,6 +38,10 @@
 
 // The crack buffers' capacity in entries (`passes::cracks` sets it).
 override CRACK_ENTRY_CAPACITY: u32 = 1024u;
+
+// A face is seen at a grazing angle where |n · v| is below this (its normal more than 45°
+// from the view ray).
+const GRAZING_COS: f32 = 0.7;
 
 struct Texel {
     ids: vec4<u32>,
@@ -82,13 +97,16 @@ fn crack_pair(p: vec2<i32>, dims: vec2<u32>) -> u32 {
     // so one neighbour of each pair is farther.
     let depth = textureLoad(depth_tex, p, 0).x;
     var nearer_pair = false;
+    var nearer_one = false;
     for (var k = 0u; k < 4u; k++) {
         let o = pair_offset(k);
         let a = textureLoad(depth_tex, p + o, 0).x;
         let b = textureLoad(depth_tex, p - o, 0).x;
         nearer_pair = nearer_pair | ((a > depth) & (b > depth));
+        nearer_one = nearer_one | ((k < 2u) & ((a > depth) | (b > depth)));
     }
-    if !nearer_pair {
+    // The silhouette rule needs a face at p and one edge neighbour nearer.
+    if !nearer_pair & !(nearer_one & (depth > 0.0)) {
         return 4u;
     }
     let own = texel_at(p);
@@ -107,7 +125,35 @@ fn crack_pair(p: vec2<i32>, dims: vec2<u32>) -> u32 {
             pair = k;
         }
     }
+    if (pair == 4u) && own.face && beside_silhouette(p, own) {
+        pair = CRACK_PAIR_SILHOUETTE;
+    }
     return pair;
+}
+
+// Whether an edge neighbour of `p` (showing `own`) shows another face nearer by d_min, seen
+// there at a grazing angle (`GRAZING_COS`).
+fn beside_silhouette(p: vec2<i32>, own: Texel) -> bool {
+    let d_min = frame.tolerances.z;
+    let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
+    for (var k = 0u; k < 4u; k++) {
+        let o = select(-1, 1, k < 2u) * pair_offset(k % 2u);
+        let q = p + o;
+        let t = texel_at(q);
+        if !t.face || same_face(t.ids, own.ids) || (t.distance + d_min > own.distance) {
+            continue;
+        }
+        // The view ray at q, as the shade pass finds it.
+        let pos = vec2<f32>(q) + 0.5;
+        let ndc = vec2<f32>(pos.x / frame.viewport.x * 2.0 - 1.0, 1.0 - pos.y / frame.viewport.y * 2.0);
+        let view_h = frame.inv_proj * vec4<f32>(ndc, t.depth, 1.0);
+        let v = select(normalize(-view_h.xyz / view_h.w), vec3<f32>(0.0, 0.0, 1.0), ortho);
+        let n = from_octahedral(textureLoad(normal_tex, q, 0).xy);
+        if abs(dot(n, v)) < GRAZING_COS {
+            return true;
+        }
+    }
+    return false;
 }
 
 // One triangle over the target, at depth ½ (the entries' pass tests it against the flags).
@@ -124,7 +170,7 @@ fn vs_detect(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
 // entries written here, 91 ms for an empty shader that merely could write).
 @fragment
 fn fs_flag(@builtin(position) pos: vec4<f32>) -> @builtin(frag_depth) f32 {
-    return select(1.0, 0.0, crack_pair(vec2<i32>(pos.xy), textureDimensions(ids_tex)) < 4u);
+    return select(1.0, 0.0, crack_pair(vec2<i32>(pos.xy), textureDimensions(ids_tex)) != 4u);
 }
 
 // The entries: run where the flags pass (`Greater` than the mask: the cracks alone, where
@@ -174,6 +220,9 @@ fn fs_detect(@builtin(position) pos: vec4<f32>) {
         }
     }
     let entry = atomicAdd(&crack_state[CRACK_COUNT_ENTRIES], 1u);
+    if pair == CRACK_PAIR_SILHOUETTE {
+        atomicAdd(&crack_state[CRACK_COUNT_SILHOUETTES], 1u);
+    }
     if entry >= CRACK_ENTRY_CAPACITY {
         atomicAdd(&crack_state[CRACK_COUNT_OVERFLOW], 1u);
         return;

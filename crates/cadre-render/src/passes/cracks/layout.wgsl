@@ -15,6 +15,10 @@ const CRACK_COUNT_FAST: u32 = 5u;
 const CRACK_COUNT_GAPS: u32 = 6u;
 const CRACK_COUNT_OPEN: u32 = 7u;
 const CRACK_COUNT_FILL_FACES: u32 = 8u;
+const CRACK_COUNT_SILHOUETTES: u32 = 9u;
+// An entry's pair for a pixel flagged beside a silhouette (detect.wgsl), not between two
+// faces: filled only by an exact hit, never by the fast fill, and not a crack left open.
+const CRACK_PAIR_SILHOUETTE: u32 = 5u;
 // An entry's words: mailbox slots (faces solved) first, then the head of its hits and its
 // two least miss distances.
 const CRACK_MAILBOX_SLOTS: u32 = 4u;

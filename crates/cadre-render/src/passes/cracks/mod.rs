@@ -115,6 +115,10 @@ pub struct CrackCounts {
     /// Tessellation tasks (a face of a mesh call) the exact fill drew again: those whose
     /// projected bounding sphere reaches a crack (`visibility/trim/crack_faces.wgsl`).
     pub fill_faces: u32,
+    /// Of the `detected`, pixels flagged beside a silhouette (a face seen at a grazing angle
+    /// nearer than what the pixel shows, `detect.wgsl`): filled by an exact hit (counted in
+    /// `exact`) or left as drawn, never counted `open` nor filled by the fast fill.
+    pub silhouettes: u32,
 }
 
 /// The detection's bind group 0: frame, the depth, ids and normal targets, the crack map,
@@ -552,6 +556,7 @@ impl CrackPass {
             gaps: w[6],
             open: w[7],
             fill_faces: w[8],
+            silhouettes: w[9],
         }
     }
 }

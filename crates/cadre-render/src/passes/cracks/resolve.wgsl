@@ -95,6 +95,11 @@ fn fs_resolve(in: ResolveVertex) -> ResolveOut {
         return out;
     }
     var mark = select(0u, CRACK_FILLED, HIGHLIGHT);
+    // A pixel beside a silhouette that no exact surface covers: the silhouette passes before
+    // it, as drawn (not a crack left open; never the fast fill's).
+    if crack_entries[3u * entry].y == CRACK_PAIR_SILHOUETTE {
+        discard;
+    }
     if EXACT {
         // No face's exact surface closes it: a gap in the model itself, as wide as the
         // ray's two least misses of a face's trim (a face each side; unknown, so left open,
