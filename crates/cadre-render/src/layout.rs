@@ -223,7 +223,8 @@ pub struct FrameUniform {
     pub planes: [[f32; 4]; 3],
     /// The section planes' unit normals in view space (xyz; w unused), to shade caps.
     pub plane_normals: [[f32; 4]; 3],
-    /// The camera's forward direction in world space (xyz; w unused): the view ray of every
+    /// The camera's forward direction in world space (xyz; w: 1 when the crack pass's
+    /// silhouette rule is on, `CrackOptions::silhouettes`): the view ray of every
     /// pixel when orthographic.
     pub forward: [f32; 4],
     /// Section caps: hatch spacing and hatch line width, outline width (target pixels),

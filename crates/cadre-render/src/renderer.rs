@@ -594,6 +594,7 @@ impl Renderer {
         let crack_mode = self.crack_mode(scene, options);
         [frame.tolerances[2], frame.tolerances[3]] =
             crate::passes::cracks::tolerances(&options.cracks, scene.diagonal());
+        frame.forward[3] = if options.cracks.silhouettes { 1.0 } else { 0.0 };
         // Edges carry their coverage only where faces are trimmed per pixel, or quadrics ray
         // cast.
         let coverage = options.analytic_coverage

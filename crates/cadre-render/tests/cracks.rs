@@ -453,9 +453,9 @@ fn plates_that_meet_have_no_crack_and_their_silhouettes_are_left_alone() {
 
 /// A coarse grid ends short of its cylinder's true silhouette: pixels there show the floor
 /// behind, which the seed's rule cannot flag (one neighbour is the floor). The silhouette
-/// rule flags them, and the exact fill gives them the cylinder where its exact surface
-/// covers them; the others are left as drawn, not counted open. Negative control: the
-/// crack pass off leaves them.
+/// rule (asked for) flags them, and the exact fill gives them the cylinder where its exact
+/// surface covers them; the others are left as drawn, not counted open. Negative controls:
+/// the crack pass off, and the seed's rule alone, leave them.
 #[test]
 fn pixels_a_grid_leaves_short_of_a_silhouette_are_filled_exactly() {
     let gpu = gpu();
@@ -465,8 +465,18 @@ fn pixels_a_grid_leaves_short_of_a_silhouette_are_filled_exactly() {
     let fixture = exact_scene(boss_over_floor());
     let scene = (&fixture.0, &fixture.1);
     let camera = camera_of(&fixture.1, ViewPreset::Iso);
+    let with_rule = |mode: CrackMode| CrackOptions {
+        mode,
+        silhouettes: true,
+        ..CrackOptions::default()
+    };
     let (_, before, _) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Off));
-    let (_, after, counts) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Exact));
+    let (_, after, counts) = draw(
+        (&gpu, &renderer),
+        scene,
+        &camera,
+        with_rule(CrackMode::Exact),
+    );
     eprintln!("silhouette pixels {before} → {after}; {counts:?}");
     assert!(before >= 2, "the coarse grid shows the floor ({before})");
     assert_eq!(after, 0, "{before} → {after}");
@@ -476,8 +486,19 @@ fn pixels_a_grid_leaves_short_of_a_silhouette_are_filled_exactly() {
         "{counts:?}"
     );
     // The fast fill leaves pixels beside silhouettes alone (it cannot tell).
-    let (_, _, fast) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Fast));
-    assert!(fast.fast <= fast.detected - fast.silhouettes, "{fast:?}");
+    let (_, _, fast) = draw(
+        (&gpu, &renderer),
+        scene,
+        &camera,
+        with_rule(CrackMode::Fast),
+    );
+    assert!(
+        fast.silhouettes > 0 && fast.fast <= fast.detected - fast.silhouettes,
+        "{fast:?}"
+    );
+    // Negative control: the seed's rule alone (the default) leaves them.
+    let (_, seed_only, counts) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Exact));
+    assert_eq!((seed_only, counts.silhouettes), (before, 0), "{counts:?}");
 }
 
 /// Pixels whose ids carry `flag` in the material channel.

@@ -66,6 +66,9 @@ enum BenchWhat {
         /// (the GPU time of its stage, `cracks`, after `visibility`) and what it did.
         #[arg(long, default_value = "exact", value_enum)]
         cracks: crate::commands::render::CrackArg,
+        /// The crack pass's silhouette rule (as `cadre render --silhouette-fill`).
+        #[arg(long)]
+        silhouette_fill: bool,
     },
     /// The viewer's frame on the same heavy scene: the scene uploaded once, then each frame
     /// orbits the camera by 2°, draws into a kept viewport (the window's path, no readback)
@@ -138,12 +141,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             method,
             no_coverage,
             cracks,
+            silhouette_fill,
         } => bench_render(
             file,
             (*grid, *method),
             *size,
             *frames,
-            (*mode, !*no_coverage, *cracks),
+            (*mode, !*no_coverage, (*cracks, *silhouette_fill)),
         ),
         BenchWhat::View {
             file,
@@ -477,10 +481,10 @@ fn bench_render(
     grid: (u32, crate::commands::render::Method),
     (width, height): (u32, u32),
     frames: u32,
-    (mode, analytic_coverage, cracks): (
+    (mode, analytic_coverage, (cracks, silhouette_fill)): (
         cadre_render::DisplayMode,
         bool,
-        crate::commands::render::CrackArg,
+        (crate::commands::render::CrackArg, bool),
     ),
 ) -> Result<()> {
     use cadre_render::{Camera, FrameOptions, Gpu, ViewPreset, ViewState};
@@ -509,6 +513,7 @@ fn bench_render(
             inspect_cracks: false,
             gap_tolerance: 0.0,
             crack_depth: 0.0,
+            silhouette_fill,
         }
         .options(),
         ..FrameOptions::default()

@@ -237,6 +237,11 @@ pub struct CrackArgs {
     /// neighbours of a pair must be; 0 takes 10⁻³ of the model's diagonal.
     #[arg(long, default_value_t = 0.0)]
     pub crack_depth: f64,
+    /// The exact fill also solves the pixels next to a nearer face seen at a grazing angle,
+    /// where a face's grid ends short of its true silhouette (off by default: its cost
+    /// follows the view's silhouettes, not its cracks).
+    #[arg(long)]
+    pub silhouette_fill: bool,
 }
 
 /// `--cracks`.
@@ -262,6 +267,7 @@ impl CrackArgs {
             highlight: self.inspect_cracks,
             min_depth: self.crack_depth.max(0.0),
             gap_tolerance: self.gap_tolerance.max(0.0),
+            silhouettes: self.silhouette_fill,
         }
     }
 }

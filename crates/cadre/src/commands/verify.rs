@@ -52,6 +52,10 @@ pub struct VerifyArgs {
     /// the model's diagonal.
     #[arg(long, default_value_t = 0.0)]
     crack_depth: f64,
+    /// The exact fill solves the pixels beside silhouettes too (as `cadre render
+    /// --silhouette-fill`).
+    #[arg(long)]
+    silhouette_fill: bool,
     /// One JSON object instead of a table.
     #[arg(long)]
     json: bool,
@@ -128,6 +132,7 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
         inspect_cracks: false,
         gap_tolerance: args.gap_tolerance,
         crack_depth: args.crack_depth,
+        silhouette_fill: args.silhouette_fill,
     };
     let options = FrameOptions {
         width: w,

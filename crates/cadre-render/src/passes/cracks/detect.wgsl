@@ -11,7 +11,8 @@
 // a pixel there shows the face behind. Pixel p is flagged (`CRACK_PAIR_SILHOUETTE`) when it
 // shows a face, one of its four edge neighbours shows another face nearer by d_min, and that
 // face is seen there at a grazing angle (its normal more than 45° from the view ray: near
-// its silhouette). Only the exact fill acts on these: the surface's exact point at p's
+// its silhouette). It is asked for (`CrackOptions::silhouettes`, `frame.forward.w` = 1): its
+// cost follows the silhouettes, not the cracks. Only the exact fill acts on these: the surface's exact point at p's
 // centre, where the exact surface covers it, is nearer and taken; otherwise p is left as
 // drawn (the true silhouette passes before it) and not counted as open.
 //
@@ -105,8 +106,9 @@ fn crack_pair(p: vec2<i32>, dims: vec2<u32>) -> u32 {
         nearer_pair = nearer_pair | ((a > depth) & (b > depth));
         nearer_one = nearer_one | ((k < 2u) & ((a > depth) | (b > depth)));
     }
-    // The silhouette rule needs a face at p and one edge neighbour nearer.
-    if !nearer_pair & !(nearer_one & (depth > 0.0)) {
+    // The silhouette rule, when asked for, needs a face at p and one edge neighbour nearer.
+    let silhouettes = frame.forward.w > 0.5;
+    if !nearer_pair & !(silhouettes & nearer_one & (depth > 0.0)) {
         return 4u;
     }
     let own = texel_at(p);
@@ -125,7 +127,7 @@ fn crack_pair(p: vec2<i32>, dims: vec2<u32>) -> u32 {
             pair = k;
         }
     }
-    if (pair == 4u) && own.face && beside_silhouette(p, own) {
+    if (pair == 4u) && silhouettes && own.face && beside_silhouette(p, own) {
         pair = CRACK_PAIR_SILHOUETTE;
     }
     return pair;

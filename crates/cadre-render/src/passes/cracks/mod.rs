@@ -60,6 +60,11 @@ pub struct CrackOptions {
     /// Real gaps in the model (faces that do not meet) narrower than this, world units, are
     /// closed too (and painted as gaps when highlighted); 0 leaves every gap open.
     pub gap_tolerance: f64,
+    /// The silhouette rule beside the seed's (exact mode): pixels next to a nearer face seen
+    /// at a grazing angle, where a grid ends short of its surface's true silhouette, are
+    /// solved by the exact fill too. Off by default: its cost follows the silhouettes of
+    /// the view, not its cracks (`detect.wgsl`; BENCHMARKS.md).
+    pub silhouettes: bool,
 }
 
 impl Default for CrackOptions {
@@ -69,6 +74,7 @@ impl Default for CrackOptions {
             highlight: false,
             min_depth: 0.0,
             gap_tolerance: 0.0,
+            silhouettes: false,
         }
     }
 }
