@@ -122,6 +122,44 @@ impl Step {
     }
 }
 
+/// The side of a cylinder of radius `r` about z from z0 to z1 (its seam at +x): the face,
+/// its top circle edge and that circle's placement.
+struct CylinderSide {
+    face: usize,
+    top_edge: usize,
+    top_axis: usize,
+}
+
+fn cylinder_side(s: &mut Step, name: &str, r: f64, (z0, z1): (f64, f64)) -> CylinderSide {
+    let top_v = s.vertex([r, 0.0, z1]);
+    let bottom_v = s.vertex([r, 0.0, z0]);
+    let top_axis = s.placement([0.0, 0.0, z1], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let bottom_axis = s.placement([0.0, 0.0, z0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+    let top_circle = s.add(format!("CIRCLE('',#{top_axis},{r:?})"));
+    let bottom_circle = s.add(format!("CIRCLE('',#{bottom_axis},{r:?})"));
+    let top_edge = s.add(format!(
+        "EDGE_CURVE('',#{top_v},#{top_v},#{top_circle},.T.)"
+    ));
+    let bottom_edge = s.add(format!(
+        "EDGE_CURVE('',#{bottom_v},#{bottom_v},#{bottom_circle},.T.)"
+    ));
+    let seam = s.line((bottom_v, [r, 0.0, z0]), (top_v, [r, 0.0, z1]));
+    let side = s.edge_loop(&[
+        (bottom_edge, true),
+        (seam, true),
+        (top_edge, false),
+        (seam, false),
+    ]);
+    let side = s.add(format!("FACE_OUTER_BOUND('',#{side},.T.)"));
+    let cylinder = s.add(format!("CYLINDRICAL_SURFACE('',#{bottom_axis},{r:?})"));
+    let face = s.add(format!("ADVANCED_FACE('{name}',(#{side}),#{cylinder},.T.)"));
+    CylinderSide {
+        face,
+        top_edge,
+        top_axis,
+    }
+}
+
 /// A 40 × 40 plate (z = 0) with a bore of radius 8 through it, 6 deep, and a floor plate
 /// below (z = −12) for the cracks to show.
 fn plate_with_bore() -> Vec<u8> {
@@ -141,19 +179,8 @@ fn plate_with_bore_and_tab(tab: bool) -> Vec<u8> {
     let sides: Vec<(usize, bool)> = (0..4)
         .map(|i| (s.line(corners[i], corners[(i + 1) % 4]), true))
         .collect();
-    let top_v = s.vertex([r, 0.0, 0.0]);
-    let bottom_v = s.vertex([r, 0.0, -depth]);
-    let top_axis = s.placement([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
-    let bottom_axis = s.placement([0.0, 0.0, -depth], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
-    let top_circle = s.add(format!("CIRCLE('',#{top_axis},{r:?})"));
-    let bottom_circle = s.add(format!("CIRCLE('',#{bottom_axis},{r:?})"));
-    let top_edge = s.add(format!(
-        "EDGE_CURVE('',#{top_v},#{top_v},#{top_circle},.T.)"
-    ));
-    let bottom_edge = s.add(format!(
-        "EDGE_CURVE('',#{bottom_v},#{bottom_v},#{bottom_circle},.T.)"
-    ));
-    let seam = s.line((bottom_v, [r, 0.0, -depth]), (top_v, [r, 0.0, 0.0]));
+    let bore = cylinder_side(&mut s, "bore", r, (-depth, 0.0));
+    let top_edge = bore.top_edge;
     // The plate: the square, the hole clockwise seen from +z.
     let outer = s.edge_loop(&sides);
     let outer = s.add(format!("FACE_OUTER_BOUND('',#{outer},.T.)"));
@@ -164,21 +191,11 @@ fn plate_with_bore_and_tab(tab: bool) -> Vec<u8> {
     let plate = s.add(format!(
         "ADVANCED_FACE('plate',(#{outer},#{hole}),#{plane},.T.)"
     ));
-    // The bore: the cylinder's side.
-    let side = s.edge_loop(&[
-        (bottom_edge, true),
-        (seam, true),
-        (top_edge, false),
-        (seam, false),
-    ]);
-    let side = s.add(format!("FACE_OUTER_BOUND('',#{side},.T.)"));
-    let cylinder = s.add(format!("CYLINDRICAL_SURFACE('',#{bottom_axis},{r:?})"));
-    let bore = s.add(format!("ADVANCED_FACE('bore',(#{side}),#{cylinder},.T.)"));
     let floor = s.polygon_face(
         -12.0,
         &[[-20.0, -20.0], [20.0, -20.0], [20.0, 20.0], [-20.0, 20.0]],
     );
-    let mut faces = vec![plate, bore, floor];
+    let mut faces = vec![plate, bore.face, floor];
     if tab {
         faces.push(s.polygon_face(
             0.0,
@@ -193,29 +210,9 @@ fn plate_with_bore_and_tab(tab: bool) -> Vec<u8> {
 fn boss_over_floor() -> Vec<u8> {
     let mut s = Step::default();
     let (r, height) = (8.0, 10.0);
-    let top_v = s.vertex([r, 0.0, height]);
-    let bottom_v = s.vertex([r, 0.0, 0.0]);
-    let top_axis = s.placement([0.0, 0.0, height], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
-    let bottom_axis = s.placement([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
-    let top_circle = s.add(format!("CIRCLE('',#{top_axis},{r:?})"));
-    let bottom_circle = s.add(format!("CIRCLE('',#{bottom_axis},{r:?})"));
-    let top_edge = s.add(format!(
-        "EDGE_CURVE('',#{top_v},#{top_v},#{top_circle},.T.)"
-    ));
-    let bottom_edge = s.add(format!(
-        "EDGE_CURVE('',#{bottom_v},#{bottom_v},#{bottom_circle},.T.)"
-    ));
-    let seam = s.line((bottom_v, [r, 0.0, 0.0]), (top_v, [r, 0.0, height]));
-    let side = s.edge_loop(&[
-        (bottom_edge, true),
-        (seam, true),
-        (top_edge, false),
-        (seam, false),
-    ]);
-    let side = s.add(format!("FACE_OUTER_BOUND('',#{side},.T.)"));
-    let cylinder = s.add(format!("CYLINDRICAL_SURFACE('',#{bottom_axis},{r:?})"));
-    let boss = s.add(format!("ADVANCED_FACE('boss',(#{side}),#{cylinder},.T.)"));
-    let cap = s.edge_loop(&[(top_edge, true)]);
+    let boss = cylinder_side(&mut s, "boss", r, (0.0, height));
+    let top_axis = boss.top_axis;
+    let cap = s.edge_loop(&[(boss.top_edge, true)]);
     let cap = s.add(format!("FACE_OUTER_BOUND('',#{cap},.T.)"));
     let cap_plane = s.add(format!("PLANE('',#{top_axis})"));
     let cap = s.add(format!("ADVANCED_FACE('cap',(#{cap}),#{cap_plane},.T.)"));
@@ -223,7 +220,7 @@ fn boss_over_floor() -> Vec<u8> {
         -12.0,
         &[[-20.0, -20.0], [20.0, -20.0], [20.0, 20.0], [-20.0, 20.0]],
     );
-    s.file(&[boss, cap, floor])
+    s.file(&[boss.face, cap, floor])
 }
 
 /// Two 20 × 30 plates side by side in z = 0 apart by `gap` along a slanted line (so that

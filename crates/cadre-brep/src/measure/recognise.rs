@@ -124,15 +124,13 @@ fn cylinder_through(samples: &[(Vec3, Vec3)], tolerance: f64) -> Option<RoundSur
         .collect();
     let (a, b, c) = farthest_triple(&flat)?;
     let (centre, _, radius) = circumcircle(a, b, c)?;
-    let mut deviation = 0.0f64;
-    for ((_, n), q) in samples.iter().zip(&flat) {
-        let out = *q - centre;
-        deviation = deviation.max((out.length() - radius).abs());
-        let radial = out.try_normalize()?;
-        if radial.cross(*n).length() > NORMAL_TOLERANCE.sqrt() {
-            return None;
-        }
-    }
+    let deviation = radial_deviation(
+        samples
+            .iter()
+            .zip(&flat)
+            .map(|((_, n), q)| (*q - centre, *n)),
+        radius,
+    )?;
     (deviation <= tolerance).then_some(RoundSurface::Cylinder {
         axis: Axis {
             origin: centre,
@@ -163,20 +161,27 @@ fn sphere_through(samples: &[(Vec3, Vec3)], tolerance: f64) -> Option<RoundSurfa
     if radius <= 0.0 || !radius.is_finite() {
         return None;
     }
-    let mut deviation = 0.0f64;
-    for (p, n) in samples {
-        let out = *p - centre;
-        deviation = deviation.max((out.length() - radius).abs());
-        let radial = out.try_normalize()?;
-        if radial.cross(*n).length() > NORMAL_TOLERANCE.sqrt() {
-            return None;
-        }
-    }
+    let deviation = radial_deviation(samples.iter().map(|(p, n)| (*p - centre, *n)), radius)?;
     (deviation <= tolerance).then_some(RoundSurface::Sphere {
         centre,
         radius,
         deviation,
     })
+}
+
+/// The farthest that points (given from the centre, or the axis) lie from the `radius`;
+/// `None` when one's normal is not radial (within the square root of [`NORMAL_TOLERANCE`],
+/// the angle the normals of a point a rounding off the shape may take) or one is at the
+/// centre.
+fn radial_deviation(from_centre: impl Iterator<Item = (Vec3, Vec3)>, radius: f64) -> Option<f64> {
+    let mut deviation = 0.0f64;
+    for (out, normal) in from_centre {
+        deviation = deviation.max((out.length() - radius).abs());
+        if out.try_normalize()?.cross(normal).length() > NORMAL_TOLERANCE.sqrt() {
+            return None;
+        }
+    }
+    Some(deviation)
 }
 
 /// Three of `points` far apart: the first, the farthest from it, and the farthest from the
