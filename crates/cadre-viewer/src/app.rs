@@ -816,6 +816,7 @@ impl App {
                 } else {
                     CrackMode::Exact
                 },
+                silhouettes: self.session.silhouette_fill && !self.camera_moving,
                 ..CrackOptions::default()
             },
             shadows: self.session.shadows,

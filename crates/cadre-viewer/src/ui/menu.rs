@@ -63,6 +63,14 @@ pub(super) fn menu_bar(
                             "Faces drawn from their exact surfaces, tessellated to the \
                              screen each frame and trimmed per pixel, instead of their meshes",
                         );
+                    ui.add_enabled(
+                        s.exact_faces,
+                        egui::Checkbox::new(&mut s.silhouette_fill, "Exact silhouettes"),
+                    )
+                    .on_hover_text(
+                        "Once the camera stops, pixels a face's grid leaves short of its true \
+                         silhouette are given the exact surface (slow without a GPU)",
+                    );
                     ui.checkbox(&mut s.shadows, "Shadows").on_hover_text(
                         "The key light casts shadows (a shadow map drawn each frame)",
                     );
