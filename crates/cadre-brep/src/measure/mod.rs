@@ -20,7 +20,7 @@ use cadre_geom::{Curve3, Surface, Vec3};
 
 pub use properties::{
     Axis, CurveKind, EdgeProperties, FaceProperties, Plane, SurfaceKind, edge_properties,
-    face_properties,
+    face_plane, face_properties,
 };
 
 use crate::{Edge, EdgeId, Entity, Face, FaceId, LoopKind, Model, VertexId};

@@ -222,11 +222,25 @@ pub fn face_properties(model: &Model, face: FaceId) -> Option<FaceProperties> {
         Surface::BSpline(_) => recognise_face(model, f, surface, &mut p),
         Surface::Plane { .. } | Surface::Trimmed { .. } => {}
     }
-    p.plane = planar(surface).map(|(origin, normal)| Plane {
+    p.plane = outward_plane(surface, outward);
+    Some(p)
+}
+
+/// The plane of a planar face (a plane or an offset of one), its normal pointing outward;
+/// `None` for another face or an id outside the model. What [`face_properties`] gives as
+/// `plane`, without the rest (no B-spline recognition): cheap enough for every frame.
+pub fn face_plane(model: &Model, face: FaceId) -> Option<Plane> {
+    let f = model.faces.get(face.index())?;
+    let surface = model.surfaces.get(f.surface.index())?;
+    outward_plane(surface, outward_sign(model, face, f))
+}
+
+/// `surface`'s plane with its normal turned by `outward` (±1).
+fn outward_plane(surface: &Surface, outward: f64) -> Option<Plane> {
+    planar(surface).map(|(origin, normal)| Plane {
         origin,
         normal: normal * outward,
-    });
-    Some(p)
+    })
 }
 
 /// The kind of an edge's curve (a trimmed curve reports its basis).

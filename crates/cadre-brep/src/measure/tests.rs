@@ -116,6 +116,11 @@ fn box_faces_meet_at_a_right_angle_with_outward_normals() {
     assert_eq!(px.kind, SurfaceKind::Plane);
     assert!(px.reversed);
     assert!((px.plane.unwrap().normal - Vec3::X).length() < 1e-15);
+    assert_eq!(
+        face_plane(&m, fx),
+        px.plane,
+        "the plane alone, as the properties give it"
+    );
     let py = face_properties(&m, fy).unwrap();
     assert!(py.reversed);
     assert!((py.plane.unwrap().normal - Vec3::Y).length() < 1e-15);
@@ -354,6 +359,7 @@ fn a_bspline_cylinder_and_its_bspline_arcs_are_measured_as_such() {
     let (m, face, arc) = bspline_quarter_cylinder(true);
     let f = face_properties(&m, face).unwrap();
     assert_eq!(f.kind, SurfaceKind::BSpline);
+    assert_eq!(face_plane(&m, face), None, "a cylinder has no plane");
     let (shape, deviation) = f.recognised.expect("recognised");
     assert_eq!(shape, "cylinder");
     assert!(deviation < 1e-9, "{deviation}");

@@ -85,7 +85,8 @@ pub fn world_plane(doc: &Document, pick: Pick) -> Option<(DVec3, DVec3)> {
     let Pick::Face { instance, face } = pick else {
         return None;
     };
-    let plane = face_properties(&doc.model, doc.face(face)?)?.plane?;
+    // The plane alone: the sections window asks for it every frame.
+    let plane = cadre_brep::measure::face_plane(&doc.model, doc.face(face)?)?;
     let world = doc.instances.get(instance as usize)?.world;
     let normal = (world.matrix3.inverse().transpose() * plane.normal).normalize_or_zero();
     (normal != DVec3::ZERO).then(|| (world.transform_point3(plane.origin), normal))
