@@ -111,6 +111,18 @@ fn the_gpu_trim_test_answers_as_the_cpu_oracle() {
         "no whole-face root"
     );
     assert!(roots.contains(&cadre_trim::layout::KIND_SPLIT), "no tree");
+    // Both point layouts are asked: pieces on their face's grid (the assembly's) and in
+    // `f32` (the sliver's).
+    let on_grid = buffers
+        .piece_offsets
+        .iter()
+        .filter(|w| *w & cadre_trim::layout::PIECE_ON_GRID != 0)
+        .count();
+    assert!(
+        on_grid > 0 && on_grid < buffers.piece_offsets.len(),
+        "{on_grid} of {} pieces on a grid",
+        buffers.piece_offsets.len()
+    );
     let mut random = common::xorshift(0x2545_f491_4f6c_dd1d);
     let mut queries = Vec::new();
     for (face, record) in buffers.faces.iter().enumerate() {

@@ -4,9 +4,19 @@
 //! removes knots under error control (Lyche–Mørken) with separate ε_u, ε_v; here a greedy fit
 //! gives the same guarantee more directly: from each piece's start, the longest run of samples
 //! that one quadratic (ends on the run's ends, control point by least squares after a few
-//! reparametrisations) holds within the tolerance ellipse at every sample and at every
-//! midpoint between samples. A quadratic's pieces join with C⁰ continuity at least, which is
-//! all the trim test needs.
+//! reparametrisations) holds within the tolerance ellipse at every sample and at the curve's
+//! point between every two samples. A quadratic's pieces join with C⁰ continuity at least,
+//! which is all the trim test needs.
+//!
+//! The samples lie on the curve; the polyline between them does not (it cuts each bend by up
+//! to the sampling's deflection). So the point between two samples is the curve's, estimated
+//! by the cubic through the four samples about it at their chord-length parameters (the
+//! quadratic through three at a run's ends) — within ~ε²/R of the curve where the chords'
+//! sag is ε — not the chord's middle, which held the pieces to the polyline: on the corpus
+//! that took 30 % more pieces for the same tolerance (BENCHMARKS.md, trim trees). Where the
+//! two three-sample estimates about a gap disagree by more than a quarter of the tolerance
+//! (a kink the samples straddle, or samples too sparse for the curve), the chord's middle
+//! stands in: the polyline is then all that is known of the curve.
 
 use crate::Uv;
 use crate::quad::QuadPiece;
@@ -50,6 +60,7 @@ const REFITS: usize = 3;
 /// their ends exactly, the first starts at the first point and the last ends at the last.
 /// Fewer than two points give no piece.
 pub fn fit_points(points: &[Uv], tol: UvTolerance) -> Vec<QuadPiece> {
+    let mids = curve_midpoints(points, tol);
     let mut pieces = Vec::new();
     let last = points.len().saturating_sub(1);
     let mut start = 0;
@@ -61,7 +72,7 @@ pub fn fit_points(points: &[Uv], tol: UvTolerance) -> Vec<QuadPiece> {
         let mut bad = None;
         while good.0 < last {
             let end = (start + step).min(last);
-            match fit_run(&points[start..=end], tol) {
+            match fit_run(&points[start..=end], &mids[start..end], tol) {
                 Some(piece) => {
                     good = (end, piece);
                     step *= 2;
@@ -75,7 +86,7 @@ pub fn fit_points(points: &[Uv], tol: UvTolerance) -> Vec<QuadPiece> {
         if let Some(mut bad) = bad {
             while bad - good.0 > 1 {
                 let mid = good.0 + (bad - good.0) / 2;
-                match fit_run(&points[start..=mid], tol) {
+                match fit_run(&points[start..=mid], &mids[start..mid], tol) {
                     Some(piece) => good = (mid, piece),
                     None => bad = mid,
                 }
@@ -87,8 +98,73 @@ pub fn fit_points(points: &[Uv], tol: UvTolerance) -> Vec<QuadPiece> {
     pieces
 }
 
-/// One quadratic through `run`'s ends within `tol` of all of it, if the fit finds one.
-fn fit_run(run: &[Uv], tol: UvTolerance) -> Option<QuadPiece> {
+/// The curve's point between each two consecutive samples of `points` (one fewer than
+/// them), estimated from the samples about it (see the module's comment).
+fn curve_midpoints(points: &[Uv], tol: UvTolerance) -> Vec<Uv> {
+    let n = points.len();
+    // Chord-length parameters in the tolerance metric.
+    let mut t = Vec::with_capacity(n);
+    let mut total = 0.0;
+    for (k, p) in points.iter().enumerate() {
+        if k > 0 {
+            total += tol.scaled(*p - points[k - 1]);
+        }
+        t.push(total);
+    }
+    let chord = |k: usize| 0.5 * (points[k] + points[k + 1]);
+    let through = |range: std::ops::Range<usize>, k: usize| {
+        lagrange(&points[range.clone()], &t[range], 0.5 * (t[k] + t[k + 1]))
+    };
+    if n < 4 {
+        // Too few samples to tell a bend from a kink: the polyline is all that is known.
+        return (0..n.saturating_sub(1)).map(chord).collect();
+    }
+    // Inner gaps: the cubic through the four samples about it, where the two quadratics
+    // through three of them agree.
+    let mut mids: Vec<Uv> = (0..n - 1)
+        .map(|k| {
+            if k == 0 || k == n - 2 {
+                return chord(k);
+            }
+            let (left, right) = (through(k - 1..k + 2, k), through(k..k + 3, k));
+            if tol.scaled(left - right) <= 0.25 {
+                through(k - 1..k + 3, k)
+            } else {
+                chord(k)
+            }
+        })
+        .collect();
+    // End gaps: the quadratic through the three end samples, where it bows from the chord
+    // no more than the next gap's estimate does (by half again, and a quarter tolerance):
+    // the curve bends alike over neighbouring gaps, a kink at the end does not.
+    for (k, next, range) in [(0, 1, 0..3), (n - 2, n - 3, n - 3..n)] {
+        let estimate = through(range, k);
+        let bow_next = tol.scaled(mids[next] - chord(next));
+        if tol.scaled(estimate - chord(k)) <= 1.5 * bow_next + 0.25 {
+            mids[k] = estimate;
+        }
+    }
+    mids
+}
+
+/// The polynomial through `points` at parameters `t` (Lagrange's form), at `at`.
+fn lagrange(points: &[Uv], t: &[f64], at: f64) -> Uv {
+    let mut sum = Uv::ZERO;
+    for (i, p) in points.iter().enumerate() {
+        let mut w = 1.0;
+        for (j, &tj) in t.iter().enumerate() {
+            if i != j {
+                w *= (at - tj) / (t[i] - tj);
+            }
+        }
+        sum += w * *p;
+    }
+    sum
+}
+
+/// One quadratic through `run`'s ends within `tol` of all of it — every sample and the
+/// curve's point `mids[k]` between samples `k` and `k + 1` — if the fit finds one.
+fn fit_run(run: &[Uv], mids: &[Uv], tol: UvTolerance) -> Option<QuadPiece> {
     let (first, last) = (run[0], run[run.len() - 1]);
     if run.len() == 2 {
         return Some(QuadPiece::line(first, last));
@@ -116,7 +192,7 @@ fn fit_run(run: &[Uv], tol: UvTolerance) -> Option<QuadPiece> {
             }
         }
     }
-    within(&piece, run, &t, tol).then_some(piece)
+    within(&piece, run, mids, &t, tol).then_some(piece)
 }
 
 /// The least-squares control point of a quadratic from `first` to `last` through `run` at
@@ -152,19 +228,19 @@ fn project(piece: &QuadPiece, p: Uv, t0: f64, tol: UvTolerance) -> f64 {
     t
 }
 
-/// Whether the piece holds every sample of `run` (at its parameter) and every midpoint
-/// between two samples (at the mean parameter) within `tol`: the distances measured to points
-/// of the piece, so at least the distances to the piece itself.
-fn within(piece: &QuadPiece, run: &[Uv], t: &[f64], tol: UvTolerance) -> bool {
+/// Whether the piece holds every sample of `run` (at its parameter) and the curve's point
+/// between two samples (`mids`, at the mean parameter) within `tol`: the distances measured
+/// to points of the piece, so at least the distances to the piece itself.
+fn within(piece: &QuadPiece, run: &[Uv], mids: &[Uv], t: &[f64], tol: UvTolerance) -> bool {
     let at_samples = run
         .iter()
         .zip(t)
         .all(|(p, &t)| tol.scaled(piece.eval(t) - *p) <= 1.0);
     at_samples
-        && run.windows(2).zip(t.windows(2)).all(|(p, t)| {
-            let mid = 0.5 * (p[0] + p[1]);
-            tol.scaled(piece.eval(0.5 * (t[0] + t[1])) - mid) <= 1.0
-        })
+        && mids
+            .iter()
+            .zip(t.windows(2))
+            .all(|(mid, t)| tol.scaled(piece.eval(0.5 * (t[0] + t[1])) - *mid) <= 1.0)
 }
 
 #[cfg(test)]

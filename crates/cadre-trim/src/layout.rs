@@ -10,19 +10,23 @@
 //! a payload in bits 0–27 (a split's first child, relative to the face's first node; a
 //! constant's value; a piece, relative to the face's first piece; a two-piece record's offset
 //! in `floats`; an [`KIND_ALL`] root's piece count). A piece is its three control points
-//! from its offset, [`PIECE_FLOATS`] floats — two, its ends, where it is straight
-//! ([`PIECE_LINE`]: its control point is the chord's middle, 62 % of the corpus' pieces) — and
-//! a piece that starts where the one before it ends (bit for bit, in `f32`: the pieces of a
-//! loop, in order) shares that point, so a loop of n curved pieces takes 2n + 1 points, not
-//! 3n. Its implicit form is worked out from the points where it is read (a 2 × 2 solve), not
-//! stored, and its offset word in `piece_offsets` carries whether it is straight and whether
-//! its form's sign is turned over ([`PIECE_NEGATIVE`]).
+//! from its offset — two, its ends, where it is straight ([`PIECE_LINE`]: its control point
+//! is the chord's middle, 62 % of the corpus' pieces) — and a piece that starts where the one
+//! before it ends (bit for bit: the pieces of a loop, in order) shares that point, so a loop
+//! of n curved pieces takes 2n + 1 points, not 3n. A point is one word where the face's tree
+//! was built on its grid ([`PIECE_ON_GRID`]: its u and v indices on the root cell's 2¹⁶ × 2¹⁶
+//! grid, the point `f32(k) · size / 2¹⁶`, computed alike on the CPU and the GPU — the corpus'
+//! trees take 33 B a trim curve at 0.1 mm and 48 B at 0.01 mm so, against 42 B and 54 B with
+//! every point in two `f32`), else two face-local `f32`. Its implicit form is worked out from
+//! the points where it is read (a 2 × 2 solve), not stored, and its offset word in
+//! `piece_offsets` carries whether it is straight, whether its form's sign is turned over
+//! ([`PIECE_NEGATIVE`]) and whether it is on the grid.
 //! A two-piece record is the line (nx, ny, d) and the two pieces' indices as `f32` bits. A
 //! fallback leaf's payload is its record's offset in `lists`: a word of its piece count with
 //! its corner's answer in bit 31 ([`LIST_CORNER`]), then its pieces.
 
 use crate::Uv;
-use crate::quadtree::{GENERIC, Leaf, Node, TrimTree};
+use crate::quadtree::{GENERIC, Leaf, Node, TrimTree, grid_index, grid_step};
 
 /// Node kinds (bits 29–31).
 pub const KIND_SPLIT: u32 = 0;
@@ -41,7 +45,7 @@ pub const KIND_ALL: u32 = 5;
 pub const COVERAGE: u32 = 1 << 28;
 /// The payload's mask.
 pub const PAYLOAD: u32 = (1 << 28) - 1;
-/// Floats per piece: its control points.
+/// Most floats (or words) a piece's control points take: three points of two `f32`.
 pub const PIECE_FLOATS: usize = 6;
 /// A piece's offset word: straight (its form is the signed distance to its chord).
 pub const PIECE_LINE: u32 = 1 << 31;
@@ -49,8 +53,12 @@ pub const PIECE_LINE: u32 = 1 << 31;
 /// the side of the parabola away from the control point), decided once in `f64` rather than
 /// from the `f32` determinant where the form is read.
 pub const PIECE_NEGATIVE: u32 = 1 << 30;
+/// A piece's offset word: its points are one word each, indices on its face's grid
+/// ([`crate::quadtree::TrimTree::build_on_grid`]: u in the low 16 bits, v in the high; the
+/// face-local point is `f32(index) * size / 2¹⁶`), not two `f32`.
+pub const PIECE_ON_GRID: u32 = 1 << 29;
 /// A piece's offset word: the offset itself.
-pub const PIECE_OFFSET: u32 = (1 << 30) - 1;
+pub const PIECE_OFFSET: u32 = (1 << 29) - 1;
 /// A fallback record's first word: the corner's answer (the count in the other bits).
 pub const LIST_CORNER: u32 = 1 << 31;
 /// Words per face record on the GPU ([`TrimBuffers::face_words`]).
@@ -81,7 +89,9 @@ pub struct TrimBuffers {
     pub faces: Vec<FaceRecord>,
     /// Nodes, a word each.
     pub nodes: Vec<u32>,
-    /// Pieces ([`PIECE_FLOATS`] each, from 0) and two-piece records, interleaved as added.
+    /// Pieces' control points (at most [`PIECE_FLOATS`] each, from 0; a point on its face's
+    /// grid is one word, its indices as `f32` bits) and two-piece records, interleaved as
+    /// added.
     pub floats: Vec<f32>,
     /// Offset of each piece's record in `floats`, by piece index.
     pub piece_offsets: Vec<u32>,
@@ -131,36 +141,45 @@ impl TrimBuffers {
         fits(self.floats.len() + tree.pieces.len() * PIECE_FLOATS + tree.nodes.len() * 5)?;
         // Where the last point written starts, if this face wrote one.
         let mut last: Option<usize> = None;
+        let step = [grid_step(record.size[0]), grid_step(record.size[1])];
+        // A point's words: one on the grid (its indices, u low), else two `f32`.
+        let words = |p: Uv| -> ([f32; 2], usize) {
+            let l = p - origin;
+            if tree.on_grid {
+                let k = grid_index(l, step);
+                ([f32::from_bits(k[0] | k[1] << 16), 0.0], 1)
+            } else {
+                ([l.x as f32, l.y as f32], 2)
+            }
+        };
         for (piece, form) in tree.pieces.iter().zip(&tree.forms) {
-            let local = piece.p.map(|p| {
-                let l = p - origin;
-                [l.x as f32, l.y as f32]
-            });
-            let shared = last.filter(|&at| {
-                self.floats[at].to_bits() == local[0][0].to_bits()
-                    && self.floats[at + 1].to_bits() == local[0][1].to_bits()
-            });
+            let (start, n) = words(piece.p[0]);
+            let shared = last
+                .filter(|&at| (0..n).all(|i| self.floats[at + i].to_bits() == start[i].to_bits()));
             let at = match shared {
                 Some(at) => at,
                 None => {
-                    self.floats.extend(local[0]);
-                    self.floats.len() - 2
+                    self.floats.extend_from_slice(&start[..n]);
+                    self.floats.len() - n
                 }
             };
             if at as u64 > u64::from(PIECE_OFFSET) {
                 return Err(LayoutError::TooLarge(at));
             }
             if !form.line {
-                self.floats.extend(local[1]);
+                self.floats.extend_from_slice(&words(piece.p[1]).0[..n]);
             }
-            self.floats.extend(local[2]);
-            last = Some(self.floats.len() - 2);
+            self.floats.extend_from_slice(&words(piece.p[2]).0[..n]);
+            last = Some(self.floats.len() - n);
             let mut word = at as u32;
             if form.line {
                 word |= PIECE_LINE;
             }
             if form.sign < 0.0 {
                 word |= PIECE_NEGATIVE;
+            }
+            if tree.on_grid {
+                word |= PIECE_ON_GRID;
             }
             self.piece_offsets.push(word);
         }
@@ -252,6 +271,18 @@ impl TrimBuffers {
     pub fn bytes(&self) -> usize {
         4 * (self.nodes.len() + self.floats.len() + self.piece_offsets.len() + self.lists.len())
             + 4 * FACE_WORDS * self.faces.len()
+    }
+
+    /// [`TrimBuffers::bytes`] by buffer: nodes, floats (control points and two-piece
+    /// records), pieces' offset words, fallback records, face records.
+    pub fn bytes_by_buffer(&self) -> [(&'static str, usize); 5] {
+        [
+            ("nodes", 4 * self.nodes.len()),
+            ("floats", 4 * self.floats.len()),
+            ("piece_offsets", 4 * self.piece_offsets.len()),
+            ("lists", 4 * self.lists.len()),
+            ("faces", 4 * FACE_WORDS * self.faces.len()),
+        ]
     }
 
     /// What the tree of face `face` says of the face-local cell `lo`..`hi` as a whole (as
@@ -577,7 +608,20 @@ impl TrimBuffers {
     fn piece_points(&self, f: FaceRecord, k: u32) -> (u32, [f32; PIECE_FLOATS]) {
         let word = self.piece_offsets[(f.pieces + k) as usize];
         let at = (word & PIECE_OFFSET) as usize;
-        let c = &self.floats[at..];
+        let unpacked: [f32; PIECE_FLOATS];
+        let c: &[f32] = if word & PIECE_ON_GRID != 0 {
+            // As `trim_grid_point` in trim.wgsl.
+            let step = [grid_step(f.size[0]), grid_step(f.size[1])];
+            let point = |i: usize| {
+                let w = self.floats.get(at + i).map_or(0, |x| x.to_bits());
+                [(w & 0xffff) as f32 * step[0], (w >> 16) as f32 * step[1]]
+            };
+            let (a, b, c) = (point(0), point(1), point(2));
+            unpacked = [a[0], a[1], b[0], b[1], c[0], c[1]];
+            &unpacked
+        } else {
+            &self.floats[at..]
+        };
         if word & PIECE_LINE != 0 {
             let mid = [0.5 * (c[0] + c[2]), 0.5 * (c[1] + c[3])];
             (word, [c[0], c[1], mid[0], mid[1], c[2], c[3]])

@@ -36,6 +36,8 @@ pub struct TrimStats {
     pub capped_leaves: usize,
     /// Faces whose tree is its root alone ([`crate::Leaf::All`]).
     pub root_only_faces: usize,
+    /// Faces whose points are on their grid (a word a point, [`TrimTree::build_on_grid`]).
+    pub grid_faces: usize,
     /// Bytes of the packed trees.
     pub bytes: usize,
 }
@@ -55,8 +57,18 @@ pub struct ModelTrees {
     pub stats: TrimStats,
 }
 
+/// Share of the tolerance the fitted pieces take (`fit_points` checks them against the
+/// curve's samples and its estimated points between samples, not the polyline).
+pub const FIT_SHARE: f64 = 0.75;
+/// Share of the tolerance the grid's step may take (a point moves by at most a step onto
+/// it; `TrimTree::build_on_grid`): with [`FIT_SHARE`], within 0.75 + 0.1·√2 ≈ 0.9 of the
+/// tolerance at the checked points, the rest left for between them.
+pub const GRID_SHARE: f64 = 0.1;
+
 /// The trees of every face of `model`, within `eps` model units of the exact trims: the
-/// edges are sampled to `eps / 2` and the loops fitted within `eps / 2` on the surface.
+/// edges are sampled to `eps / 2` (their points lie on the curves), the loops fitted within
+/// [`FIT_SHARE`] of `eps` on the surface, and the pieces' points moved onto a 2¹⁶ grid of
+/// the face's (u, v) box where its step is within [`GRID_SHARE`] of `eps` (one word a point).
 pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
     let half = 0.5 * eps;
     let params = MeshParams {
@@ -83,10 +95,18 @@ pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
             if curves == 0 {
                 return Err("no trim loop".to_string());
             }
-            let uv_tol = uv_tolerance(surface, loops.iter().flatten(), half);
+            let uv_tol = uv_tolerance(surface, loops.iter().flatten(), FIT_SHARE * eps);
+            let grid_tol = UvTolerance {
+                u: uv_tol.u * GRID_SHARE / FIT_SHARE,
+                v: uv_tol.v * GRID_SHARE / FIT_SHARE,
+            };
             let runs = closed_runs(loops, uv_tol);
             let pieces: Vec<QuadPiece> = runs.iter().flat_map(|r| fit_points(r, uv_tol)).collect();
-            Ok((TrimTree::build(&pieces), curves, uv_tol))
+            Ok((
+                TrimTree::build_on_grid(&pieces, Some(grid_tol)),
+                curves,
+                uv_tol,
+            ))
         })
         .collect();
     let mut out = ModelTrees {
@@ -110,6 +130,7 @@ pub fn model_trees(model: &Model, eps: f64) -> ModelTrees {
                     s.fallback_leaves += fallback;
                     s.fallback_faces += usize::from(fallback > 0);
                     s.capped_leaves += tree.capped_leaves();
+                    s.grid_faces += usize::from(tree.on_grid);
                     s.root_only_faces += usize::from(matches!(
                         tree.nodes[0],
                         crate::Node::Leaf {

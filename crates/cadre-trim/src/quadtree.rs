@@ -111,6 +111,43 @@ pub struct TrimTree {
     pub nodes: Vec<Node>,
     /// The fallback leaves' pieces.
     pub lists: Vec<u32>,
+    /// Whether every control point lies on the root's 2¹⁶ × 2¹⁶ grid ([`TrimTree::grid_point`]
+    /// for each index): the layout then packs a point into one word ([`crate::layout`]).
+    pub on_grid: bool,
+}
+
+/// Steps of the grid of [`TrimTree::build_on_grid`] along each axis of the root cell.
+pub const GRID_STEPS: u32 = 1 << 16;
+
+/// The root cell's size as the layout and the GPU hold it (`f32`).
+pub fn grid_size(bounds: (Uv, Uv)) -> [f32; 2] {
+    let size = bounds.1 - bounds.0;
+    [size.x as f32, size.y as f32]
+}
+
+/// The grid's step along an axis of root size `size`: `size / 2¹⁶`, exact in `f32`, so that
+/// the GPU's `f32(k) * step` is the CPU's bit for bit.
+pub fn grid_step(size: f32) -> f32 {
+    size * (1.0 / GRID_STEPS as f32)
+}
+
+/// The grid point nearest the root-local point `local` (clamped to the grid: the last step
+/// stops short of the root's upper edge).
+pub fn grid_index(local: Uv, step: [f32; 2]) -> [u32; 2] {
+    let index = |x: f64, s: f32| {
+        (x / f64::from(s))
+            .round()
+            .clamp(0.0, f64::from(GRID_STEPS - 1)) as u32
+    };
+    [index(local.x, step[0]), index(local.y, step[1])]
+}
+
+/// The root-local position of grid point `k`, as the GPU computes it (`f32(k) * step`).
+pub fn grid_local(k: [u32; 2], step: [f32; 2]) -> Uv {
+    Uv::new(
+        f64::from(k[0] as f32 * step[0]),
+        f64::from(k[1] as f32 * step[1]),
+    )
 }
 
 impl TrimTree {
@@ -118,9 +155,21 @@ impl TrimTree {
     /// outer loops counter-clockwise, holes clockwise; the face is what they enclose by the
     /// even-odd rule). Pieces are cut into monotone parts first.
     pub fn build(pieces: &[QuadPiece]) -> TrimTree {
+        Self::build_on_grid(pieces, None)
+    }
+
+    /// [`TrimTree::build`], with every control point moved onto the root cell's grid of
+    /// [`GRID_STEPS`] steps a side when that step is within `step_within` (u, v) of a point
+    /// (a point moves by at most a step): the layout then packs each point into one 32-bit
+    /// word, half the bytes of two `f32`. Snapping keeps a piece monotone (rounding keeps
+    /// order) and consecutive pieces joined (a joint snaps once); a piece it shrinks to a
+    /// point is dropped, one it straightens becomes a line ([`Implicit::of`]).
+    pub fn build_on_grid(
+        pieces: &[QuadPiece],
+        step_within: Option<crate::UvTolerance>,
+    ) -> TrimTree {
         let mut pieces: Vec<QuadPiece> = pieces.iter().flat_map(|p| p.monotone_parts()).collect();
         close_joints(&mut pieces);
-        let forms = pieces.iter().map(QuadPiece::implicit).collect();
         let (mut lo, mut hi) = (Uv::splat(f64::INFINITY), Uv::splat(f64::NEG_INFINITY));
         for p in &pieces {
             let (a, b) = p.bounds();
@@ -132,10 +181,32 @@ impl TrimTree {
         }
         // A margin so that no piece runs along the root's border.
         let pad = 1e-6 * (hi - lo).max_element().max(1e-9);
+        let bounds = (lo - pad, hi + pad);
+        let size = grid_size(bounds);
+        let step = [grid_step(size[0]), grid_step(size[1])];
+        let on_grid = !pieces.is_empty()
+            && step_within.is_some_and(|t| {
+                f64::from(step[0]) <= t.u
+                    && f64::from(step[1]) <= t.v
+                    && step[0] > 0.0
+                    && step[1] > 0.0
+            });
+        if on_grid {
+            let snap = |p: Uv| {
+                let k = grid_index(p - bounds.0, step);
+                bounds.0 + grid_local(k, step)
+            };
+            for piece in &mut pieces {
+                piece.p = piece.p.map(snap);
+            }
+            pieces.retain(|piece| piece.p[0] != piece.p[2]);
+        }
+        let forms = pieces.iter().map(QuadPiece::implicit).collect();
         let mut tree = TrimTree {
             pieces,
             forms,
-            bounds: (lo - pad, hi + pad),
+            on_grid,
+            bounds,
             nodes: vec![Node::Leaf {
                 leaf: Leaf::Constant(false),
                 coverage: false,

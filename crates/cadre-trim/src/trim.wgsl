@@ -25,10 +25,12 @@ const TRIM_COVERAGE: u32 = 0x10000000u;
 // Depth cap (`quadtree::MAX_DEPTH`) plus the root.
 const TRIM_MAX_STEPS: u32 = 14u;
 
-// The offset word of a piece (`cadre_trim::layout`): straight, sign turned over, offset.
+// The offset word of a piece (`cadre_trim::layout`): straight, sign turned over, points on
+// the face's grid (a word each), offset.
 const TRIM_PIECE_LINE: u32 = 0x80000000u;
 const TRIM_PIECE_NEGATIVE: u32 = 0x40000000u;
-const TRIM_PIECE_OFFSET: u32 = 0x3fffffffu;
+const TRIM_PIECE_ON_GRID: u32 = 0x20000000u;
+const TRIM_PIECE_OFFSET: u32 = 0x1fffffffu;
 // A fallback record's first word: its corner's answer in bit 31, its piece count below.
 const TRIM_LIST_CORNER: u32 = 0x80000000u;
 
@@ -40,11 +42,28 @@ struct TrimPiece {
     word: u32,
 }
 
+// The face-local point packed in the word at `at` of a piece on `f`'s grid: its indices (u in
+// the low 16 bits) times the grid's step, size / 2^16 (exact), so that the product is the
+// CPU's bit for bit.
+fn trim_grid_point(f: TrimFace, at: u32) -> vec2<f32> {
+    let w = bitcast<u32>(trim_floats[at]);
+    let step = f.size * (1.0 / 65536.0);
+    return vec2<f32>(f32(w & 0xffffu) * step.x, f32(w >> 16u) * step.y);
+}
+
 // Piece `k` of `f`: a straight piece stores its ends alone, its control point is their middle
 // (`TrimBuffers::piece_points` is the CPU twin).
 fn trim_piece(f: TrimFace, k: u32) -> TrimPiece {
     let word = trim_piece_offsets[f.pieces + k];
     let at = word & TRIM_PIECE_OFFSET;
+    if (word & TRIM_PIECE_ON_GRID) != 0u {
+        let c0 = trim_grid_point(f, at);
+        let next = trim_grid_point(f, at + 1u);
+        if (word & TRIM_PIECE_LINE) != 0u {
+            return TrimPiece(c0, 0.5 * (c0 + next), next, word);
+        }
+        return TrimPiece(c0, next, trim_grid_point(f, at + 2u), word);
+    }
     let c0 = vec2<f32>(trim_floats[at], trim_floats[at + 1u]);
     let next = vec2<f32>(trim_floats[at + 2u], trim_floats[at + 3u]);
     if (word & TRIM_PIECE_LINE) != 0u {

@@ -147,6 +147,42 @@ proptest! {
         }
     }
 
+    /// The pieces follow the curve, not the polyline through its samples: every point of an
+    /// elliptic arc (eight between each two samples) lies within 1.15 tolerances of them
+    /// where the samples' chords sag by up to 2/3 of the tolerance (as `model_trees` samples
+    /// its edges: to ε/2, against a fit within 0.75 ε). Negative control: the pieces moved
+    /// by two tolerances along u are farther.
+    #[test]
+    fn fitted_pieces_follow_the_curve_between_samples(
+        c in uv(),
+        rx in 0.05..5.0f64,
+        ry in 0.05..5.0f64,
+        rot in 0.0..std::f64::consts::TAU,
+        start in 0.0..std::f64::consts::TAU,
+        sweep in 0.1..6.2f64,
+        tol in (-4.0..-2.0f64, -4.0..-2.0f64),
+    ) {
+        let tol = UvTolerance { u: 10f64.powf(tol.0), v: 10f64.powf(tol.1) };
+        // Samples about as dense as a sag of 0.6 tolerance asks.
+        let reach = rx.max(ry) / tol.u.min(tol.v);
+        let n = ((sweep * (reach / 4.8).sqrt()).ceil() as usize).clamp(8, 20_000);
+        let points = ellipse_arc(c, Uv::new(rx, ry), rot, start, sweep, n);
+        let dense = ellipse_arc(c, Uv::new(rx, ry), rot, start, sweep, 8 * n);
+        let sag = (0..n)
+            .map(|k| tol.scaled(dense[8 * k + 4] - 0.5 * (points[k] + points[k + 1])))
+            .fold(0.0, f64::max);
+        prop_assume!(sag <= 2.0 / 3.0);
+        let pieces = fit_points(&points, tol);
+        let worst = dense.iter().map(|p| distance(&pieces, *p, tol)).fold(0.0, f64::max);
+        prop_assert!(worst <= 1.15, "the curve lies {} tolerances from its pieces (sag {})", worst, sag);
+        let moved: Vec<QuadPiece> = pieces
+            .iter()
+            .map(|q| QuadPiece { p: q.p.map(|p| p + Uv::new(2.0 * tol.u, 0.0)) })
+            .collect();
+        let moved_worst = dense.iter().map(|p| distance(&moved, *p, tol)).fold(0.0, f64::max);
+        prop_assert!(moved_worst > 1.15, "moved pieces still within {}", moved_worst);
+    }
+
     #[test]
     fn implicit_forms_tell_left_from_right(
         p0 in uv(), p1 in uv(), p2 in uv(),

@@ -9,6 +9,7 @@ mod common;
 
 use cadre_trim::layout::{KIND_CONSTANT, PAYLOAD, PIECE_LINE, PIECE_NEGATIVE, PIECE_OFFSET};
 use cadre_trim::quadtree::{Leaf, Node};
+use cadre_trim::quadtree::{grid_size, grid_step};
 use cadre_trim::{CellClass, QuadPiece, TrimBuffers, TrimTree, Uv, UvTolerance, fit_points};
 use common::{even_odd, to_boundary};
 use proptest::prelude::*;
@@ -138,6 +139,7 @@ proptest! {
         stretch in (0.3..8.0f64, 0.1..3.0f64),
         tol_exp in (-5.0..-3.0f64, -5.0..-3.0f64),
         queries in prop::collection::vec((0.0..1.0f64, 0.0..1.0f64), 300),
+        grid in any::<bool>(),
     ) {
         let stretch = Uv::new(stretch.0, stretch.1);
         let tol = UvTolerance {
@@ -145,7 +147,12 @@ proptest! {
             v: stretch.y * 10f64.powf(tol_exp.1),
         };
         let f = face(&radii, (angle, &holes), stretch);
-        let tree = TrimTree::build(&pieces(&f, tol));
+        // Half the faces with their points on the grid where its step is within the
+        // tolerance (they then move by up to a tolerance: the points checked are 4 away).
+        let tree = TrimTree::build_on_grid(&pieces(&f, tol), grid.then_some(tol));
+        let size = grid_size(tree.bounds);
+        let fine = f64::from(grid_step(size[0])) <= tol.u && f64::from(grid_step(size[1])) <= tol.v;
+        prop_assert_eq!(tree.on_grid, grid && fine);
         // Packed after another face, so that its records start past 0.
         let mut buffers = TrimBuffers::default();
         buffers.push(&TrimTree::build(&pieces(&face(&[0.5; 4], (0.0, &[]), Uv::ONE), tol))).unwrap();
@@ -197,10 +204,21 @@ proptest! {
         let mut moved = buffers.clone();
         let offsets = &buffers.piece_offsets[record.pieces as usize..(record.pieces + record.piece_count) as usize];
         let first_float = (offsets[0] & PIECE_OFFSET) as usize;
-        let end = offsets.iter().map(|w| (w & PIECE_OFFSET) as usize + if w & PIECE_LINE != 0 { 4 } else { 6 }).max().unwrap_or(first_float);
+        // A point is a word on the grid, two floats off it.
+        let point_words = if tree.on_grid { 1 } else { 2 };
+        let end = offsets
+            .iter()
+            .map(|w| (w & PIECE_OFFSET) as usize + point_words * if w & PIECE_LINE != 0 { 2 } else { 3 })
+            .max()
+            .unwrap_or(first_float);
         let size = record.size;
         for (k, x) in moved.floats[first_float..end].iter_mut().enumerate() {
-            *x += 4.0 * size[k % 2];
+            if tree.on_grid {
+                // Every point to the grid's last corner: no piece is crossed.
+                *x = f32::from_bits(u32::MAX);
+            } else {
+                *x += 4.0 * size[k % 2];
+            }
         }
         let on: Vec<&&Uv> = inside.iter().filter(|p| tree.classify(***p)).collect();
         let lost = on.iter().filter(|p| !moved.classify(at, ****p)).count();

@@ -254,7 +254,14 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
         "fallback_leaves": s.fallback_leaves,
         "capped_leaves": s.capped_leaves,
         "root_only_faces": s.root_only_faces,
+        "grid_faces": s.grid_faces,
         "bytes": s.bytes,
+        "bytes_by_buffer": trees
+            .buffers
+            .bytes_by_buffer()
+            .into_iter()
+            .map(|(name, bytes)| (name.to_string(), json!(bytes)))
+            .collect::<serde_json::Map<_, _>>(),
         "bytes_per_curve": per(s.curves),
         "bytes_per_face": per(s.built),
         "trim_seconds": trim_s,
