@@ -75,6 +75,20 @@ fn uv() -> impl Strategy<Value = Uv> {
     (-10.0..10.0f64, -10.0..10.0f64).prop_map(|(u, v)| Uv::new(u, v))
 }
 
+/// An elliptic arc: centre, radii, rotation, start and sweep.
+fn arc() -> impl Strategy<Value = (Uv, Uv, f64, f64, f64)> {
+    use std::f64::consts::TAU;
+    (
+        uv(),
+        0.05..5.0f64,
+        0.05..5.0f64,
+        0.0..TAU,
+        0.0..TAU,
+        0.1..6.2f64,
+    )
+        .prop_map(|(c, rx, ry, rot, start, sweep)| (c, Uv::new(rx, ry), rot, start, sweep))
+}
+
 fn tolerance() -> impl Strategy<Value = UvTolerance> {
     (-5.0..-2.0f64, -5.0..-2.0f64).prop_map(|(u, v)| UvTolerance {
         u: 10f64.powf(u),
@@ -104,16 +118,11 @@ proptest! {
 
     #[test]
     fn fitted_arcs_stay_within_tolerance(
-        c in uv(),
-        rx in 0.05..5.0f64,
-        ry in 0.05..5.0f64,
-        rot in 0.0..std::f64::consts::TAU,
-        start in 0.0..std::f64::consts::TAU,
-        sweep in 0.1..6.2f64,
+        (c, r, rot, start, sweep) in arc(),
         n in 40usize..600,
         tol in tolerance(),
     ) {
-        let points = ellipse_arc(c, Uv::new(rx, ry), rot, start, sweep, n);
+        let points = ellipse_arc(c, r, rot, start, sweep, n);
         check_fit(&points, tol)?;
     }
 
@@ -154,20 +163,15 @@ proptest! {
     /// by two tolerances along u are farther.
     #[test]
     fn fitted_pieces_follow_the_curve_between_samples(
-        c in uv(),
-        rx in 0.05..5.0f64,
-        ry in 0.05..5.0f64,
-        rot in 0.0..std::f64::consts::TAU,
-        start in 0.0..std::f64::consts::TAU,
-        sweep in 0.1..6.2f64,
+        (c, r, rot, start, sweep) in arc(),
         tol in (-4.0..-2.0f64, -4.0..-2.0f64),
     ) {
         let tol = UvTolerance { u: 10f64.powf(tol.0), v: 10f64.powf(tol.1) };
         // Samples about as dense as a sag of 0.6 tolerance asks.
-        let reach = rx.max(ry) / tol.u.min(tol.v);
+        let reach = r.max_element() / tol.u.min(tol.v);
         let n = ((sweep * (reach / 4.8).sqrt()).ceil() as usize).clamp(8, 20_000);
-        let points = ellipse_arc(c, Uv::new(rx, ry), rot, start, sweep, n);
-        let dense = ellipse_arc(c, Uv::new(rx, ry), rot, start, sweep, 8 * n);
+        let points = ellipse_arc(c, r, rot, start, sweep, n);
+        let dense = ellipse_arc(c, r, rot, start, sweep, 8 * n);
         let sag = (0..n)
             .map(|k| tol.scaled(dense[8 * k + 4] - 0.5 * (points[k] + points[k + 1])))
             .fold(0.0, f64::max);

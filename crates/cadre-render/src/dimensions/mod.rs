@@ -80,12 +80,17 @@ impl DimensionFile {
                 });
             }
         };
-        serde_json::from_str(&text)
+        Self::parse(&text)
             .map(Some)
             .map_err(|source| DimensionFileError::Format {
                 path: path.to_path_buf(),
                 source,
             })
+    }
+
+    /// Reads a dimension file's text (the error names its line and column).
+    pub fn parse(text: &str) -> Result<DimensionFile, serde_json::Error> {
+        serde_json::from_str(text)
     }
 
     /// Writes `path` (removing it when there is no dimension left).

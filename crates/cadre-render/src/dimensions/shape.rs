@@ -54,7 +54,7 @@ pub fn shape(kind: &str, points: &[[f64; 3]]) -> Shape {
     if points.iter().any(|p| !p.is_finite()) {
         return Shape::default();
     }
-    match (kind, &points[..]) {
+    let shape = match (kind, &points[..]) {
         ("radius", [centre, at, rest @ ..]) => radius(*centre, *at, rest.first().copied()),
         ("angle", [vertex, a, b]) => angle(*vertex, *a, *b),
         ("length", path) if path.len() >= 2 => along(path),
@@ -64,7 +64,18 @@ pub fn shape(kind: &str, points: &[[f64; 3]]) -> Shape {
             ..Shape::default()
         },
         _ => Shape::default(),
-    }
+    };
+    // Finite points far apart (10²³⁶ mm, as a corrupt file may hold) still overflow a length
+    // or a direction: such a dimension draws nothing rather than lines to infinity.
+    let finite = shape.lines.iter().flatten().all(|p| p.is_finite())
+        && shape.arrows.iter().all(|a| {
+            a.tip.is_finite()
+                && a.pointing.is_finite()
+                && a.side.is_finite()
+                && a.length.is_finite()
+        })
+        && shape.label_at.is_none_or(|p| p.is_finite());
+    if finite { shape } else { Shape::default() }
 }
 
 /// A unit vector across `along` (unit): in the plane normal to `normal` when that is given
@@ -343,7 +354,31 @@ mod tests {
         );
         assert_eq!(shape("radius", &[]), Shape::default());
         assert_eq!(shape("distance", &[[1.0; 3]]), Shape::default());
+        // Finite points whose lengths overflow (found by the `dimension_file` fuzz target: a
+        // length along points 10²³⁶ apart got an infinite arrowhead).
+        let far = [
+            [1.0, 0.0, 0.0],
+            [1.4e236, 0.0, 0.0],
+            [-1.5e300, 0.0, 0.0],
+            [0.0, 1e300, 1.0],
+        ];
+        for kind in ["length", "distance", "radius", "angle"] {
+            let s = shape(kind, &far[..if kind == "angle" { 3 } else { 4 }]);
+            assert!(s.lines.iter().flatten().all(|p| p.is_finite()), "{kind}");
+            assert!(
+                s.arrows
+                    .iter()
+                    .all(|a| a.length.is_finite() && a.tip.is_finite()),
+                "{kind}"
+            );
+        }
+        assert_eq!(shape("length", &far), Shape::default());
         // Negative control: the same kinds with good points draw.
         assert!(!shape("distance", &[[0.0; 3], [1.0; 3]]).lines.is_empty());
+        assert!(
+            !shape("length", &[[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]])
+                .lines
+                .is_empty()
+        );
     }
 }
