@@ -111,8 +111,8 @@ pub struct TrimTree {
     pub nodes: Vec<Node>,
     /// The fallback leaves' pieces.
     pub lists: Vec<u32>,
-    /// Whether every control point lies on the root's 2¹⁶ × 2¹⁶ grid ([`TrimTree::grid_point`]
-    /// for each index): the layout then packs a point into one word ([`crate::layout`]).
+    /// Whether every control point lies on the root's 2¹⁶ × 2¹⁶ grid (at [`grid_local`] of
+    /// its indices): the layout then packs a point into one word ([`crate::layout`]).
     pub on_grid: bool,
 }
 
