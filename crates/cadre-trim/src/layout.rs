@@ -26,7 +26,7 @@
 //! its corner's answer in bit 31 ([`LIST_CORNER`]), then its pieces.
 
 use crate::Uv;
-use crate::quadtree::{GENERIC, Leaf, Node, TrimTree, grid_index, grid_step};
+use crate::quadtree::{GENERIC, Leaf, Node, TrimTree, grid_index, grid_point, grid_step};
 
 /// Node kinds (bits 29–31).
 pub const KIND_SPLIT: u32 = 0;
@@ -269,8 +269,7 @@ impl TrimBuffers {
     /// Bytes of the trees as the GPU holds them: nodes, floats, pieces' offset words,
     /// fallback records and the face records.
     pub fn bytes(&self) -> usize {
-        4 * (self.nodes.len() + self.floats.len() + self.piece_offsets.len() + self.lists.len())
-            + 4 * FACE_WORDS * self.faces.len()
+        self.bytes_by_buffer().iter().map(|(_, bytes)| bytes).sum()
     }
 
     /// [`TrimBuffers::bytes`] by buffer: nodes, floats (control points and two-piece
@@ -614,7 +613,7 @@ impl TrimBuffers {
             let step = [grid_step(f.size[0]), grid_step(f.size[1])];
             let point = |i: usize| {
                 let w = self.floats.get(at + i).map_or(0, |x| x.to_bits());
-                [(w & 0xffff) as f32 * step[0], (w >> 16) as f32 * step[1]]
+                grid_point([w & 0xffff, w >> 16], step)
             };
             let (a, b, c) = (point(0), point(1), point(2));
             unpacked = [a[0], a[1], b[0], b[1], c[0], c[1]];

@@ -142,12 +142,16 @@ pub fn grid_index(local: Uv, step: [f32; 2]) -> [u32; 2] {
     [index(local.x, step[0]), index(local.y, step[1])]
 }
 
-/// The root-local position of grid point `k`, as the GPU computes it (`f32(k) * step`).
+/// The root-local position of grid point `k` in `f32`, as the GPU computes it
+/// (`f32(k) * step`, `trim_grid_point` in trim.wgsl).
+pub fn grid_point(k: [u32; 2], step: [f32; 2]) -> [f32; 2] {
+    [k[0] as f32 * step[0], k[1] as f32 * step[1]]
+}
+
+/// [`grid_point`] in `f64`, where the tree's pieces are moved to.
 pub fn grid_local(k: [u32; 2], step: [f32; 2]) -> Uv {
-    Uv::new(
-        f64::from(k[0] as f32 * step[0]),
-        f64::from(k[1] as f32 * step[1]),
-    )
+    let [u, v] = grid_point(k, step);
+    Uv::new(f64::from(u), f64::from(v))
 }
 
 impl TrimTree {
