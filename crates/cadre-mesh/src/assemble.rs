@@ -142,9 +142,18 @@ impl Builder<'_> {
                 } else {
                     uv.y = 0.5 * (others[0].y + others[1].y);
                 }
+                // The normal there too, where the surface has one per value of the free
+                // parameter: a cone's apex has one per ruling, and the point's own (the
+                // convention's ruling) faced the other way from the triangles across the
+                // apex, shading them as the cone's far side.
+                let other = t[(k + 1) % 3] as usize;
+                let normal = corner_normal(surface, uv, &fm.points[other])
+                    .map_or(out.normals[base as usize + i], |n| {
+                        (n * sign).as_vec3().to_array()
+                    });
                 corners[k] = out.positions.len() as u32;
                 out.positions.push(out.positions[base as usize + i]);
-                out.normals.push(out.normals[base as usize + i]);
+                out.normals.push(normal);
                 out.surface_uv.push(uv.as_vec2().to_array());
             }
             triangles.push(corners);
@@ -329,6 +338,20 @@ fn singular_parameter(surface: &cadre_geom::Surface, uv: cadre_geom::Vec2) -> Op
     } else {
         None
     }
+}
+
+/// The face's normal at `uv` (a singular point's (u, v) as one triangle continues it), in
+/// the face's sense, which the mesh point `regular` of the same triangle shows (its normal
+/// against the surface's there); `None` where the surface has no normal at either.
+fn corner_normal(
+    surface: &cadre_geom::Surface,
+    uv: cadre_geom::Vec2,
+    regular: &crate::face::MeshPoint,
+) -> Option<cadre_geom::Vec3> {
+    let n = surface.normal(uv.x, uv.y)?;
+    let raw = surface.normal(regular.uv.x, regular.uv.y)?;
+    let sense = raw.dot(regular.normal);
+    (sense != 0.0).then(|| n * sense.signum())
 }
 
 /// Normals of a file's mesh: its own when given, else area-weighted vertex normals.
