@@ -563,7 +563,8 @@ pub fn closed_form_normal(s: &TrimFaceSurface, u: f64, v: f64) -> DVec3 {
     match s.kind {
         SURFACE_PLANE => z,
         SURFACE_CYLINDER => radial * a,
-        SURFACE_CONE => (radial - z * b) * sign(a + (v - s.uv_origin[1]) * b),
+        // The nappe of the box's middle: at the apex ρ is zero (either sign rounded).
+        SURFACE_CONE => (radial - z * b) * sign(a + 0.5 * s.uv_size[1] * b),
         SURFACE_SPHERE => meridian * sign(a),
         _ => meridian * sign((a + b * v.cos()) * b),
     }

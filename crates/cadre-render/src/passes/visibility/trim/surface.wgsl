@@ -124,7 +124,11 @@ fn surface_point(s: TrimSurface, local: vec2<f32>) -> SurfacePoint {
         case SURFACE_CONE: {
             let rho = a + local.y * b;
             out.position = rho * radial + local.y * z;
-            out.normal = select(1.0, -1.0, rho < 0.0) * (radial - b * z);
+            // The nappe the face lies on, from the middle of its box: at the apex row ρ
+            // rounds to either sign, and a per-point sign turned the apex's normals round
+            // (the cells about the apex were lit as the cone's inside).
+            let side = a + 0.5 * s.uv.w * b;
+            out.normal = select(1.0, -1.0, side < 0.0) * (radial - b * z);
         }
         case SURFACE_SPHERE: {
             out.position = a * (cv * radial + sv * z);
