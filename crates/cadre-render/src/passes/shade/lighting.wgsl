@@ -95,7 +95,15 @@ fn ambient(s: Surface) -> vec3<f32> {
     let a004 = min(q.x * q.x, exp2(-9.28 * nv)) * q.x + q.y;
     let ab = vec2<f32>(-1.04, 1.04) * a004 + q.zw;
     let specular = prefiltered * (f0 * ab.x + ab.y);
-    let f = fresnel_schlick(f0, nv);
+    // The light the environment's reflection takes from the diffuse term: Fresnel–Schlick
+    // with its grazing limit lowered to 1 − roughness (Fdez-Agüera 2019's roughness-aware
+    // form, as Filament and most engines weigh image-based diffuse light). A rough surface
+    // does not turn into a mirror at grazing view: with the plain form, the pixels along
+    // every silhouette (n·v near 0) lost their diffuse light and showed the ground's
+    // reflection, near-black specks one pixel wide.
+    let x = clamp(1.0 - nv, 0.0, 1.0);
+    let x2 = x * x;
+    let f = f0 + (max(vec3<f32>(1.0 - roughness), f0) - f0) * (x2 * x2 * x);
     let diffuse = (vec3<f32>(1.0) - f) * (1.0 - s.metallic) * s.base * irradiance;
     return diffuse + specular;
 }
