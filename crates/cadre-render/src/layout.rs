@@ -206,7 +206,10 @@ pub struct FrameUniform {
     pub edge_colour: [f32; 4],
     /// Hidden edge colour, linear RGBA.
     pub hidden_colour: [f32; 4],
-    /// World up in view space (the environment's zenith), w unused.
+    /// World up in view space (the environment's zenith); w 1 where tessellated surfaces
+    /// keep their raw interpolated normals across silhouettes and the trim back-end the
+    /// faces of closed solids seen from inside (the tests' negative control,
+    /// `Renderer::with_raw_silhouettes`), else 0.
     pub sky_up: [f32; 4],
     /// Number of lights, number of selected items, number of section planes (at most 3),
     /// whether trimmed edges carry their coverage (1) or not (0).

@@ -138,6 +138,11 @@ pub struct Renderer {
     /// The analytic back-end writes its proxies' depth, not the hits' (a wrong depth, for
     /// the tests' negative control).
     proxy_depth: bool,
+    /// Tessellated surfaces keep their interpolated normals where those face away from the
+    /// eye across a silhouette (texel.wgsl's `surface_facing`), and the trim back-end the
+    /// faces of closed solids seen from inside (trim.wgsl's `hidden_inside`): for the tests'
+    /// negative control.
+    raw_silhouettes: bool,
     /// Bind groups kept between frames while their resources stay.
     binds: BindCache,
     /// Per-stage GPU timings of each frame ([`Renderer::with_pass_timings`]).
@@ -176,6 +181,7 @@ impl Renderer {
             instances,
             colour: format,
             proxy_depth: false,
+            raw_silhouettes: false,
             binds: BindCache::default(),
             timer: None,
             cracks: std::sync::OnceLock::new(),
@@ -229,6 +235,18 @@ impl Renderer {
     #[doc(hidden)]
     pub fn with_proxy_depth(mut self) -> Renderer {
         self.proxy_depth = true;
+        self
+    }
+
+    /// This renderer with the tessellated surfaces' interpolated normals written as they
+    /// are where they face away from the eye while their triangle faces it (across a
+    /// silhouette), not mirrored into facing it: such pixels are lit as the far side of
+    /// the surface; and with the trim back-end drawing the faces of closed solids seen
+    /// from inside where no section asks for them (they show where the grids in front end
+    /// short of their true silhouette). Only for the tests' negative control.
+    #[doc(hidden)]
+    pub fn with_raw_silhouettes(mut self) -> Renderer {
+        self.raw_silhouettes = true;
         self
     }
 
@@ -493,6 +511,31 @@ impl Renderer {
             .collect())
     }
 
+    /// The visibility buffer's view-space unit normals at every pixel (no supersampling), row
+    /// by row, as the shade pass reads them (from their 10-bit octahedral map); meaningful
+    /// where [`Renderer::render_ids`] has a face. View space looks down −z.
+    pub fn render_normals(
+        &self,
+        gpu: &Gpu,
+        scene: &PreparedScene,
+        camera: &Camera,
+        options: &FrameOptions,
+        state: &ViewState,
+    ) -> Result<Vec<[f32; 3]>, RenderError> {
+        let frame = FrameInput {
+            scene,
+            camera,
+            options,
+            state,
+            size: (options.width, options.height),
+        };
+        let bytes = self.run(gpu, &frame, Readback::Normals, None)?;
+        Ok(bytes
+            .chunks_exact(4)
+            .map(|b| from_octahedral(u32::from_le_bytes([b[0], b[1], b[2], b[3]])))
+            .collect())
+    }
+
     /// A viewer's frame: draws the prepared scene in `state` into `target` (a window
     /// surface's texture, or any texture of the caller's, of this renderer's format and of
     /// the viewport's size; no supersampling) and submits the work. The viewport keeps the frame's visibility buffer for
@@ -595,6 +638,7 @@ impl Renderer {
         [frame.tolerances[2], frame.tolerances[3]] =
             crate::passes::cracks::tolerances(&options.cracks, scene.diagonal());
         frame.forward[3] = if options.cracks.silhouettes { 1.0 } else { 0.0 };
+        frame.sky_up[3] = if self.raw_silhouettes { 1.0 } else { 0.0 };
         // Edges carry their coverage only where faces are trimmed per pixel, or quadrics ray
         // cast.
         let coverage = options.analytic_coverage
@@ -784,6 +828,10 @@ impl Renderer {
                     None => Vec::new(),
                 }
             }
+            Readback::Normals => {
+                mark(&mut encoder, visibility_stage);
+                read_region(gpu, encoder, &targets.normal_texture, (0, 0), (w, h), 4)?
+            }
             Readback::Into(view) => {
                 if let Some(t) = timer {
                     t.mark(&mut encoder, visibility_stage);
@@ -960,6 +1008,18 @@ fn section_planes(
     (planes, normals)
 }
 
+/// The unit vector of a normal target texel (`Rgb10a2Unorm`: its octahedral map in the red
+/// and green channels), as common.wgsl's `from_octahedral` decodes it.
+fn from_octahedral(texel: u32) -> [f32; 3] {
+    let channel = |shift: u32| ((texel >> shift) & 0x3ff) as f32 / 1023.0;
+    let (fx, fy) = (2.0 * channel(0) - 1.0, 2.0 * channel(10) - 1.0);
+    let mut n = glam::Vec3::new(fx, fy, 1.0 - fx.abs() - fy.abs());
+    let t = (-n.z).max(0.0);
+    n.x += if n.x >= 0.0 { -t } else { t };
+    n.y += if n.y >= 0.0 { -t } else { t };
+    n.normalize_or_zero().to_array()
+}
+
 /// Little-endian `u32` quadruples.
 fn words4(bytes: &[u8]) -> Vec<[u32; 4]> {
     let word = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
@@ -982,6 +1042,7 @@ enum Readback<'a> {
     Colour,
     Ids,
     Uv,
+    Normals,
     Into(&'a wgpu::TextureView),
 }
 

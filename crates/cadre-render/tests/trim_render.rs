@@ -478,3 +478,98 @@ fn faces_far_from_the_origin_keep_their_precision() {
         "two pixels aside lost at most {worst_aside} of the pixels"
     );
 }
+
+/// Face pixels whose written normal faces away from the eye (orthographic views: the eye
+/// looks down −z in view space), out of the face pixels; the 10-bit octahedral map is
+/// within 0.003 of the written normal, so −0.01 leaves room for it.
+fn normals_facing_away(
+    gpu: &Gpu,
+    renderer: &Renderer,
+    scene: &RenderScene,
+    camera: &Camera,
+) -> (usize, usize) {
+    let prepared = renderer.prepare(gpu, scene);
+    let options = options(256, 192);
+    let state = cadre_render::ViewState::default();
+    let ids = renderer
+        .render_ids(gpu, &prepared, camera, &options, &state)
+        .expect("ids");
+    let normals = renderer
+        .render_normals(gpu, &prepared, camera, &options, &state)
+        .expect("normals");
+    let faces = ids.iter().filter(|id| id[1] != 0).count();
+    let away = ids
+        .iter()
+        .zip(&normals)
+        .filter(|(id, n)| id[1] != 0 && n[2] < -0.01)
+        .count();
+    (away, faces)
+}
+
+/// A tessellated curved face's triangles across its silhouette hold points whose
+/// interpolated normals lie beyond it, facing away from the eye while the triangle faces
+/// it; the shade pass turned such a normal round and lit the pixel as the far side (dark
+/// bands along a coarse mesh's silhouettes, specks along a grid's). And a grid held within
+/// half a pixel of its surface ends short of the true silhouette, where the face behind it
+/// on the same closed solid (a plane cap seen from inside, its trim exact) showed through,
+/// lit as facing the eye. On closed solids seen from outside, no back-end writes a normal
+/// facing away (the ray-cast faces' are exact, and their tessellated ones' as the trim
+/// back-end's); negative control: with the raw normals, and the faces seen from inside
+/// kept, the mesh and trim back-ends do.
+#[test]
+fn silhouette_pixels_keep_normals_facing_the_eye() {
+    let gpu = gpu();
+    let renderer = Renderer::new(&gpu).expect("pipelines");
+    let raw = Renderer::new(&gpu)
+        .expect("pipelines")
+        .with_raw_silhouettes();
+    let trims = renderer.draws_trims();
+    let cast = Renderer::new(&gpu)
+        .expect("pipelines")
+        .with_ray_cast_faces(&gpu, true);
+    let cast_raw = Renderer::new(&gpu)
+        .expect("pipelines")
+        .with_ray_cast_faces(&gpu, true)
+        .with_raw_silhouettes();
+    // Pixels facing away in the control: the meshes', the trimmed faces'.
+    let mut raw_away = (0, 0);
+    for name in [
+        "examples/pin-assembly.step",
+        "crates/cadre-render/tests/data/dome-and-cone.step",
+        "crates/cadre-render/tests/data/torus-elbow.step",
+    ] {
+        let bytes = std::fs::read(common::root().join(name)).expect("fixture reads");
+        // A coarse mesh: long triangles across the silhouettes.
+        let (model, mesh_scene) = common::model_and_scene_of(bytes, 0.5);
+        let trim_scene = mesh_scene.clone().with_trims(&model, TRIM_TOLERANCE);
+        let (lo, hi) = mesh_scene.bounds().expect("geometry");
+        for view in [ViewPreset::Iso, ViewPreset::Front, ViewPreset::Top] {
+            let camera = Camera::fit(lo, hi, view, true, 4.0 / 3.0);
+            let mut ways = vec![("mesh", &mesh_scene, (&renderer, &raw))];
+            if trims {
+                ways.push(("trim", &trim_scene, (&renderer, &raw)));
+                ways.push(("raycast", &trim_scene, (&cast, &cast_raw)));
+            }
+            for (method, scene, (renderer, raw)) in ways {
+                let (away, faces) = normals_facing_away(&gpu, renderer, scene, &camera);
+                let (control, _) = normals_facing_away(&gpu, raw, scene, &camera);
+                eprintln!("{name} {view:?} {method}: {away} of {faces} face away ({control} raw)");
+                assert!(faces > 1000, "{name} {view:?} {method}: {faces}");
+                assert_eq!(away, 0, "{name} {view:?} {method}");
+                match method {
+                    "mesh" => raw_away.0 += control,
+                    "trim" => raw_away.1 += control,
+                    _ => {}
+                }
+            }
+        }
+    }
+    assert!(
+        raw_away.0 > 0,
+        "the control's meshes face the eye: {raw_away:?}"
+    );
+    assert!(
+        !trims || raw_away.1 > 0,
+        "the control's grids face the eye: {raw_away:?}"
+    );
+}

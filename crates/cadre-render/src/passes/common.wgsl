@@ -246,6 +246,8 @@ const EDGES_HIDDEN_DASHED: u32 = 2u;
 // Flags of `Draw.flags` (layout::DRAW_CLOSED, layout::DRAW_INSIDE_OUT).
 const DRAW_CLOSED: u32 = 1u;
 const DRAW_INSIDE_OUT: u32 = 2u;
+// Set by the trim back-end's vertex shaders (not in `Draw.flags`): the placement mirrors.
+const DRAW_MIRRORED: u32 = 4u;
 
 // Material channel of a section cap's ids (view::SECTION_CAP): the flag, the plane's index in
 // bits 28–29, the material in the bits below.

@@ -146,6 +146,8 @@ pub(crate) const TARGETS_NO_UV: [Option<wgpu::ColorTargetState>; 3] =
 pub(crate) struct VisibilityTargets {
     pub depth: wgpu::TextureView,
     pub normal: wgpu::TextureView,
+    /// The normal target itself, for the tests' readback ([`crate::Renderer::render_normals`]).
+    pub normal_texture: wgpu::Texture,
     pub ids: wgpu::TextureView,
     pub ids_texture: wgpu::Texture,
     /// The (u, v) target, made only for frames that read it back.
@@ -178,7 +180,7 @@ impl VisibilityTargets {
             })
         };
         let depth = make("depth", DEPTH, wgpu::TextureUsages::empty());
-        let normal = make("normal", NORMAL, wgpu::TextureUsages::empty());
+        let normal = make("normal", NORMAL, wgpu::TextureUsages::COPY_SRC);
         let ids = make("ids", IDS, wgpu::TextureUsages::COPY_SRC);
         let uv = with_uv.then(|| {
             let texture = make("uv", UV, wgpu::TextureUsages::COPY_SRC);
@@ -187,6 +189,7 @@ impl VisibilityTargets {
         VisibilityTargets {
             depth: depth.create_view(&Default::default()),
             normal: normal.create_view(&Default::default()),
+            normal_texture: normal,
             ids: ids.create_view(&Default::default()),
             ids_texture: ids,
             uv,

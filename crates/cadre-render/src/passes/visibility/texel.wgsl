@@ -63,6 +63,57 @@ fn cap_of(p: vec3<f32>) -> Cap {
     return cap;
 }
 
+// The view-space point of the fragment at `frag` (its `@builtin(position)`: pixel centre
+// and depth), through the inverse projection: a point of the triangle's plane, so its
+// screen derivatives span that plane (also in a quad's helper lanes).
+fn fragment_view_point(frag: vec4<f32>) -> vec3<f32> {
+    let ndc = vec2<f32>(frag.x / frame.viewport.x * 2.0 - 1.0, 1.0 - frag.y / frame.viewport.y * 2.0);
+    let h = frame.inv_proj * vec4<f32>(ndc, frag.z, 1.0);
+    return h.xyz / h.w;
+}
+
+// A tessellated surface's view-space shading normal and the side the eye sees.
+struct Facing {
+    normal: vec3<f32>,
+    front: bool,
+}
+
+// The side of a tessellated surface the eye sees, and the normal to shade it with. The
+// normal interpolated between a triangle's vertices (exact normals there) can face away
+// from the eye while the triangle faces it: a triangle across a curved face's silhouette
+// holds points whose normals lie beyond it (a coarse mesh's long triangles, a grid's cells
+// at the rim). The shade pass lights both sides of a face alike and turns a normal facing
+// away round (−n): its part across the view turns round too, so such a pixel was lit as
+// if from the other side — dark specks and bands along lit silhouettes. Where the two
+// disagree, the normal is mirrored in the plane perpendicular to the view ray instead
+// (n − 2 (n·v) v): it faces the eye by as much as it faced away, keeps its part across
+// the view, and meets the unmirrored normals where n·v = 0 (no seam). The triangle's side
+// is then the side seen (so a section does not cap the pixel as seen from inside). The
+// converse (a triangle seen from behind whose normal faces the eye) is mirrored too on an
+// open shell, seen from inside, but not on a closed solid (`closed`), whose back
+// triangles show only where they tie with its front ones (an apex).
+// `normal` is the interpolated one (any length), `plane` the triangle's normal in either
+// sense (the cross product of the view point's screen derivatives), `point` the
+// fragment's view-space point. `frame.sky_up.w` at 1 keeps the interpolated normal (the
+// tests' negative control, `Renderer::with_raw_silhouettes`).
+fn surface_facing(normal: vec3<f32>, plane: vec3<f32>, point: vec3<f32>, closed: bool) -> Facing {
+    let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
+    // Towards the eye.
+    let v = select(-normalize(point), vec3<f32>(0.0, 0.0, 1.0), ortho);
+    let nv = dot(normal, v);
+    // The triangle's normal in the interpolated normal's sense, against the view; the sense
+    // is taken only where the two are within 60° (a normal from a singular point may be
+    // anything).
+    let along = dot(plane, normal);
+    let pv = dot(plane, v) * sign(along);
+    let sure = abs(along) > 0.5 * length(plane) * length(normal);
+    let bend = (nv * pv < 0.0) && ((pv > 0.0) || !closed) && sure && (frame.sky_up.w == 0.0);
+    var out: Facing;
+    out.normal = select(normal, normal - 2.0 * nv * v, bend);
+    out.front = select(nv > 0.0, pv > 0.0, bend);
+    return out;
+}
+
 // The texel of the surface point `world` (camera-relative) with view-space `normal` (any
 // length), on face `face` of instance `d`, at reverse-Z `depth`, with parameters `uv`; `front`
 // is whether the point is seen from the side its triangles (or surface) face.

@@ -36,11 +36,22 @@ fn full_vertex(d: Draw, v: MeshVertex) -> VertexOut {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> VisibilityOut {
+    let ids = unpack_instance(in.instance);
+    let normal = mesh_normal(in.normal, in.clip, ids);
     if SECTIONS && section_cut(in.world) {
         discard;
     }
-    let ids = unpack_instance(in.instance);
-    return visibility_texel(in.world, in.normal, in.face, ids, in.clip.z, in.uv, front);
+    return visibility_texel(in.world, normal, in.face, ids, in.clip.z, in.uv, front);
+}
+
+// The interpolated vertex normal `normal` of the fragment at `frag`, bent where it faces
+// away from the eye across a silhouette (`surface_facing`). The side seen stays the
+// rasterizer's (the triangles' winding, which the inside-out draws reverse). Derivatives:
+// call it before any discard.
+fn mesh_normal(normal: vec3<f32>, frag: vec4<f32>, ids: InstanceIds) -> vec3<f32> {
+    let point = fragment_view_point(frag);
+    let closed = (ids.flags & DRAW_CLOSED) != 0u;
+    return surface_facing(normal, cross(dpdx(point), dpdy(point)), point, closed).normal;
 }
 
 // The entry points of frames without section planes that read no (u, v) (every image and
@@ -79,5 +90,5 @@ fn plain_vertex(d: Draw, v: MeshVertex) -> PlainOut {
 @fragment
 fn fs_plain(in: PlainOut, @builtin(front_facing) front: bool) -> VisibilityOut {
     let ids = unpack_instance(in.instance);
-    return visibility_texel(vec3<f32>(0.0), in.normal, in.face, ids, in.clip.z, vec2<f32>(0.0), front);
+    return visibility_texel(vec3<f32>(0.0), mesh_normal(in.normal, in.clip, ids), in.face, ids, in.clip.z, vec2<f32>(0.0), front);
 }

@@ -28,8 +28,6 @@ struct TrimOut {
     @location(3) @interpolate(flat) instance: vec3<u32>,
     // Camera-relative world position, for the section planes.
     @location(4) world: vec3<f32>,
-    // The face's outward normal against the view ray: negative where it faces the eye.
-    @location(5) facing: f32,
     // Whether the fragment must be tested against the tree: its cell is crossed by the trim
     // (cells wholly on the face are not tested, those wholly off it are not drawn).
     @location(6) @interpolate(flat) crossed: u32,
@@ -105,11 +103,8 @@ fn trim_vertex(vertex: u32, instance: u32) -> TrimOut {
     out.normal = placed.normal;
     out.local = local;
     out.surface = index;
-    out.instance = pack_instance(d);
+    out.instance = trim_instance(d);
     out.world = placed.world;
-    let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
-    let world_normal = (d.model * vec4<f32>(normal, 0.0)).xyz;
-    out.facing = dot(world_normal, select(placed.world, frame.forward.xyz, ortho));
     out.crossed = select(0u, 1u, verdict == TRIM_CELL_CROSSED);
     // A cell wholly off the face: every corner at the same point, out of the view.
     if verdict == TRIM_CELL_OUT {
@@ -128,12 +123,14 @@ fn fs_main(in: TrimOut) -> VisibilityOut {
     // cells of a distant perforated face still merge into their majority (no moiré).
     let jx = dpdx(in.local);
     let jy = dpdy(in.local);
-    return trim_fragment(in, jx, jy);
+    let point = fragment_view_point(in.clip);
+    return trim_fragment(in, jx, jy, cross(dpdx(point), dpdy(point)));
 }
 
-// A tessellated face's fragment, (u, v) changing by `jx`, `jy` to the next pixels: trimmed
-// (discarded off the face) and written.
-fn trim_fragment(in: TrimOut, jx: vec2<f32>, jy: vec2<f32>) -> VisibilityOut {
+// A tessellated face's fragment, (u, v) changing by `jx`, `jy` to the next pixels, on a
+// triangle of view-space normal `plane` (either sense): trimmed (discarded off the face)
+// and written, its normal kept on the side of the triangle seen (`surface_facing`).
+fn trim_fragment(in: TrimOut, jx: vec2<f32>, jy: vec2<f32>, plane: vec3<f32>) -> VisibilityOut {
     let footprint = 0.25 * (abs(jx) + abs(jy));
     let s = surfaces[in.surface];
     if TRIM_TEST && (in.crossed != 0u) && !trim_classify_within(s.ids.z, in.local, footprint) {
@@ -144,13 +141,46 @@ fn trim_fragment(in: TrimOut, jx: vec2<f32>, jy: vec2<f32>) -> VisibilityOut {
     }
     let ids = unpack_instance(in.instance);
     let uv = s.uv.xy + in.local;
-    var out = visibility_texel(in.world, in.normal, s.ids.y, ids, in.clip.z, uv, in.facing < 0.0);
+    let closed = (ids.flags & DRAW_CLOSED) != 0u;
+    let facing = surface_facing(in.normal, plane, fragment_view_point(in.clip), closed);
+    let front = winding_front(facing.front, ids);
+    if hidden_inside(front, ids) {
+        discard;
+    }
+    var out = visibility_texel(in.world, facing.normal, s.ids.y, ids, in.clip.z, uv, front);
     // Analytic coverage of a pixel on a trimmed edge (kept: its centre is on the face): ½ at
     // the boundary, whole from half a pixel in (F / |∇F| in pixels; caps keep theirs).
     if COVERAGE && TRIM_TEST && (in.crossed != 0u) && ((out.ids.z & SECTION_CAP) == 0u) {
         out.normal.z = clamp(0.5 + trim_edge_pixels(s.ids.z, in.local, jx, jy), 0.5, 1.0);
     }
     return out;
+}
+
+// The draw's ids for the fragments, with `DRAW_MIRRORED` where its placement mirrors.
+fn trim_instance(d: Draw) -> vec3<u32> {
+    let linear = mat3x3<f32>(d.model[0].xyz, d.model[1].xyz, d.model[2].xyz);
+    return vec3<u32>(d.material, d.instance, d.flags | select(0u, DRAW_MIRRORED, determinant(linear) < 0.0));
+}
+
+// The side of a face's point seen, `front` by its exact normal, as `visibility_texel`
+// reads it: the triangles' winding's, which `DRAW_INSIDE_OUT` turns over for a mirroring
+// placement. The exact normals stay outward under a mirror (their inverse transpose), so
+// a mirror turns their side over against the winding's.
+fn winding_front(front: bool, ids: InstanceIds) -> bool {
+    return front != ((ids.flags & DRAW_MIRRORED) != 0u);
+}
+
+// Whether a point of a closed solid seen from inside (`front` as `winding_front` gives it)
+// is left out: without section planes (whose caps need it) it shows only where the grids
+// of the faces in front end short of their true silhouette (within their half-pixel
+// tolerance) while a face behind reaches its exact trim — a plane end cap seen from
+// inside past a cylinder's rim, lit as facing the eye — or ties with them at an apex.
+// Left out, the pixel shows what lies behind, as past any tessellated silhouette.
+// `frame.sky_up.w` at 1 keeps them (the tests' negative control).
+fn hidden_inside(front: bool, ids: InstanceIds) -> bool {
+    let inside = front == ((ids.flags & DRAW_INSIDE_OUT) != 0u);
+    let closed = (ids.flags & DRAW_CLOSED) != 0u;
+    return closed && (frame.counts.z == 0u) && inside && (frame.sky_up.w == 0.0);
 }
 
 // A ray-cast face's proxy vertex: corner `corner` of its box, placed by instance `instance`.
@@ -169,9 +199,8 @@ fn ray_cast_vertex(index: u32, s: TrimSurface, corner: u32, instance: u32) -> Tr
     out.normal = placed.normal;
     out.local = vec2<f32>(0.0);
     out.surface = index;
-    out.instance = pack_instance(d);
+    out.instance = trim_instance(d);
     out.world = placed.world;
-    out.facing = 0.0;
     out.crossed = 1u;
     out.ray_point = ray.point;
     out.ray_eye = ray.eye;
@@ -198,6 +227,8 @@ fn fs_raycast(in: TrimOut) -> RayCastOut {
     // A tessellated face's derivatives, taken first, as `fs_main` takes them.
     let tx = dpdx(in.local);
     let ty = dpdy(in.local);
+    let point = fragment_view_point(in.clip);
+    let plane = cross(dpdx(point), dpdy(point));
     var hits: FaceCast;
     var local = vec2<f32>(0.0);
     let ray = frame_ray(in.ray_point, in.ray_eye);
@@ -214,7 +245,7 @@ fn fs_raycast(in: TrimOut) -> RayCastOut {
     let steady = (dpdx(first) == 0.0) && (dpdy(first) == 0.0);
     var out: RayCastOut;
     if !analytic {
-        let texel = trim_fragment(in, tx, ty);
+        let texel = trim_fragment(in, tx, ty, plane);
         out.normal = texel.normal;
         out.ids = texel.ids;
         out.uv = texel.uv;
@@ -243,8 +274,11 @@ fn fs_raycast(in: TrimOut) -> RayCastOut {
         }
         let n = hits.n[i] * s.axis_y.w;
         let normal = n.x * in.normal_x + n.y * in.normal_y + n.z * in.normal_z;
-        let front = dot(n, ray.d) < 0.0;
         let ids = unpack_instance(in.instance);
+        let front = winding_front(dot(n, ray.d) < 0.0, ids);
+        if hidden_inside(front, ids) {
+            continue;
+        }
         let texel = visibility_texel(world, normal, s.ids.y, ids, depth, s.uv.xy + local, front);
         out.normal = texel.normal;
         out.ids = texel.ids;
