@@ -710,6 +710,37 @@ mod tests {
         assert!(kinds.contains(&SURFACE_CONE), "{kinds:?}");
     }
 
+    /// A cone face whose box reaches the apex: the normal keeps the face's nappe's sense at
+    /// the apex row, where ρ (the radius, here from the box's lower corner) is zero and
+    /// rounds to either sign (per point, a ρ of −10⁻¹⁵ there turned the normal round);
+    /// negative control: the other nappe's box gives the other sense.
+    #[test]
+    fn a_cone_keeps_its_nappe_sense_at_the_apex() {
+        // `radius` at the box's lower side, tan α = 0.5, the box 10 long in v.
+        let cone = |radius: f64| TrimFaceSurface {
+            kind: SURFACE_CONE,
+            frame: [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+            params: [radius, 0.5],
+            tree: 0,
+            uv_origin: [0.0, 0.0],
+            uv_size: [1.0, 10.0],
+            curvature: [0.0; 3],
+            data: 0,
+            breaks: NO_BREAKS,
+        };
+        let radial = DVec3::new(0.5f64.cos(), 0.5f64.sin(), 0.0);
+        let outward = |s: &TrimFaceSurface, v: f64| closed_form_normal(s, 0.5, v).dot(radial);
+        // The apex on the box's lower side, ρ from 0 to 5: its radius rounded either way.
+        for apex_radius in [0.0, -1e-15, 1e-15] {
+            let upper = cone(apex_radius);
+            assert!(outward(&upper, 0.0) > 0.0, "radius {apex_radius}");
+            assert!(outward(&upper, 5.0) > 0.0);
+        }
+        // The apex on its upper side, ρ from −5 to 0: the other nappe faces the other way.
+        let lower = cone(-5.0);
+        assert!(outward(&lower, 10.0) < 0.0 && outward(&lower, 5.0) < 0.0);
+    }
+
     /// A B-spline of degree 11 (files hold them; the stack-only basis stops at 8): the CPU
     /// evaluator of its packed form is the model's surface, and its record's bounding
     /// sphere holds the face and is tight (it was a zero sphere at the origin, so the face
