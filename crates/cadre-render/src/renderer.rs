@@ -419,6 +419,24 @@ impl Renderer {
         })
     }
 
+    /// The bytes of the visibility target `readback` names after a frame of `scene` (no
+    /// supersampling), row by row.
+    fn read_back(
+        &self,
+        gpu: &Gpu,
+        (scene, camera, options, state): (&PreparedScene, &Camera, &FrameOptions, &ViewState),
+        readback: Readback,
+    ) -> Result<Vec<u8>, RenderError> {
+        let frame = FrameInput {
+            scene,
+            camera,
+            options,
+            state,
+            size: (options.width, options.height),
+        };
+        self.run(gpu, &frame, readback, None)
+    }
+
     /// The visibility buffer's ids at every pixel (no supersampling), row by row: face
     /// id, instance + 1 (0 = background), material index, depth (`f32` bits). Section caps
     /// carry [`crate::SECTION_CAP`] and their plane in the material channel
@@ -431,14 +449,7 @@ impl Renderer {
         options: &FrameOptions,
         state: &ViewState,
     ) -> Result<Vec<[u32; 4]>, RenderError> {
-        let frame = FrameInput {
-            scene,
-            camera,
-            options,
-            state,
-            size: (options.width, options.height),
-        };
-        let bytes = self.run(gpu, &frame, Readback::Ids, None)?;
+        let bytes = self.read_back(gpu, (scene, camera, options, state), Readback::Ids)?;
         Ok(words4(&bytes))
     }
 
@@ -496,14 +507,7 @@ impl Renderer {
         options: &FrameOptions,
         state: &ViewState,
     ) -> Result<Vec<[f32; 2]>, RenderError> {
-        let frame = FrameInput {
-            scene,
-            camera,
-            options,
-            state,
-            size: (options.width, options.height),
-        };
-        let bytes = self.run(gpu, &frame, Readback::Uv, None)?;
+        let bytes = self.read_back(gpu, (scene, camera, options, state), Readback::Uv)?;
         let float = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
         Ok(bytes
             .chunks_exact(8)
@@ -522,14 +526,7 @@ impl Renderer {
         options: &FrameOptions,
         state: &ViewState,
     ) -> Result<Vec<[f32; 3]>, RenderError> {
-        let frame = FrameInput {
-            scene,
-            camera,
-            options,
-            state,
-            size: (options.width, options.height),
-        };
-        let bytes = self.run(gpu, &frame, Readback::Normals, None)?;
+        let bytes = self.read_back(gpu, (scene, camera, options, state), Readback::Normals)?;
         Ok(bytes
             .chunks_exact(4)
             .map(|b| from_octahedral(u32::from_le_bytes([b[0], b[1], b[2], b[3]])))
