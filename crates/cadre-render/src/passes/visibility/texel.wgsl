@@ -78,7 +78,17 @@ struct Facing {
     front: bool,
 }
 
-// The side of a tessellated surface the eye sees, and the normal to shade it with. The
+// The unit view-space direction from the fragment at `frag` towards the eye (the view
+// direction's opposite when orthographic): the ray through the pixel's centre, for the
+// symmetric perspective `Camera::projection_matrix` makes (two of the inverse
+// projection's numbers, not its product with the point).
+fn towards_eye(frag: vec4<f32>) -> vec3<f32> {
+    let ndc = vec2<f32>(frag.x / frame.viewport.x * 2.0 - 1.0, 1.0 - frag.y / frame.viewport.y * 2.0);
+    let ray = vec3<f32>(-ndc.x * frame.inv_proj[0][0], -ndc.y * frame.inv_proj[1][1], 1.0);
+    return select(normalize(ray), vec3<f32>(0.0, 0.0, 1.0), frame.modes.x == PROJECTION_ORTHOGRAPHIC);
+}
+
+// The normal to shade a tessellated surface with, and the side of it the eye sees. The
 // normal interpolated between a triangle's vertices (exact normals there) can face away
 // from the eye while the triangle faces it: a triangle across a curved face's silhouette
 // holds points whose normals lie beyond it (a coarse mesh's long triangles, a grid's cells
@@ -92,26 +102,33 @@ struct Facing {
 // converse (a triangle seen from behind whose normal faces the eye) is mirrored too on an
 // open shell, seen from inside, but not on a closed solid (`closed`), whose back
 // triangles show only where they tie with its front ones (an apex).
-// `normal` is the interpolated one (any length), `plane` the triangle's normal in either
-// sense (the cross product of the view point's screen derivatives), `point` the
-// fragment's view-space point. `frame.sky_up.w` at 1 keeps the interpolated normal (the
-// tests' negative control, `Renderer::with_raw_silhouettes`).
-fn surface_facing(normal: vec3<f32>, plane: vec3<f32>, point: vec3<f32>, closed: bool) -> Facing {
-    let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
-    // Towards the eye.
-    let v = select(-normalize(point), vec3<f32>(0.0, 0.0, 1.0), ortho);
+// `normal` is the interpolated one (any length), `v` towards the eye (`towards_eye`),
+// `outward` whether the triangle's side the normals face is the one towards the eye.
+// `frame.sky_up.w` at 1 keeps the interpolated normal (the tests' negative control,
+// `Renderer::with_raw_silhouettes`).
+fn side_facing(normal: vec3<f32>, v: vec3<f32>, outward: bool, closed: bool) -> Facing {
     let nv = dot(normal, v);
-    // The triangle's normal in the interpolated normal's sense, against the view; the sense
-    // is taken only where the two are within 60° (a normal from a singular point may be
-    // anything).
-    let along = dot(plane, normal);
-    let pv = dot(plane, v) * sign(along);
-    let sure = abs(along) > 0.5 * length(plane) * length(normal);
-    let bend = (nv * pv < 0.0) && ((pv > 0.0) || !closed) && sure && (frame.sky_up.w == 0.0);
+    let bend = ((nv > 0.0) != outward) && (outward || !closed) && (frame.sky_up.w == 0.0);
     var out: Facing;
     out.normal = select(normal, normal - 2.0 * nv * v, bend);
-    out.front = select(nv > 0.0, pv > 0.0, bend);
+    out.front = select(nv > 0.0, outward, bend);
     return out;
+}
+
+// `side_facing` for a triangle whose winding says nothing of its normals' side (the trim
+// back-end's grids): the side from `plane`, the triangle's normal in either sense (the
+// cross product of the view point's screen derivatives), taken in the interpolated
+// normal's sense where the two are within 60° (a normal from a singular point may be
+// anything; elsewhere the normal stays as interpolated).
+fn surface_facing(normal: vec3<f32>, plane: vec3<f32>, frag: vec4<f32>, closed: bool) -> Facing {
+    let v = towards_eye(frag);
+    let along = dot(plane, normal);
+    let outward = dot(plane, v) * sign(along) > 0.0;
+    let sure = abs(along) > 0.5 * length(plane) * length(normal);
+    if sure {
+        return side_facing(normal, v, outward, closed);
+    }
+    return Facing(normal, dot(normal, v) > 0.0);
 }
 
 // The texel of the surface point `world` (camera-relative) with view-space `normal` (any

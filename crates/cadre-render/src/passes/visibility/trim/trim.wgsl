@@ -142,7 +142,7 @@ fn trim_fragment(in: TrimOut, jx: vec2<f32>, jy: vec2<f32>, plane: vec3<f32>) ->
     let ids = unpack_instance(in.instance);
     let uv = s.uv.xy + in.local;
     let closed = (ids.flags & DRAW_CLOSED) != 0u;
-    let facing = surface_facing(in.normal, plane, fragment_view_point(in.clip), closed);
+    let facing = surface_facing(in.normal, plane, in.clip, closed);
     let front = winding_front(facing.front, ids);
     if hidden_inside(front, ids) {
         discard;
