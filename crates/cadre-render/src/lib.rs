@@ -71,6 +71,7 @@ pub mod shadows;
 mod smooth;
 mod solid;
 pub mod text;
+pub mod trim_quadrics;
 pub mod trim_surfaces;
 pub mod trim_sweeps;
 mod vertex_cache;

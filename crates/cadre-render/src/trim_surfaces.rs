@@ -85,6 +85,9 @@ pub struct TrimScene {
     /// The least bound the tessellation needs keep in depth (model units, [`DEPTH_REL`] of
     /// the model's diagonal): each face's record carries it.
     pub depth_tolerance: f64,
+    /// The B-spline faces drawn as the planes or cylinders they are
+    /// ([`crate::trim_quadrics`]): their trees and records are the closed forms'.
+    pub closed_form_faces: Vec<FaceId>,
     /// The B-spline faces' surfaces, packed as the GPU reads them: per surface its degrees
     /// and control-net size (as `u32` bits), its u and v knots, then its control points
     /// row by row (along u), relative to the face's frame origin, as homogeneous
@@ -99,6 +102,9 @@ impl TrimScene {
     /// (a rectangular trim of one counts as it); faces on other surfaces or without a tree
     /// keep their meshes.
     pub fn build(model: &Model, tolerance: f64) -> TrimScene {
+        let (closed_form_faces, replaced) =
+            crate::trim_quadrics::closed_form_faces(model, tolerance);
+        let model = replaced.as_ref().unwrap_or(model);
         let trees = model_trees(model, tolerance);
         let mut fallback: Vec<(u64, String)> = trees.failures.clone();
         let mut bspline_data = Vec::new();
@@ -168,6 +174,7 @@ impl TrimScene {
             fallback,
             tolerance,
             depth_tolerance: DEPTH_REL * cadre_mesh::deflection_diagonal(model),
+            closed_form_faces,
             bspline_data,
         }
     }
@@ -621,8 +628,17 @@ pub fn surface_record(
     mesh_origin: DVec3,
 ) -> crate::layout::TrimSurface {
     let mut agreement = 0.0;
-    for (_, normal, uv) in points {
-        let exact = face_normal(s, data, f64::from(uv[0]), f64::from(uv[1]));
+    for (position, normal, uv) in points {
+        let (mut u, v) = (f64::from(uv[0]), f64::from(uv[1]));
+        // A cylinder's normal at the point's own angle: a B-spline face drawn as the
+        // cylinder it is (`trim_quadrics`) has its mesh's (u, v) on the B-spline. (A
+        // plane's normal is the same everywhere.)
+        if s.kind == SURFACE_CYLINDER {
+            let [o, x, y, _] = s.frame;
+            let d = DVec3::from(position.map(f64::from)) - o;
+            u = d.dot(y).atan2(d.dot(x));
+        }
+        let exact = face_normal(s, data, u, v);
         agreement += exact
             .normalize_or_zero()
             .dot(DVec3::from(normal.map(f64::from)));

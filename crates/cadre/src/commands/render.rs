@@ -971,8 +971,12 @@ pub(crate) fn with_trims(
     let scene = scene.with_trims(model, tolerance);
     if let Some(trim) = &scene.trim {
         let faces = trim.faces.len();
+        let closed_forms = match trim.closed_form_faces.len() {
+            0 => String::new(),
+            n => format!(" ({n} B-splines as the planes or cylinders they are)"),
+        };
         eprintln!(
-            "{}: {} of {faces} faces drawn from their exact surfaces, {} from their meshes",
+            "{}: {} of {faces} faces drawn from their exact surfaces{closed_forms}, {} from their meshes",
             input.display(),
             trim.drawn(),
             trim.fallback.len()

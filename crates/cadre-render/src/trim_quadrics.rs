@@ -1,0 +1,193 @@
+//! B-spline faces that are planes or circular cylinders, drawn as what they are. Many
+//! exporters write every surface as a B-spline (I-DEAS, some CATIA and Creo settings, OCCT's
+//! NURBS conversion): a drilled hole is then a rational B-spline, and the trim back-end drew
+//! it from its control net, and `--method raycast` tessellated it with the other
+//! B-splines. Here such a face's surface is sampled over the face, the plane or cylinder
+//! through the samples is found (`cadre_brep::measure::recognise`), and, where every sample
+//! lies within [`RECOGNITION_REL`] of the face's size of it (and within a hundredth of the
+//! trim tolerance), a copy of the model gets the closed form in its place. The face's trim
+//! loops are then found on the closed form as on any native face (its edges' points
+//! projected onto it), so the trim tree is in the closed form's (u, v), and the face is ray
+//! cast exactly like a drawn plane or cylinder.
+
+use cadre_brep::measure::recognise::{RoundSurface, round_surface_through};
+use cadre_brep::{FaceId, Model, SurfaceId};
+use cadre_geom::{Frame, Surface, Vec3};
+
+/// A closed form replaces a B-spline face's surface where the samples lie within this share
+/// of their extent of it (a rational B-spline circle is exact to rounding; a fitted one is
+/// not a circle).
+pub const RECOGNITION_REL: f64 = 1e-6;
+
+/// Samples along each side of a face's (u, v) box.
+const SAMPLES: usize = 12;
+
+/// The faces of `model` re-expressed as closed forms, and `model` with them in place (each
+/// such face on a surface of its own, its sense kept); `tolerance` is the trim tolerance
+/// (model units). Unchanged when no face is.
+pub fn closed_form_faces(model: &Model, tolerance: f64) -> (Vec<FaceId>, Option<Model>) {
+    let found: Vec<(FaceId, Surface, bool)> = (0..model.faces.len())
+        .filter_map(|i| {
+            let face = FaceId(i as u32);
+            let surface = &model.surfaces[model.faces[i].surface.index()];
+            if !matches!(surface, Surface::BSpline(_)) {
+                return None;
+            }
+            let (closed, flips) = recognised(model, face, surface, tolerance)?;
+            Some((face, closed, flips))
+        })
+        .collect();
+    if found.is_empty() {
+        return (Vec::new(), None);
+    }
+    let mut out = model.clone();
+    for (face, surface, flips) in &found {
+        let id = SurfaceId(out.surfaces.len() as u32);
+        out.surfaces.push(surface.clone());
+        let f = &mut out.faces[face.index()];
+        f.surface = id;
+        f.same_sense ^= flips;
+    }
+    (found.into_iter().map(|(f, _, _)| f).collect(), Some(out))
+}
+
+/// The plane or cylinder a B-spline face's `surface` is over the face, and whether its
+/// natural normal is the B-spline's opposite.
+fn recognised(
+    model: &Model,
+    face: FaceId,
+    surface: &Surface,
+    tolerance: f64,
+) -> Option<(Surface, bool)> {
+    let f = &model.faces[face.index()];
+    let acc = cadre_geom::tolerance::Accuracy::default();
+    let [u0, u1, v0, v1] = cadre_brep::bounds::face_uv_box(model, f, surface, acc)?;
+    let at = |k: usize, a: f64, b: f64| a + (b - a) * k as f64 / (SAMPLES - 1) as f64;
+    let mut samples = Vec::with_capacity(SAMPLES * SAMPLES);
+    for i in 0..SAMPLES {
+        for j in 0..SAMPLES {
+            let (u, v) = (at(i, u0, u1), at(j, v0, v1));
+            let point = surface.eval(u, v);
+            let normal = surface.normal(u, v)?;
+            if !point.is_finite() {
+                return None;
+            }
+            samples.push((point, normal));
+        }
+    }
+    let extent = cadre_geom::BoundingBox::from_points(samples.iter().map(|s| s.0)).diagonal();
+    let within = (RECOGNITION_REL * extent).min(0.01 * tolerance);
+    if within.is_nan() || within <= 0.0 {
+        return None;
+    }
+    let (mid_u, mid_v) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
+    let d = surface.derivs(mid_u, mid_v);
+    let centre = surface.eval(mid_u, mid_v);
+    if let Some(plane) = plane_through(&samples, within, (centre, d.du, d.dv)) {
+        return Some((plane, false));
+    }
+    match round_surface_through(&samples, within)? {
+        RoundSurface::Cylinder { axis, radius, .. } => {
+            // The seam (u = 0) opposite the face's middle: a face short of a whole turn
+            // then lies in one span of u. A whole turn's seam is the B-spline's own
+            // (its first u or v line, whichever goes round), where its loops put it.
+            let foot =
+                |p: Vec3| axis.origin + axis.direction * (p - axis.origin).dot(axis.direction);
+            let closed_u = surface.eval(u0, mid_v).distance(surface.eval(u1, mid_v)) <= within;
+            let closed_v = surface.eval(mid_u, v0).distance(surface.eval(mid_u, v1)) <= within;
+            let seam = if closed_u {
+                surface.eval(u0, mid_v)
+            } else if closed_v {
+                surface.eval(mid_u, v0)
+            } else {
+                2.0 * foot(centre) - centre
+            };
+            let x = seam - foot(seam);
+            let frame = Frame::from_axis(axis.origin, axis.direction, Some(x))?;
+            let cylinder = Surface::Cylinder { frame, radius };
+            // The B-spline's normal against the cylinder's (outward) at the face's middle.
+            let outward = centre - foot(centre);
+            let flips = d.du.cross(d.dv).dot(outward) < 0.0;
+            Some((cylinder, flips))
+        }
+        RoundSurface::Sphere { .. } => None,
+    }
+}
+
+/// The plane through `samples` (points and normals) when every point lies within `within`
+/// of it and every normal along it, its frame at `origin` with x along `du` and its normal
+/// `du × dv` (the B-spline's sense).
+fn plane_through(
+    samples: &[(Vec3, Vec3)],
+    within: f64,
+    (origin, du, dv): (Vec3, Vec3, Vec3),
+) -> Option<Surface> {
+    let frame = Frame::from_axis(origin, du.cross(dv), Some(du))?;
+    let flat = samples.iter().all(|(p, n)| {
+        (*p - origin).dot(frame.z).abs() <= within && n.cross(frame.z).length() <= 1e-9
+    });
+    flat.then_some(Surface::Plane { frame })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn model(path: &str) -> Model {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data")
+            .join(path);
+        let file = cadre_step::syntax::StepFile::read(&path).expect("reads");
+        cadre_step::map_file(&file)
+    }
+
+    /// OCCT's NURBS conversion of a plate with an oblique bore (every face a B-spline, the
+    /// bore a rational one): the six planes and the bore are found, each closed form is the
+    /// B-spline's surface at the face's points, and the faces keep their side.
+    #[test]
+    fn bspline_planes_and_a_bore_are_found() {
+        let model = model("bspline-bore.step");
+        let (faces, replaced) = closed_form_faces(&model, 1e-3);
+        assert_eq!(faces.len(), 7, "{faces:?}");
+        let replaced = replaced.expect("a model");
+        let mut kinds = Vec::new();
+        for face in faces {
+            let before = &model.surfaces[model.faces[face.index()].surface.index()];
+            let f = &replaced.faces[face.index()];
+            let after = &replaced.surfaces[f.surface.index()];
+            kinds.push(matches!(after, Surface::Cylinder { .. }));
+            let [u0, u1, v0, v1] = cadre_brep::bounds::face_uv_box(
+                &model,
+                &model.faces[face.index()],
+                before,
+                Default::default(),
+            )
+            .expect("box");
+            for (u, v) in [(u0, v0), (u1, v1), (0.5 * (u0 + u1), 0.3 * v0 + 0.7 * v1)] {
+                let p = before.eval(u, v);
+                let (a, b) = after
+                    .project(p, None, Default::default())
+                    .expect("projects");
+                assert!(after.eval(a, b).distance(p) < 1e-6, "{face:?}");
+                // The face's normal, as each surface and sense give it, is the same.
+                let sense = |s: bool| if s { 1.0 } else { -1.0 };
+                let n0 = before.normal(u, v).unwrap() * sense(model.faces[face.index()].same_sense);
+                let n1 = after.normal(a, b).unwrap() * sense(f.same_sense);
+                assert!(n0.dot(n1) > 0.999, "{face:?}: {n0:?} {n1:?}");
+            }
+        }
+        assert_eq!(kinds.iter().filter(|&&c| c).count(), 1, "one cylinder");
+    }
+
+    /// Negative control: a B-spline that is neither (the corpus' quarter sphere with its
+    /// nearly collapsed sides) is left as it is.
+    #[test]
+    fn a_sphere_patch_is_left_a_bspline() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../cadre-mesh/tests/data/quarter_sphere_collapsed_sides.step");
+        let file = cadre_step::syntax::StepFile::read(&path).expect("reads");
+        let model = cadre_step::map_file(&file);
+        let (faces, replaced) = closed_form_faces(&model, 1e-3);
+        assert!(faces.is_empty() && replaced.is_none(), "{faces:?}");
+    }
+}
