@@ -13,6 +13,7 @@
 use cadre_brep::measure::recognise::{RoundSurface, round_surface_through};
 use cadre_brep::{FaceId, Model, SurfaceId};
 use cadre_geom::{Frame, Surface, Vec3};
+use rayon::prelude::*;
 
 /// A closed form replaces a B-spline face's surface where the samples lie within this share
 /// of their extent of it (a rational B-spline circle is exact to rounding; a fitted one is
@@ -26,7 +27,10 @@ const SAMPLES: usize = 12;
 /// such face on a surface of its own, its sense kept); `tolerance` is the trim tolerance
 /// (model units). Unchanged when no face is.
 pub fn closed_form_faces(model: &Model, tolerance: f64) -> (Vec<FaceId>, Option<Model>) {
+    // Face by face in parallel, as the trees are built: sampling a B-spline face and
+    // projecting its edges for its (u, v) box is most of the cost.
     let found: Vec<(FaceId, Surface, bool)> = (0..model.faces.len())
+        .into_par_iter()
         .filter_map(|i| {
             let face = FaceId(i as u32);
             let surface = &model.surfaces[model.faces[i].surface.index()];

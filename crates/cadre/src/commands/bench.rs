@@ -231,6 +231,21 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
     // B-splines' packed knots and control points (built again here: the trees' time above
     // is the figure).
     let scene = cadre_render::TrimScene::build(&model, tolerance);
+    // The B-spline faces it draws as the planes or cylinders they are, and what finding
+    // them costs (sampling and fitting each B-spline face; the copy of the model).
+    let t = Instant::now();
+    let _ = cadre_render::trim_quadrics::closed_form_faces(&model, tolerance);
+    let closed_form_s = t.elapsed().as_secs_f64();
+    let bspline_faces = model
+        .faces
+        .iter()
+        .filter(|f| {
+            matches!(
+                model.surfaces[f.surface.index()],
+                cadre_geom::Surface::BSpline(_)
+            )
+        })
+        .count();
     let surface_bytes = std::mem::size_of::<cadre_render::layout::TrimSurface>() * scene.drawn()
         + 4 * scene.bspline_data.len();
     let per = |n: usize| {
@@ -255,6 +270,9 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
         "capped_leaves": s.capped_leaves,
         "root_only_faces": s.root_only_faces,
         "grid_faces": s.grid_faces,
+        "bspline_faces": bspline_faces,
+        "closed_form_faces": scene.closed_form_faces.len(),
+        "closed_form_seconds": closed_form_s,
         "bytes": s.bytes,
         "bytes_by_buffer": trees
             .buffers
