@@ -83,9 +83,14 @@ struct Facing {
 // symmetric perspective `Camera::projection_matrix` makes (two of the inverse
 // projection's numbers, not its product with the point).
 fn towards_eye(frag: vec4<f32>) -> vec3<f32> {
+    return normalize(eye_ray(frag));
+}
+
+// `towards_eye` not normalised.
+fn eye_ray(frag: vec4<f32>) -> vec3<f32> {
     let ndc = vec2<f32>(frag.x / frame.viewport.x * 2.0 - 1.0, 1.0 - frag.y / frame.viewport.y * 2.0);
     let ray = vec3<f32>(-ndc.x * frame.inv_proj[0][0], -ndc.y * frame.inv_proj[1][1], 1.0);
-    return select(normalize(ray), vec3<f32>(0.0, 0.0, 1.0), frame.modes.x == PROJECTION_ORTHOGRAPHIC);
+    return select(ray, vec3<f32>(0.0, 0.0, 1.0), frame.modes.x == PROJECTION_ORTHOGRAPHIC);
 }
 
 // The normal to shade a tessellated surface with, and the side of it the eye sees. The
