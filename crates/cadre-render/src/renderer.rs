@@ -289,8 +289,8 @@ impl Renderer {
         self
     }
 
-    /// This renderer with the plane, cylinder, cone and sphere faces of trimmed scenes
-    /// ([`RenderScene::with_trims`]) ray cast against their support quadric and trimmed at
+    /// This renderer with the plane, cylinder, cone, sphere and ring torus faces of trimmed
+    /// scenes ([`RenderScene::with_trims`]) ray cast against their support surface and trimmed at
     /// each hit (seed 001 applied to B-Rep faces: exact silhouettes at any zoom, no
     /// tessellation) instead of tessellated; the other faces take the trim back-end's way.
     /// `trim_test` off is the tests' negative control (every face over its whole (u, v) box).

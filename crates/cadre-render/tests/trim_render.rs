@@ -218,8 +218,8 @@ fn trimmed_faces_agree_with_the_exact_ray_caster() {
 #[test]
 fn ray_cast_faces_agree_with_the_exact_ray_caster_at_every_zoom() {
     // `--method raycast`: plane, cylinder, cone and sphere faces ray cast against their
-    // support quadric and trimmed at the hit; the torus elbow's torus keeps the trim
-    // back-end's grid. Negative control: the faces over their whole (u, v) boxes.
+    // support quadric and trimmed at the hit, the torus elbow's ring torus marched by its
+    // exact distance. Negative control: the faces over their whole (u, v) boxes.
     let gpu = gpu();
     let renderer = Renderer::new(&gpu)
         .expect("pipelines")
@@ -624,4 +624,69 @@ fn mirrored_parts_keep_their_trimmed_faces() {
             "mirrored {mirrored}: {share}"
         );
     }
+}
+
+/// Pixels of `camera`'s 128 × 96 image where the ray caster sees one of the faces `faces`
+/// (STEP ids) at the pixel's centre and `renderer`'s image shows nothing.
+fn faces_missing(
+    gpu: &Gpu,
+    renderer: &Renderer,
+    (model, scene): (&cadre_brep::Model, &RenderScene),
+    camera: &Camera,
+    faces: &[u64],
+) -> usize {
+    let (w, h) = (128, 96);
+    let ids = renderer
+        .ids_of(gpu, scene, camera, &options(w, h))
+        .expect("ids");
+    let caster = cadre_render::raycast::RayCaster::new(model, 0.001);
+    let exact = caster.face_ids(camera, w, h);
+    ids.iter()
+        .zip(&exact)
+        .filter(|(g, e)| faces.contains(e) && g[1] == 0)
+        .count()
+}
+
+#[test]
+fn ray_cast_tori_reach_their_true_silhouette() {
+    // `--method raycast` marches a ring torus's exact distance (raycast.wgsl's
+    // `cast_torus`), so the torus elbow's silhouette over the background is the exact one:
+    // no pixel whose centre the exact image shows on the torus is left empty. Negative
+    // control: the torus tessellated by the trim back-end, whose grid, held within half a
+    // pixel of the surface, ends short of the silhouette and leaves some.
+    let gpu = gpu();
+    let cast = Renderer::new(&gpu)
+        .expect("pipelines")
+        .with_ray_cast_faces(&gpu, true);
+    if !cast.draws_trims() {
+        eprintln!("skipped: the adapter runs no compute shaders, its scenes keep their meshes");
+        return;
+    }
+    let grid = Renderer::new(&gpu).expect("pipelines");
+    let (model, mesh_scene) = common::model_and_scene_at("torus-elbow.step", 0.01);
+    let (lo, hi) = mesh_scene.bounds().expect("geometry");
+    let torus = [66, 76];
+    let (mut cast_missing, mut grid_missing) = (0, 0);
+    for zoom in [1.0, 2.0, 3.0, 10.0] {
+        let pixel = (hi - lo).length() / (128.0 * zoom);
+        let scene = mesh_scene
+            .clone()
+            .with_trims(&model, TRIM_TOLERANCE.min(0.25 * pixel));
+        for view in [
+            ViewPreset::Iso,
+            ViewPreset::Top,
+            ViewPreset::Front,
+            ViewPreset::Right,
+        ] {
+            let fitted = Camera::fit(lo, hi, view, false, 4.0 / 3.0);
+            let camera = zoomed(&model, fitted, zoom, (lo, hi));
+            let c = faces_missing(&gpu, &cast, (&model, &scene), &camera, &torus);
+            let g = faces_missing(&gpu, &grid, (&model, &scene), &camera, &torus);
+            eprintln!("{view:?} ×{zoom}: torus pixels left empty, ray cast {c}, grid {g}");
+            cast_missing += c;
+            grid_missing += g;
+        }
+    }
+    assert_eq!(cast_missing, 0, "ray-cast torus pixels left empty");
+    assert!(grid_missing >= 4, "the grid's control left {grid_missing}");
 }

@@ -196,8 +196,9 @@ pub enum Method {
     Mesh,
     /// The exact faces: surfaces tessellated on the GPU to the screen, trimmed per pixel.
     Trim,
-    /// The exact faces, the analytic ones (planes, cylinders, cones, spheres) ray cast per
-    /// pixel against their support quadric and trimmed at the hit, the others as `trim`.
+    /// The exact faces, the analytic ones (planes, cylinders, cones, spheres, ring tori) ray
+    /// cast per pixel against their support surface and trimmed at the hit, the others as
+    /// `trim`.
     Raycast,
 }
 

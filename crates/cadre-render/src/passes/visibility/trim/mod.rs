@@ -306,8 +306,9 @@ pub struct TrimVariant {
     /// Grid points evaluated in the tessellation pass (off: room for none, so that every
     /// face takes the vertex shader's way, which the tests check as well).
     pub grid_points: bool,
-    /// Plane, cylinder, cone and sphere faces ray cast against their support quadric and
-    /// trimmed at the hit (`raycast.wgsl`, `--method raycast`) instead of tessellated.
+    /// Plane, cylinder, cone, sphere and ring torus faces ray cast against their support
+    /// surface and trimmed at the hit (`raycast.wgsl`, `--method raycast`) instead of
+    /// tessellated.
     pub ray_cast: bool,
 }
 

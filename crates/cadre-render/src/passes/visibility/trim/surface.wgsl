@@ -36,13 +36,15 @@ const SURFACE_TORUS: u32 = 4u;
 // largest grid, 256² cells (tessellate.wgsl's `MAX_LEVEL` at most).
 const TRIM_VERTICES: u32 = 393216u;
 
-// Plane, cylinder, cone and sphere faces are ray cast, not tessellated (raycast.wgsl;
-// `TrimVariant::ray_cast`, `--method raycast`).
+// Plane, cylinder, cone, sphere and ring torus faces are ray cast, not tessellated
+// (raycast.wgsl; `TrimVariant::ray_cast`, `--method raycast`).
 override RAYCAST: bool = false;
 
-// Whether face `s` is ray cast.
+// Whether face `s` is ray cast: the quadrics, and the tori whose tube does not reach their
+// axis (R > |r|; a spindle torus's inner sheet is tessellated).
 fn is_ray_cast(s: TrimSurface) -> bool {
-    return RAYCAST && (s.ids.x <= SURFACE_SPHERE);
+    let ring_torus = (s.ids.x == SURFACE_TORUS) && (s.origin.w > abs(s.axis_x.w));
+    return RAYCAST && ((s.ids.x <= SURFACE_SPHERE) || ring_torus);
 }
 
 // A task whose grid points found no room in `grid_points` (tessellate.wgsl).
