@@ -1,9 +1,9 @@
-//! B-spline faces that are planes or circular cylinders, drawn as what they are. Many
+//! B-spline faces that are planes, circular cylinders or spheres, drawn as what they are. Many
 //! exporters write every surface as a B-spline (I-DEAS, some CATIA and Creo settings, OCCT's
 //! NURBS conversion): a drilled hole is then a rational B-spline, and the trim back-end drew
 //! it from its control net, and `--method raycast` tessellated it with the other
-//! B-splines. Here such a face's surface is sampled over the face, the plane or cylinder
-//! through the samples is found (`cadre_brep::measure::recognise`), and, where every sample
+//! B-splines. Here such a face's surface is sampled over the face, the plane, cylinder or
+//! sphere through the samples is found (`cadre_brep::measure::recognise`), and, where every sample
 //! lies within [`RECOGNITION_REL`] of the face's size of it (and within a hundredth of the
 //! trim tolerance), a copy of the model gets the closed form in its place. The face's trim
 //! loops are then found on the closed form as on any native face (its edges' points
@@ -55,8 +55,9 @@ pub fn closed_form_faces(model: &Model, tolerance: f64) -> (Vec<FaceId>, Option<
     (found.into_iter().map(|(f, _, _)| f).collect(), Some(out))
 }
 
-/// The plane or cylinder a B-spline face's `surface` is over the face, and whether its
-/// natural normal is the B-spline's opposite.
+/// The plane, cylinder or sphere a B-spline face's `surface` is over the face, and whether
+/// its natural normal is the B-spline's opposite (a sphere only where a frame keeps the face
+/// clear of its poles and seam, [`sphere_frame`]).
 fn recognised(
     model: &Model,
     face: FaceId,
@@ -114,8 +115,63 @@ fn recognised(
             let flips = d.du.cross(d.dv).dot(outward) < 0.0;
             Some((cylinder, flips))
         }
-        RoundSurface::Sphere { .. } => None,
+        RoundSurface::Sphere {
+            centre: c, radius, ..
+        } => {
+            let frame = sphere_frame(&samples, c)?;
+            let sphere = Surface::Sphere { frame, radius };
+            // The B-spline's normal against the sphere's (outward) at the face's middle.
+            let flips = d.du.cross(d.dv).dot(centre - c) < 0.0;
+            Some((sphere, flips))
+        }
     }
+}
+
+/// Most a recognised sphere's samples may rise towards a pole of the frame chosen for them
+/// (the sine of 80° of latitude): the face then keeps clear of the poles, where a sphere's
+/// (u, v) collapses and a B-spline's trim loops have no pole edge to follow.
+const SPHERE_LATITUDE_SIN: f64 = 0.985;
+
+/// Least angle (radians) between a recognised sphere's samples and the seam of the frame
+/// chosen for them (u = 0, opposite the face's middle).
+const SPHERE_SEAM_MARGIN: f64 = 0.05;
+
+/// A frame for a sphere centred at `centre` through `samples` in which the samples keep
+/// clear of the poles and of the seam: its x axis points away from their mean direction (the
+/// seam opposite the face's middle, which lies at u = π on the equator), its z axis across
+/// their narrowest spread (of twelve directions about the middle, the one they rise least
+/// along). `None` when no such frame is (a whole sphere, a cap over a pole of every frame,
+/// a band round it).
+fn sphere_frame(samples: &[(Vec3, Vec3)], centre: Vec3) -> Option<Frame> {
+    let directions: Vec<Vec3> = samples
+        .iter()
+        .map(|(p, _)| (*p - centre).try_normalize())
+        .collect::<Option<_>>()?;
+    let middle = directions.iter().copied().sum::<Vec3>().try_normalize()?;
+    let across = middle.any_orthonormal_vector();
+    let (z, rise) = (0..12)
+        .map(|k| {
+            let angle = std::f64::consts::PI * f64::from(k) / 12.0;
+            let z = across * angle.cos() + middle.cross(across) * angle.sin();
+            let rise = directions
+                .iter()
+                .map(|d| d.dot(z).abs())
+                .fold(0.0, f64::max);
+            (z, rise)
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    if rise > SPHERE_LATITUDE_SIN {
+        return None;
+    }
+    let frame = Frame::from_axis(centre, z, Some(-middle))?;
+    let clear = directions.iter().all(|d| {
+        let u = d
+            .dot(frame.y)
+            .atan2(d.dot(frame.x))
+            .rem_euclid(std::f64::consts::TAU);
+        u > SPHERE_SEAM_MARGIN && u < std::f64::consts::TAU - SPHERE_SEAM_MARGIN
+    });
+    clear.then_some(frame)
 }
 
 /// The plane through `samples` (points and normals) when every point lies within `within`
@@ -145,23 +201,19 @@ mod tests {
         cadre_step::map_file(&file)
     }
 
-    /// OCCT's NURBS conversion of a plate with an oblique bore (every face a B-spline, the
-    /// bore a rational one): the six planes and the bore are found, each closed form is the
-    /// B-spline's surface at the face's points, and the faces keep their side.
-    #[test]
-    fn bspline_planes_and_a_bore_are_found() {
-        let model = model("bspline-bore.step");
-        let (faces, replaced) = closed_form_faces(&model, 1e-3);
-        assert_eq!(faces.len(), 7, "{faces:?}");
-        let replaced = replaced.expect("a model");
-        let mut kinds = Vec::new();
-        for face in faces {
+    /// Each of `faces` replaced in `replaced` is the B-spline's surface at the face's points
+    /// (its box's corners and a point within), with the face's normal on the same side;
+    /// how many became spheres and cylinders.
+    fn check_replaced(model: &Model, faces: &[FaceId], replaced: &Model) -> (usize, usize) {
+        let mut kinds = (0, 0);
+        for &face in faces {
             let before = &model.surfaces[model.faces[face.index()].surface.index()];
             let f = &replaced.faces[face.index()];
             let after = &replaced.surfaces[f.surface.index()];
-            kinds.push(matches!(after, Surface::Cylinder { .. }));
+            kinds.0 += usize::from(matches!(after, Surface::Sphere { .. }));
+            kinds.1 += usize::from(matches!(after, Surface::Cylinder { .. }));
             let [u0, u1, v0, v1] = cadre_brep::bounds::face_uv_box(
-                &model,
+                model,
                 &model.faces[face.index()],
                 before,
                 Default::default(),
@@ -180,7 +232,56 @@ mod tests {
                 assert!(n0.dot(n1) > 0.999, "{face:?}: {n0:?} {n1:?}");
             }
         }
-        assert_eq!(kinds.iter().filter(|&&c| c).count(), 1, "one cylinder");
+        kinds
+    }
+
+    /// OCCT's NURBS conversion of a plate with an oblique bore (every face a B-spline, the
+    /// bore a rational one): the six planes and the bore are found, each closed form is the
+    /// B-spline's surface at the face's points, and the faces keep their side.
+    #[test]
+    fn bspline_planes_and_a_bore_are_found() {
+        let model = model("bspline-bore.step");
+        let (faces, replaced) = closed_form_faces(&model, 1e-3);
+        assert_eq!(faces.len(), 7, "{faces:?}");
+        let kinds = check_replaced(&model, &faces, &replaced.expect("a model"));
+        assert_eq!(kinds, (0, 1), "one cylinder");
+    }
+
+    /// OCCT's NURBS conversion of a sphere's corner cut by three planes (a spherical
+    /// triangle, as a corner blend is): the sphere is found, in a frame that keeps the face
+    /// clear of its poles and seam, and the planes.
+    #[test]
+    fn a_bspline_sphere_corner_is_found() {
+        let model = model("bspline-sphere-corner.step");
+        let (faces, replaced) = closed_form_faces(&model, 1e-3);
+        assert_eq!(faces.len(), 4, "{faces:?}");
+        let kinds = check_replaced(&model, &faces, &replaced.expect("a model"));
+        assert_eq!(kinds, (1, 0), "one sphere");
+    }
+
+    /// A frame is chosen only where the samples keep clear of its poles and seam: a whole
+    /// band round a sphere's equator (no middle to put the seam opposite) gets none.
+    #[test]
+    fn a_sphere_band_gets_no_frame() {
+        let patch: Vec<(Vec3, Vec3)> = (0..12)
+            .flat_map(|i| (0..3).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                let (u, v) = (
+                    std::f64::consts::TAU / 12.0 * f64::from(i),
+                    -0.2 + 0.2 * f64::from(j),
+                );
+                let d = Vec3::new(u.cos() * v.cos(), u.sin() * v.cos(), v.sin());
+                (d * 5.0, d)
+            })
+            .collect();
+        // Negative control: the same band over a quarter turn gets one.
+        let quarter: Vec<(Vec3, Vec3)> = patch
+            .iter()
+            .filter(|(p, _)| p.y >= 0.0 && p.x >= 0.0)
+            .copied()
+            .collect();
+        assert!(sphere_frame(&quarter, Vec3::ZERO).is_some());
+        assert!(sphere_frame(&patch, Vec3::ZERO).is_none());
     }
 
     /// Negative control: a B-spline that is neither (the corpus' quarter sphere with its

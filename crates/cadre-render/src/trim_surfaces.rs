@@ -85,7 +85,7 @@ pub struct TrimScene {
     /// The least bound the tessellation needs keep in depth (model units, [`DEPTH_REL`] of
     /// the model's diagonal): each face's record carries it.
     pub depth_tolerance: f64,
-    /// The B-spline faces drawn as the planes or cylinders they are
+    /// The B-spline faces drawn as the planes, cylinders or spheres they are
     /// ([`crate::trim_quadrics`]): their trees and records are the closed forms'.
     pub closed_form_faces: Vec<FaceId>,
     /// The B-spline faces' surfaces, packed as the GPU reads them: per surface its degrees
@@ -629,14 +629,20 @@ pub fn surface_record(
 ) -> crate::layout::TrimSurface {
     let mut agreement = 0.0;
     for (position, normal, uv) in points {
-        let (mut u, v) = (f64::from(uv[0]), f64::from(uv[1]));
-        // A cylinder's normal at the point's own angle: a B-spline face drawn as the
-        // cylinder it is (`trim_quadrics`) has its mesh's (u, v) on the B-spline. (A
-        // plane's normal is the same everywhere.)
-        if s.kind == SURFACE_CYLINDER {
-            let [o, x, y, _] = s.frame;
+        let (u, v) = (f64::from(uv[0]), f64::from(uv[1]));
+        // A cylinder's or sphere's normal at the point's own angles: a B-spline face drawn
+        // as the cylinder or sphere it is (`trim_quadrics`) has its mesh's (u, v) on the
+        // B-spline. (A plane's normal is the same everywhere.)
+        let (mut u, mut v) = (u, v);
+        if s.kind == SURFACE_CYLINDER || s.kind == SURFACE_SPHERE {
+            let [o, x, y, z] = s.frame;
             let d = DVec3::from(position.map(f64::from)) - o;
             u = d.dot(y).atan2(d.dot(x));
+            if s.kind == SURFACE_SPHERE {
+                v = (d.dot(z) / d.length().max(f64::MIN_POSITIVE))
+                    .clamp(-1.0, 1.0)
+                    .asin();
+            }
         }
         let exact = face_normal(s, data, u, v);
         agreement += exact

@@ -13,11 +13,13 @@ const TRIM_TOLERANCE: f64 = 0.001;
 
 /// The fixtures both exact ways are checked on: every closed-form surface, seams, apexes,
 /// poles, a hole across a seam.
-const FIXTURES: [&str; 9] = [
+const FIXTURES: [&str; 10] = [
     "examples/pin-assembly.step",
     // Every face a B-spline (OCCT's NURBS conversion), drawn as the planes and the oblique
     // cylinder they are (`trim_quadrics`).
     "crates/cadre-render/tests/data/bspline-bore.step",
+    // A B-spline sphere's corner cut by three B-spline planes, drawn as the sphere.
+    "crates/cadre-render/tests/data/bspline-sphere-corner.step",
     "crates/cadre-render/tests/data/dome-and-cone.step",
     "crates/cadre-mesh/tests/data/cylinder_hole_across_seam.step",
     "crates/cadre-mesh/tests/data/cone_patch_clockwise.step",

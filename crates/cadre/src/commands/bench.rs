@@ -231,7 +231,7 @@ fn bench_trim(file: &Path, tolerance: f64) -> serde_json::Value {
     // B-splines' packed knots and control points (built again here: the trees' time above
     // is the figure).
     let scene = cadre_render::TrimScene::build(&model, tolerance);
-    // The B-spline faces it draws as the planes or cylinders they are, and what finding
+    // The B-spline faces it draws as the planes, cylinders or spheres they are, and what finding
     // them costs (sampling and fitting each B-spline face; the copy of the model).
     let t = Instant::now();
     let _ = cadre_render::trim_quadrics::closed_form_faces(&model, tolerance);

@@ -974,7 +974,7 @@ pub(crate) fn with_trims(
         let faces = trim.faces.len();
         let closed_forms = match trim.closed_form_faces.len() {
             0 => String::new(),
-            n => format!(" ({n} B-splines as the planes or cylinders they are)"),
+            n => format!(" ({n} B-splines as the planes, cylinders or spheres they are)"),
         };
         eprintln!(
             "{}: {} of {faces} faces drawn from their exact surfaces{closed_forms}, {} from their meshes",
