@@ -684,6 +684,9 @@ fn mesh_buffers(mesh: &SceneMesh, trimmed: &dyn Fn(u32) -> bool) -> MeshBuffers 
                 kept.extend(tri);
             }
         }
+        // The trim back-end's records of a primitive in ascending face id: the exact crack
+        // fill finds a pixel's face among its call's by binary search (`crack.wgsl`).
+        face_ids.sort_unstable();
         vertex_cache::optimize(&mut kept);
         vertex_cache::optimize(&mut cut);
         prims.push(PrimitiveRange {
@@ -860,7 +863,7 @@ impl FrameCalls {
             locals_count,
             instances,
             range: segments,
-            pad: [0; 2],
+            extra: [0; 2],
         });
         self.headers.len() as u32 - 1
     }
@@ -884,6 +887,9 @@ impl FrameCalls {
                 (locals_first, locals_count),
                 [first + chunk, task_first],
             );
+            if let Some(call) = self.headers.last_mut() {
+                call.extra[0] = faces;
+            }
             self.trim_tasks.extend((0..faces).map(|k| TrimTask {
                 surface: first + chunk + k,
                 record,

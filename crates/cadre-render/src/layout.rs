@@ -430,8 +430,10 @@ pub struct Call {
     /// rasterizer dispatches over); a trim call's first surface and first tessellation task
     /// ([`TrimTask`]); 0 for a mesh call.
     pub range: [u32; 2],
-    /// Padding to the WGSL struct's 16-byte alignment.
-    pub pad: [u32; 2],
+    /// A trim call's face count (x: its surfaces, from `range`'s first, in ascending face
+    /// id, which the exact crack fill's seeded solves search); 0 otherwise. y: padding to the
+    /// WGSL struct's 16-byte alignment.
+    pub extra: [u32; 2],
 }
 
 /// One face drawn by the trim back-end (`passes/visibility/trim`): its support surface in
@@ -794,7 +796,7 @@ gpu_struct!(Local, "Local", [model, normal, offset, flags, pad]);
 gpu_struct!(
     Call,
     "Call",
-    [record, locals_first, locals_count, instances, range, pad]
+    [record, locals_first, locals_count, instances, range, extra]
 );
 gpu_struct!(
     TrimSurface,

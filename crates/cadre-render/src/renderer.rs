@@ -613,17 +613,26 @@ impl Renderer {
         // A viewer's frame writes into its viewport's kept buffers and draws into its kept
         // targets; an image, or a frame that reads the (u, v) back (which a viewport has no
         // target for), into fresh ones.
-        let with_uv = matches!(readback, Readback::Uv);
+        // The silhouette rule's seeds are read from the (u, v) target.
+        let seeds = options.cracks.silhouettes && options.cracks.mode == CrackMode::Exact;
+        let with_uv = matches!(readback, Readback::Uv) || seeds;
         let (mut fresh_buffers, fresh_targets);
         let (kept_targets, buffers) = match viewport.as_deref_mut() {
-            Some(v) => (Some(&v.targets), &mut v.buffers),
+            Some(v) => {
+                // A viewport keeps a (u, v) target from its first frame that seeds the
+                // silhouette rule's solves.
+                if seeds && v.targets.uv.is_none() {
+                    v.targets = VisibilityTargets::new(device, (w, h), true);
+                }
+                (Some(&v.targets), &mut v.buffers)
+            }
             None => {
                 fresh_buffers = FrameBuffers::new(device);
                 (None, &mut fresh_buffers)
             }
         };
         let targets = match kept_targets {
-            Some(t) if !with_uv => t,
+            Some(t) if !matches!(readback, Readback::Uv) => t,
             _ => {
                 fresh_targets = VisibilityTargets::new(device, (w, h), with_uv);
                 &fresh_targets
@@ -729,7 +738,7 @@ impl Renderer {
                 && self.visibility.record_crack_fill(
                     recorder,
                     &mut encoder,
-                    (frame_buffer, sections),
+                    (frame_buffer, sections, options.cracks.silhouettes),
                     &frame_scene,
                     &crack_buffers,
                 );

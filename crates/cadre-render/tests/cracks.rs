@@ -482,6 +482,14 @@ fn pixels_a_grid_leaves_short_of_a_silhouette_are_filled_exactly() {
         counts.open <= counts.detected - counts.silhouettes,
         "{counts:?}"
     );
+    // Each pixel beside the silhouette is solved once, from its seed (the grazing
+    // neighbour's (u, v)), with no face drawn again: the view has no crack between faces.
+    assert_eq!(counts.detected, counts.silhouettes, "{counts:?}");
+    assert_eq!(
+        (counts.solves, counts.fill_faces),
+        (counts.silhouettes, 0),
+        "{counts:?}"
+    );
     // The fast fill leaves pixels beside silhouettes alone (it cannot tell).
     let (_, _, fast) = draw(
         (&gpu, &renderer),

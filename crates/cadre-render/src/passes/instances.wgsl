@@ -17,7 +17,12 @@ fn instance_parts(i: u32) -> vec2<u32> {
 // The draw of the call's instance `i`: its record placed by its local placement, with the
 // local's instance offset and mirror flag.
 fn instance_draw(i: u32) -> Draw {
-    let at = instance_parts(i);
+    return parts_draw(instance_parts(i));
+}
+
+// The draw of record `at.x` placed by local placement `at.y` (`instance_draw`'s, for a pass
+// that kept an instance's parts).
+fn parts_draw(at: vec2<u32>) -> Draw {
     var d = draws[at.x];
     let l = locals[at.y];
     d.model = d.model * l.model;

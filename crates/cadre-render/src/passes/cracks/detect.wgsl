@@ -14,7 +14,9 @@
 // its silhouette). It is asked for (`CrackOptions::silhouettes`, `frame.forward.w` = 1): its
 // cost follows the silhouettes, not the cracks. Only the exact fill acts on these: the surface's exact point at p's
 // centre, where the exact surface covers it, is nearer and taken; otherwise p is left as
-// drawn (the true silhouette passes before it) and not counted as open.
+// drawn (the true silhouette passes before it) and not counted as open. Their entries carry
+// the grazing neighbour's texel (ids and (u, v)), from which the exact fill solves that
+// face alone (`cs_seeded`, visibility/trim/crack.wgsl) instead of drawing faces again.
 //
 // Two full-screen passes: the flags
 // (`fs_flag`, the crack mask's depth), then at the flagged pixels the entries (`fs_detect`:
@@ -32,9 +34,13 @@
 @group(0) @binding(5) var<storage, read_write> crack_entries: array<vec4<u32>>;
 // Counters (the first `CRACK_HEADER` words, cleared each frame), then the entries' atomics.
 @group(0) @binding(6) var<storage, read_write> crack_state: array<atomic<u32>>;
-// The indirect draw of the mask's and the resolve's quads, a quad (6 vertices) a crack
-// (`cs_args`).
+// The indirect draw of the mask's and the resolve's quads, a quad (6 vertices) a crack,
+// then the indirect dispatch of the seeded solves, 64 entries a workgroup (`cs_args`).
 @group(0) @binding(7) var<storage, read_write> crack_args: array<u32>;
+// The (u, v) target (f32 bits), read for the silhouette entries' seeds: bound where the
+// frame has one (the renderer makes it when the silhouette rule is on; else the ids target
+// stands in, unread).
+@group(0) @binding(8) var uv_tex: texture_2d<u32>;
 
 
 // The crack buffers' capacity in entries (`passes::cracks` sets it).
@@ -127,20 +133,24 @@ fn crack_pair(p: vec2<i32>, dims: vec2<u32>) -> u32 {
             pair = k;
         }
     }
-    if (pair == 4u) && silhouettes && own.face && beside_silhouette(p, own) {
+    if (pair == 4u) && silhouettes && own.face && (silhouette_neighbour(p, own) < 4u) {
         pair = CRACK_PAIR_SILHOUETTE;
     }
     return pair;
 }
 
-// Whether an edge neighbour of `p` (showing `own`) shows another face nearer by d_min, seen
-// there at a grazing angle (`GRAZING_COS`).
-fn beside_silhouette(p: vec2<i32>, own: Texel) -> bool {
+// The offset of edge neighbour `k` (0..3: right, down, left, up).
+fn edge_offset(k: u32) -> vec2<i32> {
+    return select(-1, 1, k < 2u) * pair_offset(k % 2u);
+}
+
+// The first edge neighbour (`edge_offset`) of `p` (showing `own`) that shows another face
+// nearer by d_min, seen there at a grazing angle (`GRAZING_COS`); 4 when none does.
+fn silhouette_neighbour(p: vec2<i32>, own: Texel) -> u32 {
     let d_min = frame.tolerances.z;
     let ortho = frame.modes.x == PROJECTION_ORTHOGRAPHIC;
     for (var k = 0u; k < 4u; k++) {
-        let o = select(-1, 1, k < 2u) * pair_offset(k % 2u);
-        let q = p + o;
+        let q = p + edge_offset(k);
         let t = texel_at(q);
         if !t.face || same_face(t.ids, own.ids) || (t.distance + d_min > own.distance) {
             continue;
@@ -152,10 +162,10 @@ fn beside_silhouette(p: vec2<i32>, own: Texel) -> bool {
         let v = select(normalize(-view_h.xyz / view_h.w), vec3<f32>(0.0, 0.0, 1.0), ortho);
         let n = from_octahedral(textureLoad(normal_tex, q, 0).xy);
         if abs(dot(n, v)) < GRAZING_COS {
-            return true;
+            return k;
         }
     }
-    return false;
+    return 4u;
 }
 
 // One triangle over the target, at depth ½ (the entries' pass tests it against the flags).
@@ -230,10 +240,19 @@ fn fs_detect(@builtin(position) pos: vec4<f32>) {
         return;
     }
     crack_map[index] = entry + 1u;
-    let normal = textureLoad(normal_tex, p + best, 0);
     crack_entries[3u * entry] = vec4<u32>(index, pair, bitcast<u32>(own.depth), 0u);
-    crack_entries[3u * entry + 1u] = vec4<u32>(fill.ids.xyz, bitcast<u32>(depth_sum / max(depth_count, 1.0)));
-    crack_entries[3u * entry + 2u] = bitcast<vec4<u32>>(vec4<f32>(normal.xy, 1.0, 1.0));
+    if pair == CRACK_PAIR_SILHOUETTE {
+        // The seed: the grazing neighbour's ids and depth, then its (u, v) bits (the fast
+        // fill never takes these pixels).
+        let q = p + edge_offset(silhouette_neighbour(p, own));
+        let seed = texel_at(q);
+        crack_entries[3u * entry + 1u] = vec4<u32>(seed.ids.xyz, bitcast<u32>(seed.depth));
+        crack_entries[3u * entry + 2u] = vec4<u32>(0u, 0u, textureLoad(uv_tex, q, 0).xy);
+    } else {
+        let normal = textureLoad(normal_tex, p + best, 0);
+        crack_entries[3u * entry + 1u] = vec4<u32>(fill.ids.xyz, bitcast<u32>(depth_sum / max(depth_count, 1.0)));
+        crack_entries[3u * entry + 2u] = bitcast<vec4<u32>>(vec4<f32>(normal.xy, 1.0, 1.0));
+    }
     let words = CRACK_HEADER + entry * CRACK_ENTRY_WORDS;
     for (var slot = 0u; slot < CRACK_MAILBOX_SLOTS; slot++) {
         atomicStore(&crack_state[words + slot], 0u);
@@ -244,11 +263,17 @@ fn fs_detect(@builtin(position) pos: vec4<f32>) {
     atomicStore(&crack_state[words + CRACK_WORD_MISS_NEXT], 0x7f800000u);
 }
 
-// The indirect draw of the crack quads: 6 vertices, as many instances as cracks were kept.
+// The indirect draw of the crack quads: 6 vertices, as many instances as cracks were kept;
+// then the seeded solves' dispatch, a workgroup of 64 for every 64 of them.
 @compute @workgroup_size(1)
 fn cs_args() {
+    let kept = min(atomicLoad(&crack_state[CRACK_COUNT_ENTRIES]), CRACK_ENTRY_CAPACITY);
     crack_args[0] = 6u;
-    crack_args[1] = min(atomicLoad(&crack_state[CRACK_COUNT_ENTRIES]), CRACK_ENTRY_CAPACITY);
+    crack_args[1] = kept;
     crack_args[2] = 0u;
     crack_args[3] = 0u;
+    crack_args[4] = (kept + 63u) / 64u;
+    crack_args[5] = 1u;
+    crack_args[6] = 1u;
+    crack_args[7] = 0u;
 }

@@ -91,6 +91,9 @@ pub const ENTRY_CAPACITY: u32 = 1 << 16;
 /// Exact-fill hits a frame can hold (four a crack).
 pub const HIT_CAPACITY: u32 = 4 * ENTRY_CAPACITY;
 
+/// Where in [`CrackBuffers::args`] the seeded solves' indirect dispatch lies (bytes).
+pub(crate) const SEEDED_DISPATCH_OFFSET: u64 = 16;
+
 /// Words of the crack state's header (counters, [`CrackCounts`]), before the entries'.
 pub const HEADER: u32 = 16;
 
@@ -128,7 +131,8 @@ pub struct CrackCounts {
 }
 
 /// The detection's bind group 0: frame, the depth, ids and normal targets, the crack map,
-/// the entries, the state, the quads' indirect draw.
+/// the entries, the state, the quads' indirect draw (and the seeded solves' dispatch), the
+/// (u, v) target.
 pub(crate) const DETECT_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::FloatTexture,
@@ -138,6 +142,7 @@ pub(crate) const DETECT_BINDINGS: &[Binding] = &[
     Binding::StorageWrite("vec4<u32>"),
     Binding::AtomicStorage,
     Binding::StorageWrite("u32"),
+    Binding::UintTexture,
 ];
 
 /// The resolve's (and the mask's) bind group 0: frame, the entries, the state, the hits.
@@ -211,7 +216,7 @@ pub(crate) struct CrackBuffers {
     /// Two `vec4<u32>` a hit.
     pub hits: wgpu::Buffer,
     /// The indirect draw of the crack quads (mask, resolve): 6 vertices, an instance a
-    /// crack.
+    /// crack; then, at [`SEEDED_DISPATCH_OFFSET`], the seeded solves' indirect dispatch.
     pub args: wgpu::Buffer,
     /// The exact fill's depth mask: 0 about the cracks, 1 elsewhere.
     pub mask: wgpu::TextureView,
@@ -244,7 +249,7 @@ impl CrackBuffers {
                 32 * u64::from(HIT_CAPACITY),
                 wgpu::BufferUsages::empty(),
             ),
-            args: make("crack quads", 16, wgpu::BufferUsages::INDIRECT),
+            args: make("crack quads", 32, wgpu::BufferUsages::INDIRECT),
             mask: device
                 .create_texture(&wgpu::TextureDescriptor {
                     label: Some("crack mask"),
@@ -428,6 +433,11 @@ impl CrackPass {
                 buffers.entries.as_entire_binding(),
                 buffers.state.as_entire_binding(),
                 buffers.args.as_entire_binding(),
+                // The silhouette entries' seeds; the ids target stands in (unread) where the
+                // frame has no (u, v) target, which it has whenever the rule is on.
+                wgpu::BindingResource::TextureView(
+                    targets.uv.as_ref().map_or(&targets.ids, |(uv, _)| uv),
+                ),
             ],
         );
         {

@@ -55,10 +55,12 @@ fn vs_resolve(@builtin(vertex_index) corner: u32, @builtin(instance_index) entry
 
 // The exact fill's depth mask: the 3 × 3 pixels about each crack at depth 0, so that the
 // fill's fragments pass (`Greater`) only there, everywhere else turned away before their
-// shader runs (the mask is cleared to 1).
+// shader runs (the mask is cleared to 1). A pixel beside a silhouette gets no square: its
+// seeded solve (visibility/trim/crack.wgsl's `cs_seeded`) needs no face drawn again.
 @vertex
 fn vs_mask(@builtin(vertex_index) corner: u32, @builtin(instance_index) entry: u32) -> @builtin(position) vec4<f32> {
-    return crack_quad(entry, corner, 1.5, 0.0);
+    let seeded = crack_entries[3u * entry].y == CRACK_PAIR_SILHOUETTE;
+    return crack_quad(entry, corner, select(1.5, 0.0, seeded), 0.0);
 }
 
 @fragment

@@ -308,12 +308,13 @@ impl VisibilityPass {
     }
 
     /// Records the trim back-end's exact crack fill into `buffers` when it drew this frame
-    /// (`sections`: the frame has section planes); whether it did.
+    /// (`sections`: the frame has section planes; `silhouettes`: the silhouette rule's
+    /// entries are solved from their seeds); whether it did.
     pub fn record_crack_fill(
         &self,
         recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
         encoder: &mut wgpu::CommandEncoder,
-        (frame, sections): (&wgpu::Buffer, bool),
+        (frame, sections, silhouettes): (&wgpu::Buffer, bool, bool),
         scene: &FrameScene<'_>,
         buffers: &crate::passes::cracks::CrackBuffers,
     ) -> bool {
@@ -329,7 +330,7 @@ impl VisibilityPass {
             coverage: false,
         };
         trim.get(recorder.0)
-            .draw_cracks(recorder, encoder, &inputs, buffers);
+            .draw_cracks(recorder, encoder, (&inputs, silhouettes), buffers);
         true
     }
 

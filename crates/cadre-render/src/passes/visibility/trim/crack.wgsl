@@ -4,14 +4,17 @@
 // flagged (passes/cracks/detect.wgsl) solves, by Newton's method from its own (u, v), for
 // the point of its face's exact surface seen at the centre of that pixel; a solution that
 // the face's exact trim keeps is a hit, pushed on the pixel's list of hits (the resolve
-// pass, passes/cracks/resolve.wgsl, keeps the nearest). The layout of the crack buffers is
-// `passes::cracks`' (cracks/layout.wgsl, placed before this file).
+// pass, passes/cracks/resolve.wgsl, keeps the nearest). The pixels flagged beside a
+// silhouette are solved instead by a compute pass from their seeds (`cs_seeded`, below).
+// The layout of the crack buffers is `passes::cracks`' (cracks/layout.wgsl, placed before
+// this file).
 
 // Per pixel: 0, or 1 + the index of its crack entry.
 @group(0) @binding(10) var<storage, read> crack_map: array<u32>;
 // Per entry, three vec4: (pixel, pair, the pixel's own depth bits, 0), the fast fill's ids,
-// its normal texel's bits.
-@group(0) @binding(11) var<storage, read> crack_entries: array<vec4<u32>>;
+// its normal texel's bits; a silhouette entry's seed instead (detect.wgsl), which
+// `cs_seed_match` completes.
+@group(0) @binding(11) var<storage, read_write> crack_entries: array<vec4<u32>>;
 // Counters (the first `CRACK_HEADER` words), then `CRACK_ENTRY_WORDS` atomics an entry.
 @group(0) @binding(12) var<storage, read_write> crack_state: array<atomic<u32>>;
 // Per hit, two vec4: ids (face, instance + 1, material, depth bits), then the octahedral
@@ -30,8 +33,9 @@ const CRACK_NEWTON_STEPS: u32 = 10u;
 const CRACK_NEWTON_PX: f32 = 0.01;
 const CRACK_ACCEPT_PX: f32 = 0.1;
 
-// The crack buffers' capacity in hits (`passes::cracks` sets it).
+// The crack buffers' capacity in hits and in entries (`passes::cracks` sets them).
 override CRACK_HIT_CAPACITY: u32 = 1024u;
+override CRACK_ENTRY_CAPACITY: u32 = 1024u;
 
 struct CrackOut {
     @builtin(position) clip: vec4<f32>,
@@ -144,95 +148,181 @@ fn fs_crack(in: CrackOut) {
         if solved {
             continue;
         }
-        atomicAdd(&crack_state[CRACK_COUNT_SOLVES], 1u);
         let d = instance_draw(in.instance);
-        let goal = vec2<f32>(q) + 0.5;
-        // h: a thousandth of the box, for the Jacobian's differences.
-        let h = max(abs(s.uv.zw) * 1e-3, vec2<f32>(1e-6));
-        var local = start;
-        var at_goal = false;
-        var screen = crack_screen(s, d, local);
-        for (var step = 0u; step < CRACK_NEWTON_STEPS; step++) {
-            let f = screen.xy - goal;
-            if length(f) < CRACK_NEWTON_PX {
-                at_goal = true;
-                break;
-            }
-            let su = (crack_screen(s, d, local + vec2<f32>(h.x, 0.0)).xy - screen.xy) / h.x;
-            let sv = (crack_screen(s, d, local + vec2<f32>(0.0, h.y)).xy - screen.xy) / h.y;
-            let det = su.x * sv.y - su.y * sv.x;
-            if abs(det) < 1e-20 {
-                break;
-            }
-            var delta = vec2<f32>(sv.y * f.x - sv.x * f.y, -su.y * f.x + su.x * f.y) / det;
-            // Steps held within a quarter of the box (by halves: one past it is near a fold,
-            // where the Jacobian all but vanishes, and would leave for a far part of the
-            // surface).
-            let limit = 0.25 * abs(s.uv.zw) + h;
-            for (var k = 0u; (k < 8u) & any(abs(delta) > limit); k++) {
-                delta *= 0.5;
-            }
-            local -= delta;
-            screen = crack_screen(s, d, local);
-        }
-        if !at_goal {
-            at_goal = length(screen.xy - goal) < CRACK_ACCEPT_PX;
-        }
-        if !at_goal {
+        if !crack_solve(entry, q, s, d, start, mat2x2<f32>(jx, jy)) {
             // Unsolved from this fragment: the face's mailbox slot freed, so that another
             // of its fragments about the pixel (a nearer start) tries.
             for (var slot = 0u; slot < CRACK_MAILBOX_SLOTS; slot++) {
                 atomicCompareExchangeWeak(&crack_state[crack_word(entry, slot)], key, 0u);
             }
-            continue;
         }
-        if screen.w <= 0.0 || screen.z <= 0.0 || screen.z > 1.0 {
-            continue;
-        }
-        // An angle's solution a turn away from the box (across a closed face's seam, where
-        // a cylinder seen from the side has its silhouette) taken back into it.
-        local = crack_unwrapped(s, local);
-        // A solution past the tree's box (whose side is often the trim's own edge) is off
-        // the face by its distance to the box, plus the box point's to the trim.
-        let kept = clamp(local, vec2<f32>(0.0), s.uv.zw);
-        let in_box = all(kept == local);
-        let point = face_point(s, kept);
-        let placed = place_vertex(d, point.position, point.normal * s.axis_y.w);
-        if SECTIONS && section_cut(placed.world) {
-            continue;
-        }
-        if !in_box || (TRIM_TEST_CRACKS && !trim_classify(s.ids.z, kept)) {
-            // Off the face: how far, in object space, for the gaps (a real gap narrower
-            // than the user's tolerance is closed and shown as one).
-            var world = 0.0;
-            if !in_box || TRIM_TEST_CRACKS {
-                let pixels = trim_edge_pixels(s.ids.z, kept, jx, jy);
-                let across = face_point(s, kept + jx).position - point.position;
-                world = pixels * length((d.model * vec4<f32>(across, 0.0)).xyz);
-            }
-            if !in_box {
-                let off = face_point(s, local).position - point.position;
-                world += length((d.model * vec4<f32>(off, 0.0)).xyz);
-            }
-            if world < 1e29 {
-                // The two least misses, a face each: the gap's width where the ray passes
-                // between two faces (the one displaced from the least goes on to the next).
-                let bits = bitcast<u32>(world);
-                let least = atomicMin(&crack_state[crack_word(entry, CRACK_WORD_MISS)], bits);
-                atomicMin(&crack_state[crack_word(entry, CRACK_WORD_MISS_NEXT)], max(least, bits));
-            }
-            continue;
-        }
-        let hit = atomicAdd(&crack_state[CRACK_COUNT_HITS], 1u);
-        if hit >= CRACK_HIT_CAPACITY {
-            continue;
-        }
-        let n = normalize(placed.normal);
-        let next = atomicExchange(&crack_state[crack_word(entry, CRACK_WORD_HEAD)], hit + 1u);
-        crack_hits[2u * hit] = vec4<u32>(s.ids.y, d.instance + 1u, d.material, bitcast<u32>(screen.z));
-        let uv = s.uv.xy + kept;
-        crack_hits[2u * hit + 1u] = vec4<u32>(pack2x16unorm(octahedral(n)), bitcast<u32>(uv.x), bitcast<u32>(uv.y), next);
     }
+}
+
+// Newton's method on face `s` placed by `d`, from the face-local (u, v) `start`, for the
+// point seen at the centre of pixel `q` (crack `entry`'s); a solution the face's exact trim
+// keeps is pushed on the entry's hits, one off the face records how far off it is (the
+// gaps; `footprint`: the (u, v) change over a pixel step in x and y, zero where unknown,
+// which records none). False when Newton's method did not reach the pixel's ray.
+fn crack_solve(entry: u32, q: vec2<i32>, s: TrimSurface, d: Draw, start: vec2<f32>, footprint: mat2x2<f32>) -> bool {
+    atomicAdd(&crack_state[CRACK_COUNT_SOLVES], 1u);
+    let jx = footprint[0];
+    let jy = footprint[1];
+    let goal = vec2<f32>(q) + 0.5;
+    // h: a thousandth of the box, for the Jacobian's differences.
+    let h = max(abs(s.uv.zw) * 1e-3, vec2<f32>(1e-6));
+    var local = start;
+    var at_goal = false;
+    var screen = crack_screen(s, d, local);
+    for (var step = 0u; step < CRACK_NEWTON_STEPS; step++) {
+        let f = screen.xy - goal;
+        if length(f) < CRACK_NEWTON_PX {
+            at_goal = true;
+            break;
+        }
+        let su = (crack_screen(s, d, local + vec2<f32>(h.x, 0.0)).xy - screen.xy) / h.x;
+        let sv = (crack_screen(s, d, local + vec2<f32>(0.0, h.y)).xy - screen.xy) / h.y;
+        let det = su.x * sv.y - su.y * sv.x;
+        if abs(det) < 1e-20 {
+            break;
+        }
+        var delta = vec2<f32>(sv.y * f.x - sv.x * f.y, -su.y * f.x + su.x * f.y) / det;
+        // Steps held within a quarter of the box (by halves: one past it is near a fold,
+        // where the Jacobian all but vanishes, and would leave for a far part of the
+        // surface).
+        let limit = 0.25 * abs(s.uv.zw) + h;
+        for (var k = 0u; (k < 8u) & any(abs(delta) > limit); k++) {
+            delta *= 0.5;
+        }
+        local -= delta;
+        screen = crack_screen(s, d, local);
+    }
+    if !at_goal {
+        at_goal = length(screen.xy - goal) < CRACK_ACCEPT_PX;
+    }
+    if !at_goal {
+        return false;
+    }
+    if screen.w <= 0.0 || screen.z <= 0.0 || screen.z > 1.0 {
+        return true;
+    }
+    // An angle's solution a turn away from the box (across a closed face's seam, where
+    // a cylinder seen from the side has its silhouette) taken back into it.
+    local = crack_unwrapped(s, local);
+    // A solution past the tree's box (whose side is often the trim's own edge) is off
+    // the face by its distance to the box, plus the box point's to the trim.
+    let kept = clamp(local, vec2<f32>(0.0), s.uv.zw);
+    let in_box = all(kept == local);
+    let point = face_point(s, kept);
+    let placed = place_vertex(d, point.position, point.normal * s.axis_y.w);
+    if SECTIONS && section_cut(placed.world) {
+        return true;
+    }
+    if !in_box || (TRIM_TEST_CRACKS && !trim_classify(s.ids.z, kept)) {
+        // Off the face: how far, in object space, for the gaps (a real gap narrower
+        // than the user's tolerance is closed and shown as one).
+        let known = any(jx != vec2<f32>(0.0)) | any(jy != vec2<f32>(0.0));
+        var world = 0.0;
+        if known && (!in_box || TRIM_TEST_CRACKS) {
+            let pixels = trim_edge_pixels(s.ids.z, kept, jx, jy);
+            let across = face_point(s, kept + jx).position - point.position;
+            world = pixels * length((d.model * vec4<f32>(across, 0.0)).xyz);
+        }
+        if known && !in_box {
+            let off = face_point(s, local).position - point.position;
+            world += length((d.model * vec4<f32>(off, 0.0)).xyz);
+        }
+        if known && (world < 1e29) {
+            // The two least misses, a face each: the gap's width where the ray passes
+            // between two faces (the one displaced from the least goes on to the next).
+            let bits = bitcast<u32>(world);
+            let least = atomicMin(&crack_state[crack_word(entry, CRACK_WORD_MISS)], bits);
+            atomicMin(&crack_state[crack_word(entry, CRACK_WORD_MISS_NEXT)], max(least, bits));
+        }
+        return true;
+    }
+    let hit = atomicAdd(&crack_state[CRACK_COUNT_HITS], 1u);
+    if hit >= CRACK_HIT_CAPACITY {
+        return true;
+    }
+    let n = normalize(placed.normal);
+    let next = atomicExchange(&crack_state[crack_word(entry, CRACK_WORD_HEAD)], hit + 1u);
+    crack_hits[2u * hit] = vec4<u32>(s.ids.y, d.instance + 1u, d.material, bitcast<u32>(screen.z));
+    let uv = s.uv.xy + kept;
+    crack_hits[2u * hit + 1u] = vec4<u32>(pack2x16unorm(octahedral(n)), bitcast<u32>(uv.x), bitcast<u32>(uv.y), next);
+    return true;
+}
+
+// Instances of a call a seeded solve's match walks for its seed's (past them it is left
+// unsolved: llvmpipe ends a shader's loops after 65,535 iterations in all).
+const CRACK_SEED_WALK: u32 = 4096u;
+
+// The seeded solves of the pixels beside a silhouette (detect.wgsl's `CRACK_PAIR_SILHOUETTE`
+// entries): Newton's method from the seed's (u, v) — the grazing neighbour's texel — for
+// its face's point at the pixel's centre (`crack_solve`). Two passes: `cs_seed_match`,
+// dispatched over the entries once per trim call (its faces and instances in `call`),
+// finds the seed's face among the call's records by binary search (they are in ascending
+// face id, `Call::extra`) and its instance by walking the call's, and writes their indices
+// into the entry (its surface + 1 and record in the third vec4's x and y, its local
+// placement in the first's w); then `cs_seeded`, one dispatch over the entries, solves.
+// Matching first keeps a CPU rasterizer's lanes together: solved call by call, a batch of
+// lanes ran Newton's method once for each call its pixels' faces belonged to (PRO10363 at
+// 1080p on lavapipe: 345 ms for 561 solves). The raster fill costs a CPU rasterizer the
+// vertex stage of every face about a silhouette pixel (809 ms for 565 such pixels).
+@compute @workgroup_size(64)
+fn cs_seed_match(@builtin(global_invocation_id) id: vec3<u32>) {
+    let entry = id.x;
+    let kept = min(atomicLoad(&crack_state[CRACK_COUNT_ENTRIES]), CRACK_ENTRY_CAPACITY);
+    if entry >= kept {
+        return;
+    }
+    if crack_entries[3u * entry].y != CRACK_PAIR_SILHOUETTE {
+        return;
+    }
+    let seed = crack_entries[3u * entry + 1u];
+    var lo = 0u;
+    var hi = call.extra.x;
+    for (var k = 0u; (k < 32u) & (lo < hi); k++) {
+        let mid = (lo + hi) / 2u;
+        if surfaces[call.range.x + mid].ids.y < seed.x {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    if (lo >= call.extra.x) || (surfaces[call.range.x + lo].ids.y != seed.x) {
+        return;
+    }
+    let walked = min(call.instances, CRACK_SEED_WALK);
+    for (var i = 0u; i < walked; i++) {
+        let at = instance_parts(i);
+        if draws[at.x].instance + locals[at.y].offset + 1u == seed.y {
+            crack_entries[3u * entry].w = at.y;
+            crack_entries[3u * entry + 2u].x = call.range.x + lo + 1u;
+            crack_entries[3u * entry + 2u].y = at.x;
+            return;
+        }
+    }
+}
+
+@compute @workgroup_size(64)
+fn cs_seeded(@builtin(global_invocation_id) id: vec3<u32>) {
+    let entry = id.x;
+    let kept = min(atomicLoad(&crack_state[CRACK_COUNT_ENTRIES]), CRACK_ENTRY_CAPACITY);
+    if entry >= kept {
+        return;
+    }
+    let head = crack_entries[3u * entry];
+    let found = crack_entries[3u * entry + 2u];
+    if (head.y != CRACK_PAIR_SILHOUETTE) || (found.x == 0u) {
+        return;
+    }
+    let s = surfaces[found.x - 1u];
+    let width = u32(frame.viewport.x);
+    let q = vec2<i32>(i32(head.x % width), i32(head.x / width));
+    let uv = bitcast<vec2<f32>>(found.zw);
+    let d = parts_draw(vec2<u32>(found.y, head.w));
+    crack_solve(entry, q, s, d, uv - s.uv.xy, mat2x2<f32>(vec2<f32>(0.0), vec2<f32>(0.0)));
 }
 
 // The trim test of the solutions (off only for the tests' negative control: every solution

@@ -76,9 +76,11 @@ fn cs_crack_faces(@builtin(global_invocation_id) id: vec3<u32>) {
         let k = max(length(m[0].xyz), max(length(m[1].xyz), length(m[2].xyz)));
         let rect = sphere_rect(c, s.sphere.w * k);
         for (var e = 0u; (e < cracks) & !near; e++) {
-            let pixel = crack_entries[3u * e].x;
-            let p = vec2<f32>(f32(pixel % width), f32(pixel / width)) + 0.5;
-            near = all(p >= rect.xy) & all(p <= rect.zw);
+            let head = crack_entries[3u * e];
+            let p = vec2<f32>(f32(head.x % width), f32(head.x / width)) + 0.5;
+            // A pixel beside a silhouette is solved from its seed (`cs_seeded`), not by the
+            // faces drawn again.
+            near = all(p >= rect.xy) & all(p <= rect.zw) & (head.y != CRACK_PAIR_SILHOUETTE);
         }
     }
     if near {

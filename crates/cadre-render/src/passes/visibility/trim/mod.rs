@@ -48,7 +48,7 @@ pub(crate) const CRACK_BINDINGS: &[Binding] = &[
     Binding::Storage("f32"),
     Binding::Storage("vec4<f32>"),
     Binding::Storage("u32"),
-    Binding::Storage("vec4<u32>"),
+    Binding::StorageWrite("vec4<u32>"),
     Binding::AtomicStorage,
     Binding::StorageWrite("vec4<u32>"),
 ];
@@ -362,6 +362,12 @@ struct CrackFill {
     /// The pass that picks its faces (`crack_faces.wgsl`) and its bind group's layout.
     faces: wgpu::ComputePipeline,
     faces_layout: wgpu::BindGroupLayout,
+    /// The seeded solves of the pixels beside a silhouette (`crack.wgsl`'s `cs_seed_match`
+    /// and `cs_seeded`), by `sections`, and their bind group 0's layout (the fill's
+    /// bindings, seen by compute).
+    seeded: [OnceLock<[wgpu::ComputePipeline; 2]>; 2],
+    seeded_layout: wgpu::BindGroupLayout,
+    seeded_pipeline_layout: wgpu::PipelineLayout,
 }
 
 impl CrackFill {
@@ -386,6 +392,12 @@ impl CrackFill {
             group.push(e);
         }
         let (layout, pipeline_layout) = layouts(device, "trim crack fill", &group, Some(instances));
+        let (seeded_layout, seeded_pipeline_layout) = layouts(
+            device,
+            "trim crack seeded solves",
+            &entries(CRACK_BINDINGS, wgpu::ShaderStages::COMPUTE),
+            Some(instances),
+        );
         let (faces_layout, faces_pipeline_layout) = layouts(
             device,
             "trim crack fill faces",
@@ -413,7 +425,48 @@ impl CrackFill {
             pipelines: Default::default(),
             faces,
             faces_layout,
+            seeded: Default::default(),
+            seeded_layout,
+            seeded_pipeline_layout,
         }
+    }
+
+    /// The seeded solves' pipelines (the match, the solves) for frames with (`sections`)
+    /// or without section planes.
+    fn seeded(
+        &self,
+        device: &wgpu::Device,
+        sections: bool,
+        (trim_test, ray_cast): (bool, bool),
+    ) -> &[wgpu::ComputePipeline; 2] {
+        self.seeded[usize::from(sections)].get_or_init(|| {
+            let flag = |on: bool| if on { 1.0 } else { 0.0 };
+            ["cs_seed_match", "cs_seeded"].map(|entry| {
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(entry),
+                    layout: Some(&self.seeded_pipeline_layout),
+                    module: &self.module,
+                    entry_point: Some(entry),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &[
+                            ("SECTIONS", flag(sections)),
+                            ("TRIM_TEST_CRACKS", flag(trim_test)),
+                            ("RAYCAST", flag(ray_cast)),
+                            (
+                                "CRACK_HIT_CAPACITY",
+                                f64::from(crate::passes::cracks::HIT_CAPACITY),
+                            ),
+                            (
+                                "CRACK_ENTRY_CAPACITY",
+                                f64::from(crate::passes::cracks::ENTRY_CAPACITY),
+                            ),
+                        ],
+                        ..Default::default()
+                    },
+                    cache: None,
+                })
+            })
+        })
     }
 }
 
@@ -675,7 +728,7 @@ impl TrimBackend {
         &self,
         (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
         encoder: &mut wgpu::CommandEncoder,
-        inputs: &PhaseInputs<'_>,
+        (inputs, silhouettes): (&PhaseInputs<'_>, bool),
         buffers: &crate::passes::cracks::CrackBuffers,
     ) {
         let (Some(trim), Some(geometry)) = (&inputs.scene.trim, &inputs.scene.geometry.trim) else {
@@ -724,21 +777,49 @@ impl TrimBackend {
                 },
             )
         });
-        let bind = binds.get(
-            device,
-            "trim crack fill",
-            &fill.layout,
+        let resources = [
+            render_resources(inputs, (geometry, trim), &grid).as_slice(),
             &[
-                render_resources(inputs, (geometry, trim), &grid).as_slice(),
-                &[
-                    buffers.map.as_entire_binding(),
-                    buffers.entries.as_entire_binding(),
-                    buffers.state.as_entire_binding(),
-                    buffers.hits.as_entire_binding(),
-                ],
-            ]
-            .concat(),
-        );
+                buffers.map.as_entire_binding(),
+                buffers.entries.as_entire_binding(),
+                buffers.state.as_entire_binding(),
+                buffers.hits.as_entire_binding(),
+            ],
+        ]
+        .concat();
+        let bind = binds.get(device, "trim crack fill", &fill.layout, &resources);
+        let instances = &inputs.scene.instances;
+        if silhouettes {
+            // The pixels beside a silhouette, each solved from its seed: its face and
+            // instance found by a dispatch over the entries for each call (its faces and
+            // instances), then one dispatch solves.
+            let [matches, solves] =
+                fill.seeded(device, inputs.sections, (self.trim_test, self.ray_cast));
+            let seeded_bind = binds.get(
+                device,
+                "trim crack seeded solves",
+                &fill.seeded_layout,
+                &resources,
+            );
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("trim crack seeded solves"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(matches);
+            pass.set_bind_group(0, &seeded_bind, &[]);
+            for draw in &trim.draws {
+                pass.set_bind_group(1, &instances.bind, &[instances.offset(draw.slot)]);
+                pass.dispatch_workgroups_indirect(
+                    &buffers.args,
+                    crate::passes::cracks::SEEDED_DISPATCH_OFFSET,
+                );
+            }
+            pass.set_pipeline(solves);
+            pass.dispatch_workgroups_indirect(
+                &buffers.args,
+                crate::passes::cracks::SEEDED_DISPATCH_OFFSET,
+            );
+        }
         // The faces about the cracks: their draws copied, the others' emptied.
         let faces_bind = binds.get(
             device,
@@ -769,7 +850,6 @@ impl TrimBackend {
             crate::passes::cracks::depth_only_pass(encoder, "trim crack fill", &buffers.mask, None);
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        let instances = &inputs.scene.instances;
         for draw in &trim.draws {
             pass.set_bind_group(1, &instances.bind, &[instances.offset(draw.slot)]);
             pass.multi_draw_indirect(
