@@ -3,7 +3,7 @@
 
 Usage: python3 scripts/verify_corpus.py --cadre CADRE --step STEP_DIR --out DIR
            [--methods trim,mesh] [--zoom 1,10,100,1000] [--size 160x120] [--timeout 600]
-           [--cracks exact|fast] [--silhouette-fill]
+           [--cracks exact|fast] [--no-silhouette-fill]
 
 Runs `cadre verify FILE --json --method M` on each STEP file (4 views × the zooms; the face-id
 image against the CPU ray caster of the exact B-Rep) and writes DIR/verify_corpus.jsonl (one
@@ -13,8 +13,8 @@ disagreement away from 0.5 px of a true boundary, the worst share with its file 
 the largest silhouette error in pixels, and the share of covered pixels left unverified.
 With --cracks (trim only; issue 17), each view is also drawn with the crack pass off and the
 summary adds the crack pixels against the ray caster before and after the fill, their
-totals and the files left with any; --silhouette-fill adds the fill's silhouette rule (as
-`cadre render --silhouette-fill`).
+totals and the files left with any; --no-silhouette-fill leaves out the fill's silhouette
+rule (as `cadre render --no-silhouette-fill`).
 Flushes as it goes, so a run cut short still leaves what it measured.
 """
 import argparse
@@ -34,8 +34,8 @@ def parse_args():
     p.add_argument("--size", default="160x120")
     p.add_argument("--timeout", type=int, default=600, help="seconds per file and method")
     p.add_argument("--cracks", default=None, help="exact or fast: count crack pixels")
-    p.add_argument("--silhouette-fill", action="store_true",
-                   help="the crack fill's silhouette rule too (with --cracks)")
+    p.add_argument("--no-silhouette-fill", action="store_true",
+                   help="the crack fill without its silhouette rule (with --cracks)")
     return p.parse_args()
 
 
@@ -44,8 +44,8 @@ def verify(args, path, method):
            "--zoom", args.zoom, "--size", args.size]
     if args.cracks and method == "trim":
         cmd += ["--cracks", args.cracks]
-        if args.silhouette_fill:
-            cmd += ["--silhouette-fill"]
+        if args.no_silhouette_fill:
+            cmd += ["--no-silhouette-fill"]
     start = time.time()
     try:
         run = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)

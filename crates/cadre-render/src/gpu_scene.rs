@@ -863,7 +863,7 @@ impl FrameCalls {
             locals_count,
             instances,
             range: segments,
-            extra: [0; 2],
+            pad: [0; 2],
         });
         self.headers.len() as u32 - 1
     }
@@ -887,9 +887,6 @@ impl FrameCalls {
                 (locals_first, locals_count),
                 [first + chunk, task_first],
             );
-            if let Some(call) = self.headers.last_mut() {
-                call.extra[0] = faces;
-            }
             self.trim_tasks.extend((0..faces).map(|k| TrimTask {
                 surface: first + chunk + k,
                 record,

@@ -430,10 +430,8 @@ pub struct Call {
     /// rasterizer dispatches over); a trim call's first surface and first tessellation task
     /// ([`TrimTask`]); 0 for a mesh call.
     pub range: [u32; 2],
-    /// A trim call's face count (x: its surfaces, from `range`'s first, in ascending face
-    /// id, which the exact crack fill's seeded solves search); 0 otherwise. y: padding to the
-    /// WGSL struct's 16-byte alignment.
-    pub extra: [u32; 2],
+    /// Padding to the WGSL struct's 16-byte alignment.
+    pub pad: [u32; 2],
 }
 
 /// One face drawn by the trim back-end (`passes/visibility/trim`): its support surface in
@@ -488,6 +486,29 @@ pub struct TrimTask {
     pub near: f32,
     /// Padding to the WGSL struct's alignment.
     pub pad: u32,
+}
+
+/// One trim draw of a frame (a mesh call's trimmed faces) as the exact crack fill's seeded
+/// solves read it from storage (`crack.wgsl`'s `cs_seed_match`, a workgroup row a draw):
+/// the call's data, which a uniform would give — but lavapipe compiles a shader again for
+/// each binding of the uniforms its loops test (`shaders.rs`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct TrimCall {
+    /// The draw's first [`TrimSurface`]; its records are in ascending face id.
+    pub first_surface: u32,
+    /// Its faces (records from `first_surface`).
+    pub faces: u32,
+    /// The call's first draw record.
+    pub record: u32,
+    /// The call's first local placement.
+    pub locals_first: u32,
+    /// Local placements per record (at least 1).
+    pub locals_count: u32,
+    /// Instances the call draws.
+    pub instances: u32,
+    /// Padding to the WGSL struct's alignment.
+    pub pad: [u32; 2],
 }
 
 /// Bind group 1 of every pass that draws the scene's instances: the call (uniform at a
@@ -796,7 +817,7 @@ gpu_struct!(Local, "Local", [model, normal, offset, flags, pad]);
 gpu_struct!(
     Call,
     "Call",
-    [record, locals_first, locals_count, instances, range, extra]
+    [record, locals_first, locals_count, instances, range, pad]
 );
 gpu_struct!(
     TrimSurface,
@@ -814,6 +835,19 @@ gpu_struct!(
         instances,
         slot,
         near,
+        pad
+    ]
+);
+gpu_struct!(
+    TrimCall,
+    "TrimCall",
+    [
+        first_surface,
+        faces,
+        record,
+        locals_first,
+        locals_count,
+        instances,
         pad
     ]
 );

@@ -614,7 +614,8 @@ impl Renderer {
         // targets; an image, or a frame that reads the (u, v) back (which a viewport has no
         // target for), into fresh ones.
         // The silhouette rule's seeds are read from the (u, v) target.
-        let seeds = options.cracks.silhouettes && options.cracks.mode == CrackMode::Exact;
+        let crack_mode = self.crack_mode(scene, options);
+        let seeds = options.cracks.silhouettes && crack_mode == CrackMode::Exact;
         let with_uv = matches!(readback, Readback::Uv) || seeds;
         let (mut fresh_buffers, fresh_targets);
         let (kept_targets, buffers) = match viewport.as_deref_mut() {
@@ -640,7 +641,6 @@ impl Renderer {
         };
         let (_, edge_mode) = options.mode.fill_and_edges();
         let mut frame = frame_uniform(camera, options, state, (w, h));
-        let crack_mode = self.crack_mode(scene, options);
         [frame.tolerances[2], frame.tolerances[3]] =
             crate::passes::cracks::tolerances(&options.cracks, scene.diagonal());
         frame.forward[3] = if options.cracks.silhouettes { 1.0 } else { 0.0 };

@@ -267,9 +267,12 @@ fn options(cracks: CrackOptions) -> FrameOptions {
     }
 }
 
+/// The crack pass in `mode` with the seed's rule alone (the silhouette rule, on by default,
+/// off: these tests are of the seed's cracks between faces).
 fn mode(mode: CrackMode) -> CrackOptions {
     CrackOptions {
         mode,
+        silhouettes: false,
         ..CrackOptions::default()
     }
 }
@@ -450,9 +453,9 @@ fn plates_that_meet_have_no_crack_and_their_silhouettes_are_left_alone() {
 
 /// A coarse grid ends short of its cylinder's true silhouette: pixels there show the floor
 /// behind, which the seed's rule cannot flag (one neighbour is the floor). The silhouette
-/// rule (asked for) flags them, and the exact fill gives them the cylinder where its exact
-/// surface covers them; the others are left as drawn, not counted open. Negative controls:
-/// the crack pass off, and the seed's rule alone, leave them.
+/// rule (on by default) flags them, and the exact fill gives them the cylinder where its
+/// exact surface covers them; the others are left as drawn, not counted open. Negative
+/// controls: the crack pass off, and the seed's rule alone, leave them.
 #[test]
 fn pixels_a_grid_leaves_short_of_a_silhouette_are_filled_exactly() {
     let gpu = gpu();
@@ -464,7 +467,6 @@ fn pixels_a_grid_leaves_short_of_a_silhouette_are_filled_exactly() {
     let camera = camera_of(&fixture.1, ViewPreset::Iso);
     let with_rule = |mode: CrackMode| CrackOptions {
         mode,
-        silhouettes: true,
         ..CrackOptions::default()
     };
     let (_, before, _) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Off));
@@ -501,7 +503,7 @@ fn pixels_a_grid_leaves_short_of_a_silhouette_are_filled_exactly() {
         fast.silhouettes > 0 && fast.fast <= fast.detected - fast.silhouettes,
         "{fast:?}"
     );
-    // Negative control: the seed's rule alone (the default) leaves them.
+    // Negative control: the seed's rule alone leaves them.
     let (_, seed_only, counts) = draw((&gpu, &renderer), scene, &camera, mode(CrackMode::Exact));
     assert_eq!((seed_only, counts.silhouettes), (before, 0), "{counts:?}");
 }

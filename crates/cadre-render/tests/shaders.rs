@@ -8,7 +8,7 @@ use cadre_render::layout::{
     Draw, EDGES_ALL, EDGES_HIDDEN_DASHED, EDGES_VISIBLE, FILL_BACKGROUND, FILL_NONE, FILL_SHADED,
     FrameUniform, GpuStruct, LightGpu, LightRig, LineFrame, LinePoint, LineStyleGpu, Local,
     Material, Member, PROJECTION_ORTHOGRAPHIC, PROJECTION_PERSPECTIVE, PickRegion, Primitive,
-    Segment, TextFrame, TextGlyph, TextLabel, TrimSurface, TrimTask,
+    Segment, TextFrame, TextGlyph, TextLabel, TrimCall, TrimSurface, TrimTask,
 };
 use cadre_render::layout::{Binding, INSTANCE_BINDINGS, PassShader, pass_shaders};
 
@@ -156,6 +156,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
             ("Primitive", check::<Primitive>(pass, &m)),
             ("TrimSurface", check::<TrimSurface>(pass, &m)),
             ("TrimTask", check::<TrimTask>(pass, &m)),
+            ("TrimCall", check::<TrimCall>(pass, &m)),
             ("LinePoint", check::<LinePoint>(pass, &m)),
             ("LineStyle", check::<LineStyleGpu>(pass, &m)),
             ("LineFrame", check::<LineFrame>(pass, &m)),
@@ -170,7 +171,7 @@ fn shaders_validate_and_share_the_rust_layouts() {
         }
     }
     // Every layout was really compared somewhere (naga drops nothing we rely on).
-    assert_eq!(found.len(), 19, "{found:?}");
+    assert_eq!(found.len(), 20, "{found:?}");
 }
 
 #[test]

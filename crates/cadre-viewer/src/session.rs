@@ -107,8 +107,7 @@ pub(crate) struct Session {
     /// The key light casts shadows (a shadow map every back-end writes).
     pub shadows: bool,
     /// With exact faces, the crack pass's exact fill also solves the pixels beside
-    /// silhouettes once the camera stops (`CrackOptions::silhouettes`; slow on a CPU
-    /// rasterizer, off by default).
+    /// silhouettes once the camera stops (`CrackOptions::silhouettes`; on by default).
     pub silhouette_fill: bool,
     /// A grey-blue gradient behind the model (off by default: a flat light grey).
     pub gradient: bool,
@@ -359,7 +358,7 @@ impl Session {
             mode: DisplayMode::ShadedEdges,
             exact_faces: false,
             shadows: false,
-            silhouette_fill: false,
+            silhouette_fill: true,
             gradient: false,
             grid: false,
             hidden: Vec::new(),

@@ -49,8 +49,7 @@ struct Call {
     // A segment call's segments (first, count), each drawn once per instance; a trim call's
     // first surface and first tessellation task.
     range: vec2<u32>,
-    // A trim call's face count (its surfaces in ascending face id); 0 otherwise. Then padding.
-    extra: vec2<u32>,
+    pad: vec2<u32>,
 }
 
 struct Material {

@@ -69,7 +69,7 @@ pub(super) fn menu_bar(
                     )
                     .on_hover_text(
                         "Once the camera stops, pixels a face's grid leaves short of its true \
-                         silhouette are given the exact surface (slow without a GPU)",
+                         silhouette are given the exact surface",
                     );
                     ui.checkbox(&mut s.shadows, "Shadows").on_hover_text(
                         "The key light casts shadows (a shadow map drawn each frame)",

@@ -66,9 +66,10 @@ enum BenchWhat {
         /// (the GPU time of its stage, `cracks`, after `visibility`) and what it did.
         #[arg(long, default_value = "exact", value_enum)]
         cracks: crate::commands::render::CrackArg,
-        /// The crack pass's silhouette rule (as `cadre render --silhouette-fill`).
+        /// The crack pass without its silhouette rule (as `cadre render
+        /// --no-silhouette-fill`).
         #[arg(long)]
-        silhouette_fill: bool,
+        no_silhouette_fill: bool,
     },
     /// The viewer's frame on the same heavy scene: the scene uploaded once, then each frame
     /// orbits the camera by 2°, draws into a kept viewport (the window's path, no readback)
@@ -141,13 +142,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             method,
             no_coverage,
             cracks,
-            silhouette_fill,
+            no_silhouette_fill,
         } => bench_render(
             file,
             (*grid, *method),
             *size,
             *frames,
-            (*mode, !*no_coverage, (*cracks, *silhouette_fill)),
+            (*mode, !*no_coverage, (*cracks, !*no_silhouette_fill)),
         ),
         BenchWhat::View {
             file,
@@ -538,7 +539,7 @@ fn bench_render(
             inspect_cracks: false,
             gap_tolerance: 0.0,
             crack_depth: 0.0,
-            silhouette_fill,
+            no_silhouette_fill: !silhouette_fill,
         }
         .options(),
         ..FrameOptions::default()

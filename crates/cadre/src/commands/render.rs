@@ -238,11 +238,11 @@ pub struct CrackArgs {
     /// neighbours of a pair must be; 0 takes 10⁻³ of the model's diagonal.
     #[arg(long, default_value_t = 0.0)]
     pub crack_depth: f64,
-    /// The exact fill also solves the pixels next to a nearer face seen at a grazing angle,
-    /// where a face's grid ends short of its true silhouette (off by default: its cost
-    /// follows the view's silhouettes, not its cracks).
+    /// The exact fill leaves the pixels next to a nearer face seen at a grazing angle as
+    /// drawn (the seed's rule alone). By default it solves them too, from that face's own
+    /// (u, v): a face's grid ends short of its true silhouette there.
     #[arg(long)]
-    pub silhouette_fill: bool,
+    pub no_silhouette_fill: bool,
 }
 
 /// `--cracks`.
@@ -268,7 +268,7 @@ impl CrackArgs {
             highlight: self.inspect_cracks,
             min_depth: self.crack_depth.max(0.0),
             gap_tolerance: self.gap_tolerance.max(0.0),
-            silhouettes: self.silhouette_fill,
+            silhouettes: !self.no_silhouette_fill,
         }
     }
 }

@@ -52,10 +52,10 @@ pub struct VerifyArgs {
     /// the model's diagonal.
     #[arg(long, default_value_t = 0.0)]
     crack_depth: f64,
-    /// The exact fill solves the pixels beside silhouettes too (as `cadre render
-    /// --silhouette-fill`).
+    /// The exact fill leaves the pixels beside silhouettes as drawn (the seed's rule
+    /// alone, as `cadre render --no-silhouette-fill`).
     #[arg(long)]
-    silhouette_fill: bool,
+    no_silhouette_fill: bool,
     /// One JSON object instead of a table.
     #[arg(long)]
     json: bool,
@@ -132,7 +132,7 @@ pub fn run(args: &VerifyArgs) -> Result<()> {
         inspect_cracks: false,
         gap_tolerance: args.gap_tolerance,
         crack_depth: args.crack_depth,
-        silhouette_fill: args.silhouette_fill,
+        no_silhouette_fill: args.no_silhouette_fill,
     };
     let options = FrameOptions {
         width: w,

@@ -62,8 +62,9 @@ pub struct CrackOptions {
     pub gap_tolerance: f64,
     /// The silhouette rule beside the seed's (exact mode): pixels next to a nearer face seen
     /// at a grazing angle, where a grid ends short of its surface's true silhouette, are
-    /// solved by the exact fill too. Off by default: its cost follows the silhouettes of
-    /// the view, not its cracks (`detect.wgsl`; BENCHMARKS.md).
+    /// solved too, each from that face's (u, v) at the neighbour (`detect.wgsl`,
+    /// `crack.wgsl`'s `cs_seeded`). On by default (a few percent of a trim frame on
+    /// lavapipe, BENCHMARKS.md); the frame then writes the (u, v) target.
     pub silhouettes: bool,
 }
 
@@ -74,7 +75,7 @@ impl Default for CrackOptions {
             highlight: false,
             min_depth: 0.0,
             gap_tolerance: 0.0,
-            silhouettes: false,
+            silhouettes: true,
         }
     }
 }
@@ -249,7 +250,11 @@ impl CrackBuffers {
                 32 * u64::from(HIT_CAPACITY),
                 wgpu::BufferUsages::empty(),
             ),
-            args: make("crack quads", 32, wgpu::BufferUsages::INDIRECT),
+            args: make(
+                "crack quads",
+                32,
+                wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_SRC,
+            ),
             mask: device
                 .create_texture(&wgpu::TextureDescriptor {
                     label: Some("crack mask"),

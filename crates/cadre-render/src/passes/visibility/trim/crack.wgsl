@@ -20,6 +20,8 @@
 // Per hit, two vec4: ids (face, instance + 1, material, depth bits), then the octahedral
 // normal (`pack2x16unorm`), u and v bits, and 1 + the next hit of the same pixel (0: none).
 @group(0) @binding(13) var<storage, read_write> crack_hits: array<vec4<u32>>;
+// The frame's trim draws, for the seeded solves' match (`FrameTrim`).
+@group(0) @binding(14) var<storage, read> seed_calls: array<TrimCall>;
 
 
 // Newton's iterations at most, and the distance to the pixel's centre, in pixels, at which
@@ -256,49 +258,55 @@ fn crack_solve(entry: u32, q: vec2<i32>, s: TrimSurface, d: Draw, start: vec2<f3
 // Instances of a call a seeded solve's match walks for its seed's (past them it is left
 // unsolved: llvmpipe ends a shader's loops after 65,535 iterations in all).
 const CRACK_SEED_WALK: u32 = 4096u;
+// Workgroup rows a dispatch has at most (wgpu's limit on each dimension): the draw is the
+// row plus this times the layer.
+const CRACK_SEED_ROWS: u32 = 65535u;
 
 // The seeded solves of the pixels beside a silhouette (detect.wgsl's `CRACK_PAIR_SILHOUETTE`
 // entries): Newton's method from the seed's (u, v) — the grazing neighbour's texel — for
-// its face's point at the pixel's centre (`crack_solve`). Two passes: `cs_seed_match`,
-// dispatched over the entries once per trim call (its faces and instances in `call`),
-// finds the seed's face among the call's records by binary search (they are in ascending
-// face id, `Call::extra`) and its instance by walking the call's, and writes their indices
-// into the entry (its surface + 1 and record in the third vec4's x and y, its local
-// placement in the first's w); then `cs_seeded`, one dispatch over the entries, solves.
-// Matching first keeps a CPU rasterizer's lanes together: solved call by call, a batch of
-// lanes ran Newton's method once for each call its pixels' faces belonged to (PRO10363 at
-// 1080p on lavapipe: 345 ms for 561 solves). The raster fill costs a CPU rasterizer the
-// vertex stage of every face about a silhouette pixel (809 ms for 565 such pixels).
+// its face's point at the pixel's centre (`crack_solve`). Two passes: `cs_seed_match`, a
+// workgroup row for each trim draw (`seed_calls`) and a column for each 64 entries, finds
+// the seed's face among the draw's records by binary search (they are in ascending face
+// id) and its instance by walking the draw's, and writes their indices into the entry (its
+// surface + 1 and record in the third vec4's x and y, its local placement in the first's
+// w); then `cs_seeded`, one dispatch over the entries, solves. Matching first keeps a CPU
+// rasterizer's lanes together: solved draw by draw, a batch of lanes ran Newton's method
+// once for each draw its pixels' faces belonged to (PRO10363 at 1080p on lavapipe: 345 ms
+// for 561 solves). The raster fill costs a CPU rasterizer the vertex stage of every face
+// about a silhouette pixel (809 ms for 565 such pixels).
 @compute @workgroup_size(64)
 fn cs_seed_match(@builtin(global_invocation_id) id: vec3<u32>) {
     let entry = id.x;
+    let draw = id.y + CRACK_SEED_ROWS * id.z;
     let kept = min(atomicLoad(&crack_state[CRACK_COUNT_ENTRIES]), CRACK_ENTRY_CAPACITY);
-    if entry >= kept {
+    if (entry >= kept) || (draw >= arrayLength(&seed_calls)) {
         return;
     }
     if crack_entries[3u * entry].y != CRACK_PAIR_SILHOUETTE {
         return;
     }
+    let c = seed_calls[draw];
     let seed = crack_entries[3u * entry + 1u];
     var lo = 0u;
-    var hi = call.extra.x;
+    var hi = c.faces;
     for (var k = 0u; (k < 32u) & (lo < hi); k++) {
         let mid = (lo + hi) / 2u;
-        if surfaces[call.range.x + mid].ids.y < seed.x {
+        if surfaces[c.first_surface + mid].ids.y < seed.x {
             lo = mid + 1u;
         } else {
             hi = mid;
         }
     }
-    if (lo >= call.extra.x) || (surfaces[call.range.x + lo].ids.y != seed.x) {
+    if (lo >= c.faces) || (surfaces[c.first_surface + lo].ids.y != seed.x) {
         return;
     }
-    let walked = min(call.instances, CRACK_SEED_WALK);
+    let walked = min(c.instances, CRACK_SEED_WALK);
+    let count = max(c.locals_count, 1u);
     for (var i = 0u; i < walked; i++) {
-        let at = instance_parts(i);
+        let at = vec2<u32>(c.record + i / count, c.locals_first + i % count);
         if draws[at.x].instance + locals[at.y].offset + 1u == seed.y {
             crack_entries[3u * entry].w = at.y;
-            crack_entries[3u * entry + 2u].x = call.range.x + lo + 1u;
+            crack_entries[3u * entry + 2u].x = c.first_surface + lo + 1u;
             crack_entries[3u * entry + 2u].y = at.x;
             return;
         }

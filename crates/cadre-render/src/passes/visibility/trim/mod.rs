@@ -12,7 +12,7 @@
 use std::sync::OnceLock;
 
 use super::{Phase, PhaseInputs, TARGETS, TARGETS_NO_UV, TEXEL_WGSL, depth_state};
-use crate::layout::{Binding, FrameUniform, GpuStruct, TrimSurface, TrimTask};
+use crate::layout::{Binding, FrameUniform, GpuStruct, TrimCall, TrimSurface, TrimTask};
 use crate::passes::common::{PipelineSpec, entries, layouts, pipeline, shader, wgsl};
 use crate::passes::instances::{INSTANCES_WGSL, InstanceLayout};
 use wgpu::util::DeviceExt;
@@ -35,7 +35,7 @@ pub(crate) const BINDINGS: &[Binding] = &[
 
 /// The exact crack fill's bind group 0 (`crack.wgsl`, after the render shader): the render
 /// shader's [`BINDINGS`], then the crack map, the entries, the state and the hits
-/// (`passes::cracks`); group 1: the instances.
+/// (`passes::cracks`), the frame's trim draws (the seeded solves'); group 1: the instances.
 pub(crate) const CRACK_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(TrimSurface::WGSL_NAME),
@@ -51,6 +51,7 @@ pub(crate) const CRACK_BINDINGS: &[Binding] = &[
     Binding::StorageWrite("vec4<u32>"),
     Binding::AtomicStorage,
     Binding::StorageWrite("vec4<u32>"),
+    Binding::Storage(TrimCall::WGSL_NAME),
 ];
 
 /// The pass that picks the exact crack fill's faces (`crack_faces.wgsl`), bind group 0:
@@ -254,6 +255,11 @@ pub(crate) struct FrameTrim {
     levels: wgpu::Buffer,
     count: u32,
     pub draws: Vec<TrimDraw>,
+    /// The draws as the seeded solves' match reads them (a [`TrimCall`] each).
+    seed_calls: wgpu::Buffer,
+    /// The seeded solves' match dispatch: x copied from the crack pass's count each frame,
+    /// a workgroup row (y, then z past 65,535) a draw.
+    seed_dispatch: wgpu::Buffer,
 }
 
 impl FrameTrim {
@@ -264,6 +270,23 @@ impl FrameTrim {
             return None;
         }
         let count = tasks.len() as u32;
+        let calls: Vec<TrimCall> = draws
+            .iter()
+            .filter_map(|d| {
+                let t = tasks.get(d.task_first as usize)?;
+                Some(TrimCall {
+                    first_surface: t.surface,
+                    faces: d.faces,
+                    record: t.record,
+                    locals_first: t.locals_first,
+                    locals_count: t.locals_count,
+                    instances: t.instances,
+                    pad: [0; 2],
+                })
+            })
+            .collect();
+        let rows = (calls.len() as u32).max(1);
+        let dispatch = [0, rows.min(SEED_ROWS), rows.div_ceil(SEED_ROWS), 0];
         let written = |label, size: u64, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -291,9 +314,19 @@ impl FrameTrim {
             ),
             count,
             draws,
+            seed_calls: storage(device, "trim seed calls", bytemuck::cast_slice(&calls)),
+            seed_dispatch: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("trim seed match dispatch"),
+                contents: bytemuck::cast_slice(&dispatch),
+                usage: wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
+            }),
         })
     }
 }
+
+/// Workgroup rows of the seeded solves' match dispatch at most (`CRACK_SEED_ROWS` in
+/// crack.wgsl; wgpu's limit on a dimension).
+const SEED_ROWS: u32 = 65_535;
 
 /// How the back-end draws: as it should (the default), or with a part switched off, for the
 /// tests' negative control and the benchmarks that separate its costs.
@@ -784,6 +817,7 @@ impl TrimBackend {
                 buffers.entries.as_entire_binding(),
                 buffers.state.as_entire_binding(),
                 buffers.hits.as_entire_binding(),
+                trim.seed_calls.as_entire_binding(),
             ],
         ]
         .concat();
@@ -791,8 +825,8 @@ impl TrimBackend {
         let instances = &inputs.scene.instances;
         if silhouettes {
             // The pixels beside a silhouette, each solved from its seed: its face and
-            // instance found by a dispatch over the entries for each call (its faces and
-            // instances), then one dispatch solves.
+            // instance found by one dispatch over the entries and the draws, then one
+            // dispatch over the entries solves.
             let [matches, solves] =
                 fill.seeded(device, inputs.sections, (self.trim_test, self.ray_cast));
             let seeded_bind = binds.get(
@@ -801,19 +835,21 @@ impl TrimBackend {
                 &fill.seeded_layout,
                 &resources,
             );
+            encoder.copy_buffer_to_buffer(
+                &buffers.args,
+                crate::passes::cracks::SEEDED_DISPATCH_OFFSET,
+                &trim.seed_dispatch,
+                0,
+                4,
+            );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("trim crack seeded solves"),
                 timestamp_writes: None,
             });
             pass.set_pipeline(matches);
             pass.set_bind_group(0, &seeded_bind, &[]);
-            for draw in &trim.draws {
-                pass.set_bind_group(1, &instances.bind, &[instances.offset(draw.slot)]);
-                pass.dispatch_workgroups_indirect(
-                    &buffers.args,
-                    crate::passes::cracks::SEEDED_DISPATCH_OFFSET,
-                );
-            }
+            pass.set_bind_group(1, &instances.bind, &[0]);
+            pass.dispatch_workgroups_indirect(&trim.seed_dispatch, 0);
             pass.set_pipeline(solves);
             pass.dispatch_workgroups_indirect(
                 &buffers.args,

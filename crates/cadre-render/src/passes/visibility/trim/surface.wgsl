@@ -25,6 +25,17 @@ struct TrimTask {
     pad: u32,
 }
 
+// `layout::TrimCall`: a trim draw's call, for the exact crack fill's seeded solves.
+struct TrimCall {
+    first_surface: u32,
+    faces: u32,
+    record: u32,
+    locals_first: u32,
+    locals_count: u32,
+    instances: u32,
+    pad: vec2<u32>,
+}
+
 // `trim_surfaces::SURFACE_*`.
 const SURFACE_PLANE: u32 = 0u;
 const SURFACE_CYLINDER: u32 = 1u;
