@@ -613,15 +613,15 @@ impl Renderer {
         // A viewer's frame writes into its viewport's kept buffers and draws into its kept
         // targets; an image, or a frame that reads the (u, v) back (which a viewport has no
         // target for), into fresh ones.
-        // The silhouette rule's seeds are read from the (u, v) target.
+        // The exact crack fill's seeds are read from the (u, v) target.
         let crack_mode = self.crack_mode(scene, options);
-        let seeds = options.cracks.silhouettes && crack_mode == CrackMode::Exact;
+        let seeds = crack_mode == CrackMode::Exact;
         let with_uv = matches!(readback, Readback::Uv) || seeds;
         let (mut fresh_buffers, fresh_targets);
         let (kept_targets, buffers) = match viewport.as_deref_mut() {
             Some(v) => {
                 // A viewport keeps a (u, v) target from its first frame that seeds the
-                // silhouette rule's solves.
+                // exact crack fill's solves.
                 if seeds && v.targets.uv.is_none() {
                     v.targets = VisibilityTargets::new(device, (w, h), true);
                 }
@@ -731,16 +731,14 @@ impl Renderer {
             if let Some(t) = timer {
                 t.mark(&mut encoder, "crack detection");
             }
-            if crack_mode == CrackMode::Exact {
-                cracks.mask(recorder, &mut encoder, frame_buffer, &crack_buffers);
-            }
             let exact = crack_mode == CrackMode::Exact
                 && self.visibility.record_crack_fill(
                     recorder,
                     &mut encoder,
-                    (frame_buffer, sections, options.cracks.silhouettes),
+                    (frame_buffer, sections),
                     &frame_scene,
                     &crack_buffers,
+                    &mut |encoder| cracks.mask(recorder, encoder, frame_buffer, &crack_buffers),
                 );
             if let Some(t) = timer
                 && exact

@@ -17,6 +17,7 @@
 // drawn (the true silhouette passes before it) and not counted as open. Their entries carry
 // the grazing neighbour's texel (ids and (u, v)), from which the exact fill solves that
 // face alone (`cs_seeded`, visibility/trim/crack.wgsl) instead of drawing faces again.
+// Each crack between faces carries its pair's two neighbours as seeds the same way.
 //
 // Two full-screen passes: the flags
 // (`fs_flag`, the crack mask's depth), then at the flagged pixels the entries (`fs_detect`:
@@ -41,6 +42,8 @@
 // frame has one (the renderer makes it when the silhouette rule is on; else the ids target
 // stands in, unread).
 @group(0) @binding(8) var uv_tex: texture_2d<u32>;
+// Per entry, the seeds (cracks/layout.wgsl's `CRACK_SEED_VEC4S`).
+@group(0) @binding(9) var<storage, read_write> crack_seeds: array<vec4<u32>>;
 
 
 // The crack buffers' capacity in entries (`passes::cracks` sets it).
@@ -240,18 +243,24 @@ fn fs_detect(@builtin(position) pos: vec4<f32>) {
         return;
     }
     crack_map[index] = entry + 1u;
+    let normal = textureLoad(normal_tex, p + best, 0);
     crack_entries[3u * entry] = vec4<u32>(index, pair, bitcast<u32>(own.depth), 0u);
+    crack_entries[3u * entry + 1u] = vec4<u32>(fill.ids.xyz, bitcast<u32>(depth_sum / max(depth_count, 1.0)));
+    crack_entries[3u * entry + 2u] = bitcast<vec4<u32>>(vec4<f32>(normal.xy, 1.0, 1.0));
+    // The seeds: the pair's two neighbours, or the grazing one beside a silhouette.
+    var seeds = array<vec2<i32>, 2>(p + pair_offset(pair % 4u), p - pair_offset(pair % 4u));
+    var present = vec2<bool>(true, true);
     if pair == CRACK_PAIR_SILHOUETTE {
-        // The seed: the grazing neighbour's ids and depth, then its (u, v) bits (the fast
-        // fill never takes these pixels).
-        let q = p + edge_offset(silhouette_neighbour(p, own));
-        let seed = texel_at(q);
-        crack_entries[3u * entry + 1u] = vec4<u32>(seed.ids.xyz, bitcast<u32>(seed.depth));
-        crack_entries[3u * entry + 2u] = vec4<u32>(0u, 0u, textureLoad(uv_tex, q, 0).xy);
-    } else {
-        let normal = textureLoad(normal_tex, p + best, 0);
-        crack_entries[3u * entry + 1u] = vec4<u32>(fill.ids.xyz, bitcast<u32>(depth_sum / max(depth_count, 1.0)));
-        crack_entries[3u * entry + 2u] = bitcast<vec4<u32>>(vec4<f32>(normal.xy, 1.0, 1.0));
+        seeds[0] = p + edge_offset(silhouette_neighbour(p, own));
+        present.y = false;
+    }
+    for (var k = 0u; k < CRACK_SEEDS; k++) {
+        let q = seeds[k];
+        let t = texel_at(q);
+        let instance = select(0u, t.ids.y, present[k] & t.face);
+        let at = CRACK_SEED_VEC4S * entry + 2u * k;
+        crack_seeds[at] = vec4<u32>(t.ids.x, instance, textureLoad(uv_tex, q, 0).xy);
+        crack_seeds[at + 1u] = vec4<u32>(0u);
     }
     let words = CRACK_HEADER + entry * CRACK_ENTRY_WORDS;
     for (var slot = 0u; slot < CRACK_MAILBOX_SLOTS; slot++) {

@@ -25,3 +25,12 @@ const CRACK_MAILBOX_SLOTS: u32 = 4u;
 const CRACK_WORD_HEAD: u32 = 4u;
 const CRACK_WORD_MISS: u32 = 5u;
 const CRACK_WORD_MISS_NEXT: u32 = 6u;
+// The crack pixels the seeded solves settled (`CrackCounts::settled`).
+const CRACK_COUNT_SETTLED: u32 = 10u;
+// An entry's seeds (`passes::cracks::SEED_VEC4S` vec4 an entry in the seeds buffer): for
+// each of `CRACK_SEEDS`, the neighbour's texel — face id, instance + 1 (0: no seed), u and
+// v bits — then what the match found — 1 + its surface record, its draw record, its local
+// placement — and, in the first seed's, whether the seeded solves settled the pixel (1: the
+// exact fill draws no face for it).
+const CRACK_SEEDS: u32 = 2u;
+const CRACK_SEED_VEC4S: u32 = 4u;

@@ -92,6 +92,10 @@ pub const ENTRY_CAPACITY: u32 = 1 << 16;
 /// Exact-fill hits a frame can hold (four a crack).
 pub const HIT_CAPACITY: u32 = 4 * ENTRY_CAPACITY;
 
+/// `vec4<u32>` an entry has in [`CrackBuffers::seeds`] (`CRACK_SEED_VEC4S`): two seeds, a
+/// neighbour's texel and what the match found each.
+pub const SEED_VEC4S: u32 = 4;
+
 /// Where in [`CrackBuffers::args`] the seeded solves' indirect dispatch lies (bytes).
 pub(crate) const SEEDED_DISPATCH_OFFSET: u64 = 16;
 
@@ -129,11 +133,14 @@ pub struct CrackCounts {
     /// nearer than what the pixel shows, `detect.wgsl`): filled by an exact hit (counted in
     /// `exact`) or left as drawn, never counted `open` nor filled by the fast fill.
     pub silhouettes: u32,
+    /// Of the `detected`, pixels the seeded solves settled (a hit from a seed closed them):
+    /// the exact fill drew no face again for them.
+    pub settled: u32,
 }
 
 /// The detection's bind group 0: frame, the depth, ids and normal targets, the crack map,
 /// the entries, the state, the quads' indirect draw (and the seeded solves' dispatch), the
-/// (u, v) target.
+/// (u, v) target, the seeds.
 pub(crate) const DETECT_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::FloatTexture,
@@ -144,13 +151,16 @@ pub(crate) const DETECT_BINDINGS: &[Binding] = &[
     Binding::AtomicStorage,
     Binding::StorageWrite("u32"),
     Binding::UintTexture,
+    Binding::StorageWrite("vec4<u32>"),
 ];
 
-/// The resolve's (and the mask's) bind group 0: frame, the entries, the state, the hits.
+/// The resolve's (and the mask's) bind group 0: frame, the entries, the state, the hits,
+/// the seeds.
 pub(crate) const RESOLVE_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage("vec4<u32>"),
     Binding::AtomicStorage,
+    Binding::Storage("vec4<u32>"),
     Binding::Storage("vec4<u32>"),
 ];
 
@@ -216,6 +226,8 @@ pub(crate) struct CrackBuffers {
     pub state: wgpu::Buffer,
     /// Two `vec4<u32>` a hit.
     pub hits: wgpu::Buffer,
+    /// [`SEED_VEC4S`] `vec4<u32>` an entry: its seeds (layout.wgsl).
+    pub seeds: wgpu::Buffer,
     /// The indirect draw of the crack quads (mask, resolve): 6 vertices, an instance a
     /// crack; then, at [`SEEDED_DISPATCH_OFFSET`], the seeded solves' indirect dispatch.
     pub args: wgpu::Buffer,
@@ -248,6 +260,11 @@ impl CrackBuffers {
             hits: make(
                 "crack hits",
                 32 * u64::from(HIT_CAPACITY),
+                wgpu::BufferUsages::empty(),
+            ),
+            seeds: make(
+                "crack seeds",
+                16 * u64::from(SEED_VEC4S) * entries,
                 wgpu::BufferUsages::empty(),
             ),
             args: make(
@@ -438,11 +455,12 @@ impl CrackPass {
                 buffers.entries.as_entire_binding(),
                 buffers.state.as_entire_binding(),
                 buffers.args.as_entire_binding(),
-                // The silhouette entries' seeds; the ids target stands in (unread) where the
-                // frame has no (u, v) target, which it has whenever the rule is on.
+                // The seeds' (u, v); the ids target stands in (unread) where the frame has no
+                // (u, v) target, which it has whenever the exact fill runs.
                 wgpu::BindingResource::TextureView(
                     targets.uv.as_ref().map_or(&targets.ids, |(uv, _)| uv),
                 ),
+                buffers.seeds.as_entire_binding(),
             ],
         );
         {
@@ -494,6 +512,7 @@ impl CrackPass {
                 buffers.entries.as_entire_binding(),
                 buffers.state.as_entire_binding(),
                 buffers.hits.as_entire_binding(),
+                buffers.seeds.as_entire_binding(),
             ],
         )
     }
@@ -578,6 +597,7 @@ impl CrackPass {
             open: w[7],
             fill_faces: w[8],
             silhouettes: w[9],
+            settled: w[10],
         }
     }
 }

@@ -11,6 +11,8 @@
 @group(0) @binding(1) var<storage, read> crack_entries: array<vec4<u32>>;
 @group(0) @binding(2) var<storage, read_write> crack_state: array<atomic<u32>>;
 @group(0) @binding(3) var<storage, read> crack_hits: array<vec4<u32>>;
+// Per entry, its seeds (layout.wgsl): the mask reads whether the seeded solves settled it.
+@group(0) @binding(4) var<storage, read> crack_seeds: array<vec4<u32>>;
 
 
 // The exact fill ran (else the fast fill only).
@@ -55,11 +57,13 @@ fn vs_resolve(@builtin(vertex_index) corner: u32, @builtin(instance_index) entry
 
 // The exact fill's depth mask: the 3 × 3 pixels about each crack at depth 0, so that the
 // fill's fragments pass (`Greater`) only there, everywhere else turned away before their
-// shader runs (the mask is cleared to 1). A pixel beside a silhouette gets no square: its
-// seeded solve (visibility/trim/crack.wgsl's `cs_seeded`) needs no face drawn again.
+// shader runs (the mask is cleared to 1). A pixel the seeded solves settled
+// (visibility/trim/crack.wgsl's `cs_seeded`), and one beside a silhouette, which only they
+// solve, get no square: no face is drawn again for them.
 @vertex
 fn vs_mask(@builtin(vertex_index) corner: u32, @builtin(instance_index) entry: u32) -> @builtin(position) vec4<f32> {
-    let seeded = crack_entries[3u * entry].y == CRACK_PAIR_SILHOUETTE;
+    let seeded = (crack_entries[3u * entry].y == CRACK_PAIR_SILHOUETTE)
+        | (crack_seeds[CRACK_SEED_VEC4S * entry + 1u].w != 0u);
     return crack_quad(entry, corner, select(1.5, 0.0, seeded), 0.0);
 }
 

@@ -308,15 +308,17 @@ impl VisibilityPass {
     }
 
     /// Records the trim back-end's exact crack fill into `buffers` when it drew this frame
-    /// (`sections`: the frame has section planes; `silhouettes`: the silhouette rule's
-    /// entries are solved from their seeds); whether it did.
+    /// (`sections`: the frame has section planes): the seeded solves, then `mask` (which
+    /// records the crack mask, from what they left), then the faces drawn again; whether it
+    /// did.
     pub fn record_crack_fill(
         &self,
         recorder: (&wgpu::Device, &crate::frame_buffers::BindCache),
         encoder: &mut wgpu::CommandEncoder,
-        (frame, sections, silhouettes): (&wgpu::Buffer, bool, bool),
+        (frame, sections): (&wgpu::Buffer, bool),
         scene: &FrameScene<'_>,
         buffers: &crate::passes::cracks::CrackBuffers,
+        mask: &mut dyn FnMut(&mut wgpu::CommandEncoder),
     ) -> bool {
         let Some(trim) = self.trim.as_ref().filter(|_| scene.trim.is_some()) else {
             return false;
@@ -330,7 +332,7 @@ impl VisibilityPass {
             coverage: false,
         };
         trim.get(recorder.0)
-            .draw_cracks(recorder, encoder, (&inputs, silhouettes), buffers);
+            .draw_cracks(recorder, encoder, &inputs, buffers, mask);
         true
     }
 

@@ -22,6 +22,9 @@
 @group(0) @binding(13) var<storage, read_write> crack_hits: array<vec4<u32>>;
 // The frame's trim draws, for the seeded solves' match (`FrameTrim`).
 @group(0) @binding(14) var<storage, read> seed_calls: array<TrimCall>;
+// Per entry, its seeds (cracks/layout.wgsl's `CRACK_SEED_VEC4S`), which the match completes
+// and the solves mark settled.
+@group(0) @binding(15) var<storage, read_write> crack_seeds: array<vec4<u32>>;
 
 
 // Newton's iterations at most, and the distance to the pixel's centre, in pixels, at which
@@ -151,7 +154,7 @@ fn fs_crack(in: CrackOut) {
             continue;
         }
         let d = instance_draw(in.instance);
-        if !crack_solve(entry, q, s, d, start, mat2x2<f32>(jx, jy)) {
+        if !crack_solve(entry, q, s, d, start, mat2x2<f32>(jx, jy)).converged {
             // Unsolved from this fragment: the face's mailbox slot freed, so that another
             // of its fragments about the pixel (a nearer start) tries.
             for (var slot = 0u; slot < CRACK_MAILBOX_SLOTS; slot++) {
@@ -161,15 +164,22 @@ fn fs_crack(in: CrackOut) {
     }
 }
 
+// What a solve found: whether Newton's method reached the pixel's ray, and the reverse-Z
+// depth of the hit it pushed (0: none, the solution off the face or cut away).
+struct CrackSolve {
+    converged: bool,
+    depth: f32,
+}
+
 // Newton's method on face `s` placed by `d`, from the face-local (u, v) `start`, for the
 // point seen at the centre of pixel `q` (crack `entry`'s); a solution the face's exact trim
 // keeps is pushed on the entry's hits, one off the face records how far off it is (the
-// gaps; `footprint`: the (u, v) change over a pixel step in x and y, zero where unknown,
-// which records none). False when Newton's method did not reach the pixel's ray.
-fn crack_solve(entry: u32, q: vec2<i32>, s: TrimSurface, d: Draw, start: vec2<f32>, footprint: mat2x2<f32>) -> bool {
+// gaps; `footprint`: the (u, v) change over a pixel step in x and y, a fragment's
+// derivatives; zeros record no miss: the seeded solves', as the raster fill solves the
+// same face again where they do not close the pixel, and a face's miss counts once).
+fn crack_solve(entry: u32, q: vec2<i32>, s: TrimSurface, d: Draw, start: vec2<f32>, footprint: mat2x2<f32>) -> CrackSolve {
     atomicAdd(&crack_state[CRACK_COUNT_SOLVES], 1u);
-    let jx = footprint[0];
-    let jy = footprint[1];
+    var out: CrackSolve;
     let goal = vec2<f32>(q) + 0.5;
     // h: a thousandth of the box, for the Jacobian's differences.
     let h = max(abs(s.uv.zw) * 1e-3, vec2<f32>(1e-6));
@@ -203,10 +213,11 @@ fn crack_solve(entry: u32, q: vec2<i32>, s: TrimSurface, d: Draw, start: vec2<f3
         at_goal = length(screen.xy - goal) < CRACK_ACCEPT_PX;
     }
     if !at_goal {
-        return false;
+        return out;
     }
+    out.converged = true;
     if screen.w <= 0.0 || screen.z <= 0.0 || screen.z > 1.0 {
-        return true;
+        return out;
     }
     // An angle's solution a turn away from the box (across a closed face's seam, where
     // a cylinder seen from the side has its silhouette) taken back into it.
@@ -218,11 +229,13 @@ fn crack_solve(entry: u32, q: vec2<i32>, s: TrimSurface, d: Draw, start: vec2<f3
     let point = face_point(s, kept);
     let placed = place_vertex(d, point.position, point.normal * s.axis_y.w);
     if SECTIONS && section_cut(placed.world) {
-        return true;
+        return out;
     }
     if !in_box || (TRIM_TEST_CRACKS && !trim_classify(s.ids.z, kept)) {
         // Off the face: how far, in object space, for the gaps (a real gap narrower
         // than the user's tolerance is closed and shown as one).
+        let jx = footprint[0];
+        let jy = footprint[1];
         let known = any(jx != vec2<f32>(0.0)) | any(jy != vec2<f32>(0.0));
         var world = 0.0;
         if known && (!in_box || TRIM_TEST_CRACKS) {
@@ -241,18 +254,19 @@ fn crack_solve(entry: u32, q: vec2<i32>, s: TrimSurface, d: Draw, start: vec2<f3
             let least = atomicMin(&crack_state[crack_word(entry, CRACK_WORD_MISS)], bits);
             atomicMin(&crack_state[crack_word(entry, CRACK_WORD_MISS_NEXT)], max(least, bits));
         }
-        return true;
+        return out;
     }
     let hit = atomicAdd(&crack_state[CRACK_COUNT_HITS], 1u);
     if hit >= CRACK_HIT_CAPACITY {
-        return true;
+        return out;
     }
     let n = normalize(placed.normal);
     let next = atomicExchange(&crack_state[crack_word(entry, CRACK_WORD_HEAD)], hit + 1u);
     crack_hits[2u * hit] = vec4<u32>(s.ids.y, d.instance + 1u, d.material, bitcast<u32>(screen.z));
     let uv = s.uv.xy + kept;
     crack_hits[2u * hit + 1u] = vec4<u32>(pack2x16unorm(octahedral(n)), bitcast<u32>(uv.x), bitcast<u32>(uv.y), next);
-    return true;
+    out.depth = screen.z;
+    return out;
 }
 
 // Instances of a call a seeded solve's match walks for its seed's (past them it is left
@@ -262,18 +276,24 @@ const CRACK_SEED_WALK: u32 = 4096u;
 // row plus this times the layer.
 const CRACK_SEED_ROWS: u32 = 65535u;
 
-// The seeded solves of the pixels beside a silhouette (detect.wgsl's `CRACK_PAIR_SILHOUETTE`
-// entries): Newton's method from the seed's (u, v) — the grazing neighbour's texel — for
-// its face's point at the pixel's centre (`crack_solve`). Two passes: `cs_seed_match`, a
-// workgroup row for each trim draw (`seed_calls`) and a column for each 64 entries, finds
-// the seed's face among the draw's records by binary search (they are in ascending face
-// id) and its instance by walking the draw's, and writes their indices into the entry (its
-// surface + 1 and record in the third vec4's x and y, its local placement in the first's
-// w); then `cs_seeded`, one dispatch over the entries, solves. Matching first keeps a CPU
-// rasterizer's lanes together: solved draw by draw, a batch of lanes ran Newton's method
-// once for each draw its pixels' faces belonged to (PRO10363 at 1080p on lavapipe: 345 ms
-// for 561 solves). The raster fill costs a CPU rasterizer the vertex stage of every face
-// about a silhouette pixel (809 ms for 565 such pixels).
+// The seeded solves (seed 000's exact fill, started from the visibility buffer): each crack
+// pixel's seeds — the texels of its pair's two neighbours, or of the grazing neighbour
+// beside a silhouette (detect.wgsl) — solved on their own faces by Newton's method from
+// their (u, v) for the point seen at the pixel's centre (`crack_solve`). Two passes:
+// `cs_seed_match`, a workgroup row for each trim draw (`seed_calls`) and a column for each
+// 64 entries, finds a seed's face among the draw's records by binary search (they are in
+// ascending face id) and its instance by walking the draw's, and writes their indices into
+// the seed; then `cs_seeded`, one dispatch over the entries, solves (a miss off the face
+// left to the raster fill's solves), and marks the pixel settled where a hit closes it: the raster
+// fill then draws no face for it (`vs_mask`, `cs_crack_faces`). It is left the pixels no
+// seed closed — those whose seeds failed, and those the seeds' faces do not cover: with
+// every seed that reached the pixel's ray taken as settling it, the bore fixture at 7 grid
+// lines kept 1 of its 14 crack pixels (`cracks.rs`), which the raster fill closes. Matching first
+// keeps a CPU rasterizer's lanes together: solved draw by draw, a batch of lanes ran
+// Newton's method once for each draw its pixels' faces belonged to (PRO10363 at 1080p on
+// lavapipe: 345 ms for 561 solves beside silhouettes). The raster fill costs a CPU
+// rasterizer the vertex stage of every face about a pixel (809 ms for 565 pixels beside
+// silhouettes).
 @compute @workgroup_size(64)
 fn cs_seed_match(@builtin(global_invocation_id) id: vec3<u32>) {
     let entry = id.x;
@@ -282,33 +302,34 @@ fn cs_seed_match(@builtin(global_invocation_id) id: vec3<u32>) {
     if (entry >= kept) || (draw >= arrayLength(&seed_calls)) {
         return;
     }
-    if crack_entries[3u * entry].y != CRACK_PAIR_SILHOUETTE {
-        return;
-    }
     let c = seed_calls[draw];
-    let seed = crack_entries[3u * entry + 1u];
-    var lo = 0u;
-    var hi = c.faces;
-    for (var k = 0u; (k < 32u) & (lo < hi); k++) {
-        let mid = (lo + hi) / 2u;
-        if surfaces[c.first_surface + mid].ids.y < seed.x {
-            lo = mid + 1u;
-        } else {
-            hi = mid;
-        }
-    }
-    if (lo >= c.faces) || (surfaces[c.first_surface + lo].ids.y != seed.x) {
-        return;
-    }
-    let walked = min(c.instances, CRACK_SEED_WALK);
     let count = max(c.locals_count, 1u);
-    for (var i = 0u; i < walked; i++) {
-        let at = vec2<u32>(c.record + i / count, c.locals_first + i % count);
-        if draws[at.x].instance + locals[at.y].offset + 1u == seed.y {
-            crack_entries[3u * entry].w = at.y;
-            crack_entries[3u * entry + 2u].x = c.first_surface + lo + 1u;
-            crack_entries[3u * entry + 2u].y = at.x;
-            return;
+    let walked = min(c.instances, CRACK_SEED_WALK);
+    for (var k = 0u; k < CRACK_SEEDS; k++) {
+        let at = CRACK_SEED_VEC4S * entry + 2u * k;
+        let seed = crack_seeds[at];
+        if seed.y == 0u {
+            continue;
+        }
+        var lo = 0u;
+        var hi = c.faces;
+        for (var b = 0u; (b < 32u) & (lo < hi); b++) {
+            let mid = (lo + hi) / 2u;
+            if surfaces[c.first_surface + mid].ids.y < seed.x {
+                lo = mid + 1u;
+            } else {
+                hi = mid;
+            }
+        }
+        if (lo >= c.faces) || (surfaces[c.first_surface + lo].ids.y != seed.x) {
+            continue;
+        }
+        for (var i = 0u; i < walked; i++) {
+            let parts = vec2<u32>(c.record + i / count, c.locals_first + i % count);
+            if draws[parts.x].instance + locals[parts.y].offset + 1u == seed.y {
+                crack_seeds[at + 1u] = vec4<u32>(c.first_surface + lo + 1u, parts, crack_seeds[at + 1u].w);
+                break;
+            }
         }
     }
 }
@@ -321,16 +342,31 @@ fn cs_seeded(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let head = crack_entries[3u * entry];
-    let found = crack_entries[3u * entry + 2u];
-    if (head.y != CRACK_PAIR_SILHOUETTE) || (found.x == 0u) {
-        return;
-    }
-    let s = surfaces[found.x - 1u];
     let width = u32(frame.viewport.x);
     let q = vec2<i32>(i32(head.x % width), i32(head.x / width));
-    let uv = bitcast<vec2<f32>>(found.zw);
-    let d = parts_draw(vec2<u32>(found.y, head.w));
-    crack_solve(entry, q, s, d, uv - s.uv.xy, mat2x2<f32>(vec2<f32>(0.0), vec2<f32>(0.0)));
+    let centre = vec2<f32>(q) + 0.5;
+    let own = eye_distance(centre, bitcast<f32>(head.z));
+    var closed = false;
+    for (var k = 0u; k < CRACK_SEEDS; k++) {
+        let at = CRACK_SEED_VEC4S * entry + 2u * k;
+        let seed = crack_seeds[at];
+        let found = crack_seeds[at + 1u];
+        if seed.y == 0u {
+            continue;
+        }
+        if found.x == 0u {
+            continue;
+        }
+        let s = surfaces[found.x - 1u];
+        let uv = bitcast<vec2<f32>>(seed.zw);
+        let solve = crack_solve(entry, q, s, parts_draw(found.yz), uv - s.uv.xy, mat2x2<f32>(vec2<f32>(0.0), vec2<f32>(0.0)));
+        closed = closed | ((solve.depth > 0.0) & (eye_distance(centre, solve.depth) + frame.tolerances.z <= own));
+    }
+    if closed {
+        atomicAdd(&crack_state[CRACK_COUNT_SETTLED], 1u);
+        let at = CRACK_SEED_VEC4S * entry + 1u;
+        crack_seeds[at] = vec4<u32>(crack_seeds[at].xyz, 1u);
+    }
 }
 
 // The trim test of the solutions (off only for the tests' negative control: every solution

@@ -18,6 +18,8 @@
 @group(0) @binding(6) var<storage, read_write> crack_state: array<atomic<u32>>;
 // The packed B-splines (surface.wgsl's grid breaks read them; not this pass).
 @group(0) @binding(7) var<storage, read> trim_bspline: array<f32>;
+// Per entry, its seeds (cracks/layout.wgsl): whether the seeded solves settled it.
+@group(0) @binding(8) var<storage, read> crack_seeds: array<vec4<u32>>;
 
 // The crack buffers' capacity in entries (`passes::cracks` sets it).
 override CRACK_ENTRY_CAPACITY: u32 = 1024u;
@@ -78,9 +80,10 @@ fn cs_crack_faces(@builtin(global_invocation_id) id: vec3<u32>) {
         for (var e = 0u; (e < cracks) & !near; e++) {
             let head = crack_entries[3u * e];
             let p = vec2<f32>(f32(head.x % width), f32(head.x / width)) + 0.5;
-            // A pixel beside a silhouette is solved from its seed (`cs_seeded`), not by the
-            // faces drawn again.
-            near = all(p >= rect.xy) & all(p <= rect.zw) & (head.y != CRACK_PAIR_SILHOUETTE);
+            // A pixel beside a silhouette is solved from its seed alone (`cs_seeded`), and
+            // one its seeds settled needs no face drawn again.
+            let seeded = (head.y == CRACK_PAIR_SILHOUETTE) | (crack_seeds[CRACK_SEED_VEC4S * e + 1u].w != 0u);
+            near = all(p >= rect.xy) & all(p <= rect.zw) & !seeded;
         }
     }
     if near {

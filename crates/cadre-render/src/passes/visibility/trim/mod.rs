@@ -35,7 +35,8 @@ pub(crate) const BINDINGS: &[Binding] = &[
 
 /// The exact crack fill's bind group 0 (`crack.wgsl`, after the render shader): the render
 /// shader's [`BINDINGS`], then the crack map, the entries, the state and the hits
-/// (`passes::cracks`), the frame's trim draws (the seeded solves'); group 1: the instances.
+/// (`passes::cracks`), the frame's trim draws and the crack seeds (the seeded solves');
+/// group 1: the instances.
 pub(crate) const CRACK_BINDINGS: &[Binding] = &[
     Binding::Uniform(FrameUniform::WGSL_NAME),
     Binding::Storage(TrimSurface::WGSL_NAME),
@@ -52,7 +53,17 @@ pub(crate) const CRACK_BINDINGS: &[Binding] = &[
     Binding::AtomicStorage,
     Binding::StorageWrite("vec4<u32>"),
     Binding::Storage(TrimCall::WGSL_NAME),
+    Binding::StorageWrite("vec4<u32>"),
 ];
+
+/// Of [`CRACK_BINDINGS`], those the raster fill (`vs_crack`, `fs_crack`) binds: the render
+/// shader's and the crack map, entries, state and hits.
+const CRACK_RASTER_BINDINGS: usize = 14;
+
+/// Of [`CRACK_BINDINGS`], those the seeded solves leave out (the levels, the grid points,
+/// the crack map), so that their compute stage binds 14 storage buffers with the instances'
+/// (the device is asked for 16 a stage at most, `Gpu`).
+const SEEDED_UNBOUND: [u32; 3] = [2, 9, 10];
 
 /// The pass that picks the exact crack fill's faces (`crack_faces.wgsl`), bind group 0:
 /// frame, surfaces, tasks, the tessellation's indirect draws, the fill's (written), the
@@ -66,6 +77,7 @@ pub(crate) const CRACK_FACES_BINDINGS: &[Binding] = &[
     Binding::Storage("vec4<u32>"),
     Binding::AtomicStorage,
     Binding::Storage("f32"),
+    Binding::Storage("vec4<u32>"),
 ];
 
 /// Storage buffers the exact crack fill's fragment stage binds: the render shader's nine,
@@ -417,9 +429,12 @@ impl CrackFill {
             &CRACK_BINDINGS[..shared],
             wgpu::ShaderStages::VERTEX_FRAGMENT,
         );
-        for (i, mut e) in entries(&CRACK_BINDINGS[shared..], wgpu::ShaderStages::FRAGMENT)
-            .into_iter()
-            .enumerate()
+        for (i, mut e) in entries(
+            &CRACK_BINDINGS[shared..CRACK_RASTER_BINDINGS],
+            wgpu::ShaderStages::FRAGMENT,
+        )
+        .into_iter()
+        .enumerate()
         {
             e.binding = (shared + i) as u32;
             group.push(e);
@@ -428,7 +443,10 @@ impl CrackFill {
         let (seeded_layout, seeded_pipeline_layout) = layouts(
             device,
             "trim crack seeded solves",
-            &entries(CRACK_BINDINGS, wgpu::ShaderStages::COMPUTE),
+            &entries(CRACK_BINDINGS, wgpu::ShaderStages::COMPUTE)
+                .into_iter()
+                .filter(|e| !SEEDED_UNBOUND.contains(&e.binding))
+                .collect::<Vec<_>>(),
             Some(instances),
         );
         let (faces_layout, faces_pipeline_layout) = layouts(
@@ -761,8 +779,9 @@ impl TrimBackend {
         &self,
         (device, binds): (&wgpu::Device, &crate::frame_buffers::BindCache),
         encoder: &mut wgpu::CommandEncoder,
-        (inputs, silhouettes): (&PhaseInputs<'_>, bool),
+        inputs: &PhaseInputs<'_>,
         buffers: &crate::passes::cracks::CrackBuffers,
+        mask: &mut dyn FnMut(&mut wgpu::CommandEncoder),
     ) {
         let (Some(trim), Some(geometry)) = (&inputs.scene.trim, &inputs.scene.geometry.trim) else {
             return;
@@ -818,23 +837,38 @@ impl TrimBackend {
                 buffers.state.as_entire_binding(),
                 buffers.hits.as_entire_binding(),
                 trim.seed_calls.as_entire_binding(),
+                buffers.seeds.as_entire_binding(),
             ],
         ]
         .concat();
-        let bind = binds.get(device, "trim crack fill", &fill.layout, &resources);
+        let bind = binds.get(
+            device,
+            "trim crack fill",
+            &fill.layout,
+            &resources[..CRACK_RASTER_BINDINGS],
+        );
         let instances = &inputs.scene.instances;
-        if silhouettes {
+        {
             // The pixels beside a silhouette, each solved from its seed: its face and
             // instance found by one dispatch over the entries and the draws, then one
             // dispatch over the entries solves.
             let [matches, solves] =
                 fill.seeded(device, inputs.sections, (self.trim_test, self.ray_cast));
-            let seeded_bind = binds.get(
-                device,
-                "trim crack seeded solves",
-                &fill.seeded_layout,
-                &resources,
-            );
+            // Made each frame, not cached: its bindings are not numbered by their place.
+            let seeded_entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+                .iter()
+                .enumerate()
+                .map(|(i, r)| wgpu::BindGroupEntry {
+                    binding: i as u32,
+                    resource: r.clone(),
+                })
+                .filter(|e| !SEEDED_UNBOUND.contains(&e.binding))
+                .collect();
+            let seeded_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("trim crack seeded solves"),
+                layout: &fill.seeded_layout,
+                entries: &seeded_entries,
+            });
             encoder.copy_buffer_to_buffer(
                 &buffers.args,
                 crate::passes::cracks::SEEDED_DISPATCH_OFFSET,
@@ -856,6 +890,8 @@ impl TrimBackend {
                 crate::passes::cracks::SEEDED_DISPATCH_OFFSET,
             );
         }
+        // The depth mask, about the cracks the seeds left.
+        mask(encoder);
         // The faces about the cracks: their draws copied, the others' emptied.
         let faces_bind = binds.get(
             device,
@@ -870,6 +906,7 @@ impl TrimBackend {
                 buffers.entries.as_entire_binding(),
                 buffers.state.as_entire_binding(),
                 geometry.bspline.as_entire_binding(),
+                buffers.seeds.as_entire_binding(),
             ],
         );
         {
