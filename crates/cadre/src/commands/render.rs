@@ -921,12 +921,14 @@ fn draw_file(
         let c = renderer.last_crack_counts(gpu);
         if c.detected > 0 {
             eprintln!(
-                "{}: {} crack pixel(s) ({} beside silhouettes): {} filled exactly ({} face \
-                 draw(s) again), {} by the fast fill, {} in gaps closed, {} left open{}",
+                "{}: {} crack pixel(s) ({} beside silhouettes): {} filled exactly ({} from \
+                 their neighbours' faces, {} face draw(s) again), {} by the fast fill, {} in \
+                 gaps closed, {} left open{}",
                 input.display(),
                 c.detected,
                 c.silhouettes,
                 c.exact,
+                c.settled,
                 c.fill_faces,
                 c.fast,
                 c.gaps,
