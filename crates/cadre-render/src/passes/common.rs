@@ -149,19 +149,25 @@ pub(crate) fn bind_group(
     layout: &wgpu::BindGroupLayout,
     resources: &[wgpu::BindingResource<'_>],
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = numbered(resources).collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// `resources` as bind group entries at bindings 0, 1, 2, ...
+pub(crate) fn numbered<'a>(
+    resources: &[wgpu::BindingResource<'a>],
+) -> impl Iterator<Item = wgpu::BindGroupEntry<'a>> {
+    resources
         .iter()
         .enumerate()
         .map(|(i, r)| wgpu::BindGroupEntry {
             binding: i as u32,
             resource: r.clone(),
         })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout,
-        entries: &entries,
-    })
 }
 
 /// Attributes of [`Vertex`]: position, normal, face id, (u, v).

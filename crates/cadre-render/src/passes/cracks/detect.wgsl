@@ -14,10 +14,10 @@
 // its silhouette). It is asked for (`CrackOptions::silhouettes`, `frame.forward.w` = 1): its
 // cost follows the silhouettes, not the cracks. Only the exact fill acts on these: the surface's exact point at p's
 // centre, where the exact surface covers it, is nearer and taken; otherwise p is left as
-// drawn (the true silhouette passes before it) and not counted as open. Their entries carry
-// the grazing neighbour's texel (ids and (u, v)), from which the exact fill solves that
-// face alone (`cs_seeded`, visibility/trim/crack.wgsl) instead of drawing faces again.
-// Each crack between faces carries its pair's two neighbours as seeds the same way.
+// drawn (the true silhouette passes before it) and not counted as open. Their seed is the
+// grazing neighbour's texel (ids and (u, v)), from which the exact fill solves that face
+// alone (`cs_seeded`, visibility/trim/crack.wgsl) instead of drawing faces again. Each
+// crack between faces carries its pair's two neighbours as seeds the same way.
 //
 // Two full-screen passes: the flags
 // (`fs_flag`, the crack mask's depth), then at the flagged pixels the entries (`fs_detect`:
@@ -38,9 +38,8 @@
 // The indirect draw of the mask's and the resolve's quads, a quad (6 vertices) a crack,
 // then the indirect dispatch of the seeded solves, 64 entries a workgroup (`cs_args`).
 @group(0) @binding(7) var<storage, read_write> crack_args: array<u32>;
-// The (u, v) target (f32 bits), read for the silhouette entries' seeds: bound where the
-// frame has one (the renderer makes it when the silhouette rule is on; else the ids target
-// stands in, unread).
+// The (u, v) target (f32 bits), read for the seeds: bound where the frame has one (the
+// renderer makes it whenever the exact fill runs; else the ids target stands in, unread).
 @group(0) @binding(8) var uv_tex: texture_2d<u32>;
 // Per entry, the seeds (cracks/layout.wgsl's `CRACK_SEED_VEC4S`).
 @group(0) @binding(9) var<storage, read_write> crack_seeds: array<vec4<u32>>;

@@ -4,17 +4,17 @@
 // flagged (passes/cracks/detect.wgsl) solves, by Newton's method from its own (u, v), for
 // the point of its face's exact surface seen at the centre of that pixel; a solution that
 // the face's exact trim keeps is a hit, pushed on the pixel's list of hits (the resolve
-// pass, passes/cracks/resolve.wgsl, keeps the nearest). The pixels flagged beside a
-// silhouette are solved instead by a compute pass from their seeds (`cs_seeded`, below).
+// pass, passes/cracks/resolve.wgsl, keeps the nearest). Before it, every flagged pixel is
+// solved in compute from its seeds (`cs_seeded`, below), and the pixels flagged beside a
+// silhouette only so.
 // The layout of the crack buffers is `passes::cracks`' (cracks/layout.wgsl, placed before
 // this file).
 
 // Per pixel: 0, or 1 + the index of its crack entry.
 @group(0) @binding(10) var<storage, read> crack_map: array<u32>;
 // Per entry, three vec4: (pixel, pair, the pixel's own depth bits, 0), the fast fill's ids,
-// its normal texel's bits; a silhouette entry's seed instead (detect.wgsl), which
-// `cs_seed_match` completes.
-@group(0) @binding(11) var<storage, read_write> crack_entries: array<vec4<u32>>;
+// its normal texel's bits.
+@group(0) @binding(11) var<storage, read> crack_entries: array<vec4<u32>>;
 // Counters (the first `CRACK_HEADER` words), then `CRACK_ENTRY_WORDS` atomics an entry.
 @group(0) @binding(12) var<storage, read_write> crack_state: array<atomic<u32>>;
 // Per hit, two vec4: ids (face, instance + 1, material, depth bits), then the octahedral

@@ -49,7 +49,7 @@ pub(crate) const CRACK_BINDINGS: &[Binding] = &[
     Binding::Storage("f32"),
     Binding::Storage("vec4<f32>"),
     Binding::Storage("u32"),
-    Binding::StorageWrite("vec4<u32>"),
+    Binding::Storage("vec4<u32>"),
     Binding::AtomicStorage,
     Binding::StorageWrite("vec4<u32>"),
     Binding::Storage(TrimCall::WGSL_NAME),
@@ -407,8 +407,8 @@ struct CrackFill {
     /// The pass that picks its faces (`crack_faces.wgsl`) and its bind group's layout.
     faces: wgpu::ComputePipeline,
     faces_layout: wgpu::BindGroupLayout,
-    /// The seeded solves of the pixels beside a silhouette (`crack.wgsl`'s `cs_seed_match`
-    /// and `cs_seeded`), by `sections`, and their bind group 0's layout (the fill's
+    /// The seeded solves of the flagged pixels (`crack.wgsl`'s `cs_seed_match` and
+    /// `cs_seeded`), by `sections`, and their bind group 0's layout (the fill's
     /// bindings, seen by compute).
     seeded: [OnceLock<[wgpu::ComputePipeline; 2]>; 2],
     seeded_layout: wgpu::BindGroupLayout,
@@ -770,7 +770,8 @@ impl TrimBackend {
         }
     }
 
-    /// Records the exact crack fill (`crack.wgsl`): the trimmed faces about the cracks
+    /// Records the exact crack fill (`crack.wgsl`): the seeded solves, then `mask` (the crack
+    /// mask, about the cracks they left), then the trimmed faces about those cracks
     /// (`crack_faces.wgsl` empties the others' draws) drawn again over their whole boxes,
     /// their fragments next to the crack pixels of `buffers`
     /// solving for the exact surface seen there; into a pass over the crack mask
@@ -848,48 +849,13 @@ impl TrimBackend {
             &resources[..CRACK_RASTER_BINDINGS],
         );
         let instances = &inputs.scene.instances;
-        {
-            // The pixels beside a silhouette, each solved from its seed: its face and
-            // instance found by one dispatch over the entries and the draws, then one
-            // dispatch over the entries solves.
-            let [matches, solves] =
-                fill.seeded(device, inputs.sections, (self.trim_test, self.ray_cast));
-            // Made each frame, not cached: its bindings are not numbered by their place.
-            let seeded_entries: Vec<wgpu::BindGroupEntry<'_>> = resources
-                .iter()
-                .enumerate()
-                .map(|(i, r)| wgpu::BindGroupEntry {
-                    binding: i as u32,
-                    resource: r.clone(),
-                })
-                .filter(|e| !SEEDED_UNBOUND.contains(&e.binding))
-                .collect();
-            let seeded_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("trim crack seeded solves"),
-                layout: &fill.seeded_layout,
-                entries: &seeded_entries,
-            });
-            encoder.copy_buffer_to_buffer(
-                &buffers.args,
-                crate::passes::cracks::SEEDED_DISPATCH_OFFSET,
-                &trim.seed_dispatch,
-                0,
-                4,
-            );
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("trim crack seeded solves"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(matches);
-            pass.set_bind_group(0, &seeded_bind, &[]);
-            pass.set_bind_group(1, &instances.bind, &[0]);
-            pass.dispatch_workgroups_indirect(&trim.seed_dispatch, 0);
-            pass.set_pipeline(solves);
-            pass.dispatch_workgroups_indirect(
-                &buffers.args,
-                crate::passes::cracks::SEEDED_DISPATCH_OFFSET,
-            );
-        }
+        record_seeded_solves(
+            device,
+            encoder,
+            (fill, self.trim_test, self.ray_cast, inputs.sections),
+            (trim, buffers, instances),
+            &resources,
+        );
         // The depth mask, about the cracks the seeds left.
         mask(encoder);
         // The faces about the cracks: their draws copied, the others' emptied.
@@ -932,6 +898,45 @@ impl TrimBackend {
             );
         }
     }
+}
+
+/// Records the seeded solves (`crack.wgsl`'s `cs_seed_match` and `cs_seeded`): each seed's
+/// face and instance found by one dispatch over the entries and the trim draws, then one
+/// dispatch over the entries solves them. `resources`: the exact fill's bind group 0
+/// ([`CRACK_BINDINGS`]), of which the solves bind all but [`SEEDED_UNBOUND`].
+fn record_seeded_solves(
+    device: &wgpu::Device,
+    encoder: &mut wgpu::CommandEncoder,
+    (fill, trim_test, ray_cast, sections): (&CrackFill, bool, bool, bool),
+    (trim, buffers, instances): (
+        &FrameTrim,
+        &crate::passes::cracks::CrackBuffers,
+        &crate::gpu_scene::FrameInstances,
+    ),
+    resources: &[wgpu::BindingResource<'_>],
+) {
+    let [matches, solves] = fill.seeded(device, sections, (trim_test, ray_cast));
+    // Made each frame, not cached (`BindCache` numbers bindings by their place).
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = crate::passes::common::numbered(resources)
+        .filter(|e| !SEEDED_UNBOUND.contains(&e.binding))
+        .collect();
+    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("trim crack seeded solves"),
+        layout: &fill.seeded_layout,
+        entries: &entries,
+    });
+    let at = crate::passes::cracks::SEEDED_DISPATCH_OFFSET;
+    encoder.copy_buffer_to_buffer(&buffers.args, at, &trim.seed_dispatch, 0, 4);
+    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some("trim crack seeded solves"),
+        timestamp_writes: None,
+    });
+    pass.set_pipeline(matches);
+    pass.set_bind_group(0, &bind, &[]);
+    pass.set_bind_group(1, &instances.bind, &[0]);
+    pass.dispatch_workgroups_indirect(&trim.seed_dispatch, 0);
+    pass.set_pipeline(solves);
+    pass.dispatch_workgroups_indirect(&buffers.args, at);
 }
 
 /// The render shader's bind group 0 ([`BINDINGS`]): the frame, the faces' records and
